@@ -1,0 +1,43 @@
+# granflow — the two commands: `make run` and `make test`.
+# Everything else goes through CMake; this file only sequences it.
+BUILD      ?= build
+BUILD_SAN  ?= build-san
+GF_WERROR  ?= OFF
+RUN_DIR    ?= runs/silo
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+
+.PHONY: all deps build build-san run test test-fast test-san bench clean
+
+all: build
+
+deps:
+	@bash scripts/deps.sh
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+build-san: deps
+	@cmake -S . -B $(BUILD_SAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGF_SANITIZE=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD_SAN) -j $(JOBS)
+
+# The papers' silo: pack, drain, write snapshots + summary into $(RUN_DIR).
+run: build
+	./$(BUILD)/granflow run -o $(RUN_DIR)
+	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json)"
+
+# The whole suite: optimised build, then again under ASan + UBSan.
+test: test-fast test-san
+
+test-fast: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-san: build-san
+	cd $(BUILD_SAN) && ctest --output-on-failure -j $(JOBS) -LE nosan
+
+bench: build
+	./$(BUILD)/granflow bench
+
+clean:
+	rm -rf $(BUILD) $(BUILD_SAN)

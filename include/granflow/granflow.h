@@ -1,0 +1,8 @@
+// SPDX-License-Identifier: MIT
+// granflow: the whole public API.
+#ifndef GRANFLOW_H
+#define GRANFLOW_H
+#include "granflow/config.h"
+#include "granflow/core.h"
+#include "granflow/packing.h"
+#endif

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs the Debian packages granflow needs to build, test and draw pictures.
+# Idempotent: does nothing when everything is present. Works as root, or with sudo.
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config libinih-dev libcmocka-dev zlib1g-dev)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "deps: installing ${missing[*]}" >&2
+if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

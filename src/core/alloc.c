@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+#include "core/alloc.h"
+
+#include "granflow/core.h"
+
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+static atomic_size_t gf_bytes;
+
+void *gf_alloc(size_t size)
+{
+    if (size == 0) return NULL;
+    size_t rounded = (size + 63) & ~(size_t)63;
+    void *p = aligned_alloc(64, rounded);
+    if (!p) return NULL;
+    memset(p, 0, rounded);
+    atomic_fetch_add(&gf_bytes, size);
+    return p;
+}
+
+void gf_free(void *p, size_t size)
+{
+    if (!p) return;
+    atomic_fetch_sub(&gf_bytes, size);
+    free(p);
+}
+
+void *gf_realloc(void *p, size_t old_size, size_t new_size)
+{
+    if (new_size == 0) {
+        gf_free(p, old_size);
+        return NULL;
+    }
+    void *q = gf_alloc(new_size);
+    if (!q) return NULL;
+    if (p) {
+        memcpy(q, p, old_size < new_size ? old_size : new_size);
+        gf_free(p, old_size);
+    }
+    return q;
+}
+
+size_t gf_bytes_allocated(void) { return atomic_load(&gf_bytes); }

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// Internal: the one allocator. 64-byte aligned blocks with a byte counter, so
+// every test can end by checking gf_bytes_allocated() == 0 (STYLE item 5).
+#ifndef GF_CORE_ALLOC_H
+#define GF_CORE_ALLOC_H
+
+#include <stddef.h>
+
+/// Zeroed, 64-byte aligned block of `size` bytes, or NULL (size 0 gives NULL).
+void *gf_alloc(size_t size);
+/// Frees a block from gf_alloc; `size` must be the size it was allocated with.
+void gf_free(void *p, size_t size);
+/// Grows or shrinks a block, keeping min(old, new) bytes and zeroing the rest.
+void *gf_realloc(void *p, size_t old_size, size_t new_size);
+
+/// Typed helpers: n elements of type T.
+#define GF_NEW(T, n) ((T *)gf_alloc(sizeof(T) * (size_t)(n)))
+#define GF_DELETE(p, n) gf_free((p), sizeof(*(p)) * (size_t)(n))
+
+#endif

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+// gf_packing storage and simple whole-packing measurements.
+#include "granflow/packing.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+
+gf_status gf_packing_reserve(gf_packing *p, size_t cap)
+{
+    if (cap <= p->cap) return GF_OK;
+    size_t old = p->cap;
+#define GF_GROW(field)                                                                       \
+    do {                                                                                     \
+        void *q = gf_realloc(p->field, sizeof(*p->field) * old, sizeof(*p->field) * cap);    \
+        if (!q) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu particles", cap);   \
+        p->field = q;                                                                        \
+    } while (0)
+    GF_GROW(id);
+    GF_GROW(layer);
+    GF_GROW(x);
+    GF_GROW(y);
+    GF_GROW(z);
+    GF_GROW(r);
+#undef GF_GROW
+    p->cap = cap;
+    return GF_OK;
+}
+
+gf_status gf_packing_push(gf_packing *p, int64_t id, int32_t layer, double x, double y, double z,
+                          double r)
+{
+    if (p->n == p->cap) {
+        gf_status st = gf_packing_reserve(p, p->cap < 64 ? 64 : 2 * p->cap);
+        if (st != GF_OK) return st;
+    }
+    size_t i = p->n++;
+    p->id[i] = id;
+    p->layer[i] = layer;
+    p->x[i] = x;
+    p->y[i] = y;
+    p->z[i] = z;
+    p->r[i] = r;
+    return GF_OK;
+}
+
+void gf_packing_free(gf_packing *p)
+{
+    GF_DELETE(p->id, p->cap);
+    GF_DELETE(p->layer, p->cap);
+    GF_DELETE(p->x, p->cap);
+    GF_DELETE(p->y, p->cap);
+    GF_DELETE(p->z, p->cap);
+    GF_DELETE(p->r, p->cap);
+    memset(p, 0, sizeof *p);
+}
+
+void gf_packing_tag_layers(gf_packing *p, double thickness)
+{
+    for (size_t i = 0; i < p->n; i++) p->layer[i] = 1 + (int32_t)floor(p->z[i] / thickness);
+}
+
+double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0, double y1, double z0,
+                           double z1)
+{
+    double vol = (x1 - x0) * (y1 - y0) * (z1 - z0);
+    if (!(vol > 0)) return 0.0;
+    double sum = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        if (p->x[i] >= x0 && p->x[i] < x1 && p->y[i] >= y0 && p->y[i] < y1 && p->z[i] >= z0 &&
+            p->z[i] < z1)
+            sum += 4.0 / 3.0 * 3.14159265358979323846 * p->r[i] * p->r[i] * p->r[i];
+    }
+    return sum / vol;
+}
+
+double gf_packing_min_distance(const gf_packing *p)
+{
+    if (p->n < 2) return INFINITY;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double rmax = 0.0;
+    const double *c[3] = {p->x, p->y, p->z};
+    for (size_t i = 0; i < p->n; i++) {
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], c[k][i]);
+            hi[k] = fmax(hi[k], c[k][i]);
+        }
+        rmax = fmax(rmax, p->r[i]);
+    }
+    // Cells of side >= one diameter: every pair closer than that is in
+    // neighbouring cells, so the result is exact whenever it is below h.
+    double h = fmax(2.0 * rmax, 1.0);
+    size_t nc[3], ncell = 1;
+    for (int k = 0; k < 3; k++) {
+        double span = hi[k] - lo[k];
+        nc[k] = (size_t)(span / h) + 1;
+        if (nc[k] > 4096) nc[k] = 4096;
+        ncell *= nc[k];
+    }
+    size_t *head = GF_NEW(size_t, ncell + 1), *order = GF_NEW(size_t, p->n), *cell = GF_NEW(size_t, p->n);
+    if (!head || !order || !cell) {
+        GF_DELETE(head, ncell + 1);
+        GF_DELETE(order, p->n);
+        GF_DELETE(cell, p->n);
+        return NAN;
+    }
+    size_t ci[3];
+    for (size_t i = 0; i < p->n; i++) {
+        for (int k = 0; k < 3; k++) {
+            size_t v = (size_t)((c[k][i] - lo[k]) / h);
+            ci[k] = v >= nc[k] ? nc[k] - 1 : v;
+        }
+        cell[i] = (ci[2] * nc[1] + ci[1]) * nc[0] + ci[0];
+        head[cell[i] + 1]++;
+    }
+    for (size_t k = 0; k < ncell; k++) head[k + 1] += head[k];
+    for (size_t i = 0; i < p->n; i++) order[head[cell[i]]++] = i;
+    for (size_t k = ncell; k > 0; k--) head[k] = head[k - 1];
+    head[0] = 0;
+    double best2 = INFINITY;
+    for (size_t cz = 0; cz < nc[2]; cz++)
+        for (size_t cy = 0; cy < nc[1]; cy++)
+            for (size_t cx = 0; cx < nc[0]; cx++) {
+                size_t a = (cz * nc[1] + cy) * nc[0] + cx;
+                for (int dz = -1; dz <= 1; dz++)
+                    for (int dy = -1; dy <= 1; dy++)
+                        for (int dx = -1; dx <= 1; dx++) {
+                            long x = (long)cx + dx, y = (long)cy + dy, z = (long)cz + dz;
+                            if (x < 0 || y < 0 || z < 0 || x >= (long)nc[0] || y >= (long)nc[1] ||
+                                z >= (long)nc[2])
+                                continue;
+                            size_t b = ((size_t)z * nc[1] + (size_t)y) * nc[0] + (size_t)x;
+                            if (b < a) continue;
+                            for (size_t u = head[a]; u < head[a + 1]; u++)
+                                for (size_t v = (a == b ? u + 1 : head[b]); v < head[b + 1]; v++) {
+                                    size_t i = order[u], j = order[v];
+                                    double ddx = p->x[i] - p->x[j], ddy = p->y[i] - p->y[j],
+                                           ddz = p->z[i] - p->z[j];
+                                    double d2 = ddx * ddx + ddy * ddy + ddz * ddz;
+                                    if (d2 < best2) best2 = d2;
+                                }
+                        }
+            }
+    GF_DELETE(head, ncell + 1);
+    GF_DELETE(order, p->n);
+    GF_DELETE(cell, p->n);
+    return sqrt(best2);
+}

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+#include "support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static char gf_tmp[512];
+
+static void gf_test_cleanup(void)
+{
+    if (gf_tmp[0] && !getenv("GF_KEEP_TMP")) {
+        char cmd[600];
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", gf_tmp);
+        if (system(cmd) != 0) fprintf(stderr, "warning: could not remove %s\n", gf_tmp);
+    }
+}
+
+const char *gf_test_tmpdir(void)
+{
+    if (!gf_tmp[0]) {
+        const char *base = getenv("TMPDIR");
+        snprintf(gf_tmp, sizeof gf_tmp, "%s/gftest.XXXXXX", base && *base ? base : "/tmp");
+        if (!mkdtemp(gf_tmp)) {
+            perror("mkdtemp");
+            abort();
+        }
+        atexit(gf_test_cleanup);
+    }
+    return gf_tmp;
+}
+
+const char *gf_test_write_file(const char *dir, const char *name, const char *text)
+{
+    static char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        perror(path);
+        abort();
+    }
+    fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+char *gf_test_read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        free(buf);
+        buf = NULL;
+    }
+    fclose(f);
+    if (buf) {
+        buf[n] = '\0';
+        if (len) *len = (size_t)n;
+    }
+    return buf;
+}
+
+void gf_assert_near_(double a, double b, double tol, const char *ea, const char *eb, const char *file,
+                     int line)
+{
+    if (!(a - b <= tol && b - a <= tol)) {
+        cm_print_error("%s = %.12g and %s = %.12g differ by %.3g > tolerance %.3g\n", ea, a, eb, b,
+                       a > b ? a - b : b - a, tol);
+        _fail(file, line);
+    }
+}
+
+static int gf_check_leaks(void **state)
+{
+    (void)state;
+    size_t left = gf_bytes_allocated();
+    if (left != 0) {
+        cm_print_error("%zu bytes of granflow memory still allocated after the test\n", left);
+        return -1;
+    }
+    return 0;
+}
+
+int gf_test_run(int argc, char **argv, const char *suite, const struct CMUnitTest *tests, size_t n)
+{
+    struct CMUnitTest *sel = calloc(n, sizeof *sel);
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (argc > 1 && strcmp(argv[1], tests[i].name) != 0) continue;
+        sel[k] = tests[i];
+        if (!sel[k].teardown_func) sel[k].teardown_func = gf_check_leaks;
+        k++;
+    }
+    if (k == 0) {
+        fprintf(stderr, "%s: no test named '%s'\n", suite, argc > 1 ? argv[1] : "");
+        free(sel);
+        return 1;
+    }
+    int rc = _cmocka_run_group_tests(suite, sel, k, NULL, NULL);
+    free(sel);
+    return rc;
+}
