@@ -69,7 +69,7 @@ void gf_assert_near_(double a, double b, double tol, const char *ea, const char 
                      int line)
 {
     if (!(a - b <= tol && b - a <= tol)) {
-        cm_print_error("%s = %.12g and %s = %.12g differ by %.3g > tolerance %.3g\n", ea, a, eb, b,
+        print_error("%s = %.12g and %s = %.12g differ by %.3g > tolerance %.3g\n", ea, a, eb, b,
                        a > b ? a - b : b - a, tol);
         _fail(file, line);
     }
@@ -80,7 +80,7 @@ static int gf_check_leaks(void **state)
     (void)state;
     size_t left = gf_bytes_allocated();
     if (left != 0) {
-        cm_print_error("%zu bytes of granflow memory still allocated after the test\n", left);
+        print_error("%zu bytes of granflow memory still allocated after the test\n", left);
         return -1;
     }
     return 0;

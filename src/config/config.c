@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: MIT
+// gf_config: defaults from the key table, INI loading (libinih), `section.key=value`
+// overrides, cross-key validation, and writing the effective values back out.
+#include "granflow/config.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "config/keys.h"
+#include "core/alloc.h"
+#include "core/error.h"
+
+// "gfCF": marks a gf_config that came from gf_config_default().
+#define GF_CONFIG_COOKIE 0x67664346u
+
+// Longest line (without its newline) a non-comment INI line may have: libinih
+// reads lines into a fixed buffer and needs room for "\r\n\0".
+#define GF_CONFIG_MAX_LINE (INI_MAX_LINE - 3)
+
+static gf_status gf_config_check(const gf_config *cfg, const char *fn)
+{
+    if (!cfg) return gf_error_set(GF_ERR_PARAM, "%s: cfg is NULL", fn);
+    if (cfg->cookie_ != GF_CONFIG_COOKIE)
+        return gf_error_set(GF_ERR_PARAM, "%s: config not made by gf_config_default", fn);
+    return GF_OK;
+}
+
+// Strips leading and trailing white space in place.
+static char *gf_config_trim(char *s)
+{
+    while (isspace((unsigned char)*s)) s++;
+    size_t n = strlen(s);
+    while (n > 0 && isspace((unsigned char)s[n - 1])) s[--n] = '\0';
+    return s;
+}
+
+gf_config gf_config_default(void)
+{
+    gf_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        char why[160];
+        gf_key_result r = gf_keys_assign(&gf_keys[i], &cfg, gf_keys[i].def, why, sizeof why);
+        GF_ASSERT(r == GF_KEY_OK); // the table's own defaults always parse
+        (void)r;
+    }
+    cfg.cookie_ = GF_CONFIG_COOKIE;
+    return cfg;
+}
+
+// Stores one value. `lead` starts the message ("x.ini:3" or "--set spot.w=abc");
+// `show_value` adds "[section] key = value" after it (file style).
+static gf_status gf_config_apply(gf_config *cfg, const char *lead, bool show_value,
+                                 const char *section, const char *name, const char *value)
+{
+    char list[256];
+    if (!gf_keys_section_known(section)) {
+        gf_keys_list(NULL, list, sizeof list);
+        return gf_error_set(GF_ERR_PARAM, "%s: unknown section [%s] (known: %s)", lead, section,
+                            list);
+    }
+    const gf_key *k = gf_keys_find(section, name);
+    if (!k) {
+        gf_keys_list(section, list, sizeof list);
+        return gf_error_set(GF_ERR_PARAM, "%s: unknown key '%s' in section [%s] (known: %s)", lead,
+                            name, section, list);
+    }
+    char why[160];
+    gf_key_result r = gf_keys_assign(k, cfg, value, why, sizeof why);
+    if (r == GF_KEY_OK) return GF_OK;
+    if (!show_value) return gf_error_set(GF_ERR_PARAM, "%s: %s", lead, why);
+    const char *q = r == GF_KEY_BAD_VALUE ? "'" : "";
+    return gf_error_set(GF_ERR_PARAM, "%s: [%s] %s = %s%s%s: %s", lead, section, name, q, value, q,
+                        why);
+}
+
+// ---- loading -------------------------------------------------------------
+
+// State shared by the line reader and the key handler of one gf_config_load.
+typedef struct gf_config_loader {
+    gf_config *cfg;
+    FILE *f;
+    const char *path;
+    char *buf;      // getline buffer (malloc'd by getline)
+    size_t cap;     // its capacity
+    int line;       // number of the line last handed to libinih
+    int err_line;   // line of the first error found here (message already set), 0: none
+    gf_status err;  // status of that error
+    int read_errno; // errno of a failed read, 0: none
+} gf_config_loader;
+
+static void gf_config_fail(gf_config_loader *ld, gf_status st)
+{
+    ld->err_line = ld->line;
+    ld->err = st;
+}
+
+// First of `chars` in `s` before an inline comment (';' after white space),
+// exactly as libinih looks for '=', ':' and ']'; NULL if none.
+static const char *gf_config_find(const char *s, const char *chars)
+{
+    bool was_space = false;
+    for (; *s; s++) {
+        if (strchr(chars, *s)) return s;
+        if (was_space && *s == ';') return NULL;
+        was_space = isspace((unsigned char)*s);
+    }
+    return NULL;
+}
+
+// Checks a section header or key line before libinih sees it, so that syntax
+// errors and unknown (possibly empty) sections are reported with their line.
+static bool gf_config_check_line(gf_config_loader *ld, const char *p)
+{
+    if (*p == '[') {
+        const char *end = gf_config_find(p + 1, "]");
+        if (!end) {
+            gf_error_set(GF_ERR_PARAM, "%s:%d: syntax error: missing ']' after section name",
+                         ld->path, ld->line);
+            return false;
+        }
+        char name[64];
+        size_t len = (size_t)(end - (p + 1));
+        snprintf(name, sizeof name, "%.*s", (int)(len < sizeof name ? len : sizeof name - 1),
+                 p + 1);
+        char *s = gf_config_trim(name);
+        if (!gf_keys_section_known(s)) {
+            char list[128];
+            gf_keys_list(NULL, list, sizeof list);
+            gf_error_set(GF_ERR_PARAM, "%s:%d: unknown section [%s] (known: %s)", ld->path,
+                         ld->line, s, list);
+            return false;
+        }
+        return true;
+    }
+    if (!gf_config_find(p, "=:")) {
+        gf_error_set(GF_ERR_PARAM, "%s:%d: syntax error: expected 'key = value' or '[section]'",
+                     ld->path, ld->line);
+        return false;
+    }
+    return true;
+}
+
+// libinih reader: one whole line per call, so libinih's count and ours agree.
+// Leading white space is removed (an indented line would otherwise continue
+// the previous value), comments are blanked, and reading stops at our first error.
+static char *gf_config_read_line(char *str, int num, void *stream)
+{
+    gf_config_loader *ld = stream;
+    if (ld->err_line) return NULL;
+    errno = 0;
+    ssize_t got = getline(&ld->buf, &ld->cap, ld->f);
+    if (got < 0) {
+        if (ferror(ld->f)) ld->read_errno = errno ? errno : EIO;
+        return NULL;
+    }
+    ld->line++;
+    char *p = ld->buf;
+    if (ld->line == 1 && got >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3; // UTF-8 BOM
+    p = gf_config_trim(p);
+    if (*p == ';' || *p == '#' || *p == '\0') {
+        str[0] = '\0'; // comment or blank: any length is fine
+        return str;
+    }
+    size_t len = strlen(p);
+    if (len > (size_t)num - 3 || len > GF_CONFIG_MAX_LINE) {
+        gf_config_fail(ld, gf_error_set(GF_ERR_PARAM,
+                                        "%s:%d: line too long (%zu characters, at most %d)",
+                                        ld->path, ld->line, len, GF_CONFIG_MAX_LINE));
+        return NULL;
+    }
+    if (!gf_config_check_line(ld, p)) {
+        gf_config_fail(ld, GF_ERR_PARAM);
+        return NULL;
+    }
+    memcpy(str, p, len + 1);
+    return str;
+}
+
+// libinih handler: one `name = value` of `section` on line ld->line.
+static int gf_config_on_pair(void *user, const char *section, const char *name, const char *value)
+{
+    gf_config_loader *ld = user;
+    if (ld->err_line) return 0;
+    char lead[GF_PATH_MAX + 32];
+    snprintf(lead, sizeof lead, "%s:%d", ld->path, ld->line);
+    char sec[64];
+    snprintf(sec, sizeof sec, "%s", section);
+    char *s = gf_config_trim(sec);
+    gf_status st;
+    if (!*s) {
+        st = gf_error_set(GF_ERR_PARAM, "%s: key '%s' is outside any [section]", lead, name);
+    } else {
+        st = gf_config_apply(ld->cfg, lead, true, s, name, value ? value : "");
+    }
+    if (st != GF_OK) {
+        gf_config_fail(ld, st);
+        return 0;
+    }
+    return 1;
+}
+
+gf_status gf_config_load(gf_config *cfg, const char *path)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_load");
+    if (st != GF_OK) return st;
+    if (!path) return gf_error_set(GF_ERR_PARAM, "gf_config_load: path is NULL");
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return gf_error_set(GF_ERR_IO, "cannot open config file '%s': %s", path, strerror(errno));
+    gf_config_loader ld = {.cfg = cfg, .f = f, .path = path};
+    int ret = ini_parse_stream(gf_config_read_line, &ld, gf_config_on_pair, &ld);
+    free(ld.buf);
+    fclose(f);
+    if (ld.err_line && (ret <= 0 || ret >= ld.err_line)) return ld.err;
+    // libinih found an error our line checks did not anticipate.
+    if (ret > 0) return gf_error_set(GF_ERR_PARAM, "%s:%d: syntax error", path, ret);
+    if (ret == -2) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory while parsing", path);
+    if (ld.read_errno)
+        return gf_error_set(GF_ERR_IO, "%s:%d: read error: %s", path, ld.line + 1,
+                            strerror(ld.read_errno));
+    return GF_OK;
+}
+
+// ---- overrides -----------------------------------------------------------
+
+gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *origin)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_set");
+    if (st != GF_OK) return st;
+    if (!origin || !*origin) origin = "gf_config_set";
+    if (!assignment) return gf_error_set(GF_ERR_PARAM, "%s: assignment is NULL", origin);
+    size_t size = strlen(assignment) + 1;
+    char *buf = gf_alloc(size);
+    if (!buf) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory", origin);
+    memcpy(buf, assignment, size);
+
+    char *eq = strchr(buf, '=');
+    char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
+    if (!eq || !dot) {
+        st = gf_error_set(GF_ERR_PARAM, "%s %s: malformed assignment, expected section.key=value",
+                          origin, assignment);
+    } else {
+        *eq = '\0';
+        *dot = '\0';
+        char *section = gf_config_trim(buf);
+        char *name = gf_config_trim(dot + 1);
+        char *value = gf_config_trim(eq + 1);
+        if (!*section || !*name) {
+            st = gf_error_set(GF_ERR_PARAM,
+                              "%s %s: malformed assignment, expected section.key=value", origin,
+                              assignment);
+        } else {
+            char lead[GF_PATH_MAX + 160];
+            snprintf(lead, sizeof lead, "%s %s.%s=%s", origin, section, name, value);
+            st = gf_config_apply(cfg, lead, false, section, name, value);
+        }
+    }
+    gf_free(buf, size);
+    return st;
+}
+
+// ---- validation ----------------------------------------------------------
+
+gf_status gf_config_validate(gf_config *cfg)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_validate");
+    if (st != GF_OK) return st;
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        char why[160], val[64];
+        if (!gf_keys_check(k, cfg, why, sizeof why)) {
+            gf_keys_format(k, cfg, val, sizeof val);
+            return gf_error_set(GF_ERR_PARAM, "%s.%s = %s: %s", k->section, k->name, val, why);
+        }
+    }
+    if (isnan(cfg->spot_insertion_margin)) cfg->spot_insertion_margin = cfg->spot_radius;
+    if (isnan(cfg->relax_radius)) cfg->relax_radius = cfg->spot_radius + 1.0;
+
+    char a[32], b[32];
+    if (!(cfg->orifice_diameter < cfg->container_width)) {
+        gf_keys_format_double(cfg->orifice_diameter, a, sizeof a);
+        gf_keys_format_double(cfg->container_width, b, sizeof b);
+        return gf_error_set(
+            GF_ERR_PARAM, "container.orifice_diameter = %s must be less than container.width = %s",
+            a, b);
+    }
+    double room = fmin(cfg->container_width, cfg->container_depth);
+    if (!(2.0 * cfg->spot_wall_distance < room)) {
+        gf_keys_format_double(cfg->spot_wall_distance, a, sizeof a);
+        gf_keys_format_double(room, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM,
+                            "spot.wall_distance = %s leaves spots no room: 2 * spot.wall_distance "
+                            "must be less than min(container.width, container.depth) = %s",
+                            a, b);
+    }
+    if (!(cfg->relax_radius >= cfg->spot_radius)) {
+        gf_keys_format_double(cfg->relax_radius, a, sizeof a);
+        gf_keys_format_double(cfg->spot_radius, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM, "relax.radius = %s must be at least spot.radius = %s", a,
+                            b);
+    }
+    return GF_OK;
+}
+
+// ---- writing -------------------------------------------------------------
+
+// Why libinih would not read `path` back unchanged as the value of `key`, or NULL.
+static const char *gf_config_unwritable(const char *key, const char *path)
+{
+    size_t len = strlen(path);
+    if (strpbrk(path, "\r\n")) return "contains a line break";
+    if (len > 0 && (isspace((unsigned char)path[0]) || isspace((unsigned char)path[len - 1])))
+        return "starts or ends with white space";
+    for (size_t i = 1; i < len; i++)
+        if (path[i] == ';' && isspace((unsigned char)path[i - 1]))
+            return "contains ';' after white space (an INI comment)";
+    if (strlen(key) + 3 + len > GF_CONFIG_MAX_LINE) return "is too long for one INI line";
+    return NULL;
+}
+
+gf_status gf_config_write(const gf_config *cfg, FILE *out)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_write");
+    if (st != GF_OK) return st;
+    if (!out) return gf_error_set(GF_ERR_PARAM, "gf_config_write: out is NULL");
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        char why[160];
+        if (!gf_keys_check(k, cfg, why, sizeof why))
+            return gf_error_set(GF_ERR_PARAM, "gf_config_write: %s.%s: %s", k->section, k->name,
+                                why);
+        if (k->type != GF_KEY_PATH) continue;
+        const char *path = (const char *)cfg + k->offset;
+        const char *bad = gf_config_unwritable(k->name, path);
+        if (bad)
+            return gf_error_set(GF_ERR_PARAM, "gf_config_write: %s.%s '%s' %s", k->section, k->name,
+                                path, bad);
+    }
+
+    fprintf(out, "# granflow configuration (effective values)\n");
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        if (i == 0 || strcmp(gf_keys[i - 1].section, k->section) != 0)
+            fprintf(out, "\n[%s]\n", k->section);
+        char value[GF_PATH_MAX];
+        gf_keys_format(k, cfg, value, sizeof value);
+        fprintf(out, "; %s%s%s%s, default %s\n", k->doc, *k->unit ? " [" : "", k->unit,
+                *k->unit ? "]" : "", *k->def ? k->def : "empty");
+        fprintf(out, "%s =%s%s\n", k->name, *value ? " " : "", value);
+    }
+    if (ferror(out)) return gf_error_set(GF_ERR_IO, "gf_config_write: write error");
+    return GF_OK;
+}
+
+gf_status gf_config_save(const gf_config *cfg, const char *path)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_save");
+    if (st != GF_OK) return st;
+    if (!path) return gf_error_set(GF_ERR_PARAM, "gf_config_save: path is NULL");
+    size_t size = strlen(path) + sizeof ".tmp";
+    char *tmp = gf_alloc(size);
+    if (!tmp) return gf_error_set(GF_ERR_NOMEM, "gf_config_save: out of memory");
+    snprintf(tmp, size, "%s.tmp", path);
+
+    FILE *f = fopen(tmp, "w");
+    if (!f) {
+        st = gf_error_set(GF_ERR_IO, "cannot create '%s': %s", tmp, strerror(errno));
+        gf_free(tmp, size);
+        return st;
+    }
+    st = gf_config_write(cfg, f);
+    if (st == GF_OK && (fflush(f) != 0 || ferror(f) || fsync(fileno(f)) != 0))
+        st = gf_error_set(GF_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+    if (fclose(f) != 0 && st == GF_OK)
+        st = gf_error_set(GF_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
+    if (st == GF_OK && rename(tmp, path) != 0)
+        st = gf_error_set(GF_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+    if (st != GF_OK) remove(tmp);
+    gf_free(tmp, size);
+    return st;
+}

@@ -1,0 +1,385 @@
+// SPDX-License-Identifier: MIT
+// The key table and the parsing, checking and printing of single values.
+#include "config/keys.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+_Static_assert(sizeof(gf_orifice_shape) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_ball_centre) == sizeof(int), "enum keys are stored as int");
+
+static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
+static const char *const gf_keys_ball_names[] = {"midpoint", "end", NULL};
+
+#define GF_OFF(field) offsetof(gf_config, field)
+// Ranges: (0, inf), [0, inf), (-inf, inf).
+#define GF_POSITIVE .min = 0, .max = INFINITY, .min_open = true
+#define GF_NONNEG .min = 0, .max = INFINITY
+#define GF_ANYREAL .min = -INFINITY, .max = INFINITY
+
+const gf_key gf_keys[] = {
+    {"container", "width", GF_KEY_DOUBLE, GF_OFF(container_width), GF_POSITIVE, .def = "50",
+     .unit = "d", .doc = "container width (x), walls at x = +-width/2"},
+    {"container", "depth", GF_KEY_DOUBLE, GF_OFF(container_depth), GF_POSITIVE, .def = "8",
+     .unit = "d", .doc = "container depth (y), walls at y = +-depth/2"},
+    {"container", "orifice_shape", GF_KEY_ENUM, GF_OFF(orifice_shape),
+     .names = gf_keys_orifice_names, .def = "circle", .unit = "",
+     .doc = "orifice shape: circle (disc centred at x = y = 0) or slit (|x| < diameter/2, all y)"},
+    {"container", "orifice_diameter", GF_KEY_DOUBLE, GF_OFF(orifice_diameter), GF_POSITIVE,
+     .def = "8", .unit = "d",
+     .doc = "orifice diameter (circle) or full width (slit), must be < container.width"},
+    {"container", "exit_z", GF_KEY_DOUBLE, GF_OFF(exit_z), .min = -INFINITY, .max = 0.5, .def = "0",
+     .unit = "d", .doc = "particles whose centre falls below this height leave"},
+
+    {"packing", "particles", GF_KEY_INT64, GF_OFF(packing_particles), .min = 1, .max = 50000000,
+     .def = "55000", .unit = "", .doc = "number of spheres to generate"},
+    {"packing", "fill_height", GF_KEY_DOUBLE, GF_OFF(packing_fill_height), GF_NONNEG, .def = "0",
+     .unit = "d",
+     .doc = "if > 0, generate enough spheres to fill to this height (0: use particles)"},
+    {"packing", "file", GF_KEY_PATH, GF_OFF(packing_file), .def = "", .unit = "",
+     .doc = "packing to import (LAMMPS dump, .xyz, .csv) instead of generating (empty: generate)"},
+    {"packing", "layer_thickness", GF_KEY_DOUBLE, GF_OFF(packing_layer_thickness), GF_POSITIVE,
+     .def = "10", .unit = "d", .doc = "thickness of the colour bands tagging initial layers"},
+
+    {"spot", "radius", GF_KEY_DOUBLE, GF_OFF(spot_radius), .min = 0, .max = 20, .min_open = true,
+     .def = "2.6", .unit = "d", .doc = "spot radius r_s"},
+    {"spot", "w", GF_KEY_DOUBLE, GF_OFF(spot_w), GF_POSITIVE, .def = "399", .unit = "",
+     .doc = "ratio w of spot to particle displacement"},
+    {"spot", "insertion_rate", GF_KEY_DOUBLE, GF_OFF(spot_insertion_rate), GF_POSITIVE,
+     .def = "375", .unit = "1/tau", .doc = "spot insertion rate lambda (spots per tau)"},
+    {"spot", "move_rate", GF_KEY_DOUBLE, GF_OFF(spot_move_rate), GF_POSITIVE, .def = "28",
+     .unit = "1/tau", .doc = "spot move rate mu (moves per spot per tau)"},
+    {"spot", "step_xy", GF_KEY_DOUBLE, GF_OFF(spot_step_xy), GF_NONNEG, .def = "0.676", .unit = "d",
+     .doc = "horizontal random step dx = dy of a spot move"},
+    {"spot", "step_z", GF_KEY_DOUBLE, GF_OFF(spot_step_z), GF_POSITIVE, .def = "0.1", .unit = "d",
+     .doc = "upward step dz of a spot move"},
+    {"spot", "wall_distance", GF_KEY_DOUBLE, GF_OFF(spot_wall_distance), GF_ANYREAL, .def = "1",
+     .unit = "d", .doc = "closest approach d_w of a spot centre to a side wall (may be negative)"},
+    {"spot", "ball_centre", GF_KEY_ENUM, GF_OFF(spot_ball_centre), .names = gf_keys_ball_names,
+     .def = "midpoint", .unit = "",
+     .doc = "centre of the ball a spot step moves: midpoint s+v/2 (Stratonovich) or end s+v (Ito)"},
+    {"spot", "insertion_margin", GF_KEY_AUTO, GF_OFF(spot_insertion_margin), GF_NONNEG,
+     .def = "auto", .unit = "d",
+     .doc = "spots are born at least this far inside the orifice edge (auto: spot.radius)"},
+
+    {"relax", "alpha", GF_KEY_DOUBLE, GF_OFF(relax_alpha), .min = 0, .max = 1, .min_open = true,
+     .def = "0.8", .unit = "", .doc = "fraction of an overlap removed per relaxation"},
+    {"relax", "radius", GF_KEY_AUTO, GF_OFF(relax_radius), GF_POSITIVE, .def = "auto", .unit = "d",
+     .doc = "elastic relaxation radius r_e, must be >= spot.radius (auto: spot.radius + 1)"},
+
+    {"run", "duration", GF_KEY_DOUBLE, GF_OFF(run_duration), GF_POSITIVE, .def = "60",
+     .unit = "tau", .doc = "simulated time to reach"},
+    {"run", "seed", GF_KEY_UINT64, GF_OFF(run_seed), GF_NONNEG, .def = "1", .unit = "",
+     .doc = "seed of every random stream"},
+    {"run", "checkpoint_interval", GF_KEY_DOUBLE, GF_OFF(run_checkpoint_interval), GF_NONNEG,
+     .def = "0", .unit = "tau",
+     .doc = "write a checkpoint every this long (0: only on stop and at the end)"},
+
+    {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
+     .def = "2", .unit = "tau", .doc = "write a snapshot every this long"},
+};
+
+const size_t gf_keys_count = sizeof gf_keys / sizeof gf_keys[0];
+
+const gf_key *gf_keys_find(const char *section, const char *name)
+{
+    for (size_t i = 0; i < gf_keys_count; i++)
+        if (strcmp(gf_keys[i].section, section) == 0 && strcmp(gf_keys[i].name, name) == 0)
+            return &gf_keys[i];
+    return NULL;
+}
+
+bool gf_keys_section_known(const char *section)
+{
+    for (size_t i = 0; i < gf_keys_count; i++)
+        if (strcmp(gf_keys[i].section, section) == 0) return true;
+    return false;
+}
+
+// Appends `s` to the NUL-terminated text in buf[0..n), truncating.
+static void gf_keys_append(char *buf, size_t n, const char *s)
+{
+    size_t len = strlen(buf);
+    if (len + 1 < n) snprintf(buf + len, n - len, "%s", s);
+}
+
+void gf_keys_list(const char *section, char *buf, size_t n)
+{
+    if (n == 0) return;
+    buf[0] = '\0';
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        const char *item;
+        if (section) {
+            if (strcmp(k->section, section) != 0) continue;
+            item = k->name;
+        } else {
+            if (i > 0 && strcmp(gf_keys[i - 1].section, k->section) == 0) continue;
+            item = k->section;
+        }
+        if (buf[0]) gf_keys_append(buf, n, ", ");
+        gf_keys_append(buf, n, item);
+    }
+}
+
+static double *gf_keys_dfield(gf_config *cfg, const gf_key *k)
+{
+    return (double *)((char *)cfg + k->offset);
+}
+
+static const double *gf_keys_cdfield(const gf_config *cfg, const gf_key *k)
+{
+    return (const double *)((const char *)cfg + k->offset);
+}
+
+static bool gf_keys_in_range(const gf_key *k, double v)
+{
+    bool lo = k->min_open ? v > k->min : v >= k->min;
+    bool hi = k->max_open ? v < k->max : v <= k->max;
+    return lo && hi;
+}
+
+void gf_keys_format_double(double v, char *buf, size_t n)
+{
+    uint64_t want, got;
+    memcpy(&want, &v, sizeof want);
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(buf, n, "%.*g", prec, v);
+        double back = strtod(buf, NULL);
+        memcpy(&got, &back, sizeof got);
+        if (got == want) return;
+    }
+}
+
+void gf_keys_range(const gf_key *k, char *buf, size_t n)
+{
+    if (n == 0) return;
+    buf[0] = '\0';
+    switch (k->type) {
+    case GF_KEY_ENUM:
+        for (size_t i = 0; k->names[i]; i++) {
+            if (i > 0) gf_keys_append(buf, n, ", ");
+            gf_keys_append(buf, n, k->names[i]);
+        }
+        return;
+    case GF_KEY_PATH: snprintf(buf, n, "path"); return;
+    case GF_KEY_UINT64: snprintf(buf, n, "[0, %" PRIu64 "]", UINT64_MAX); return;
+    case GF_KEY_DOUBLE:
+    case GF_KEY_AUTO:
+    case GF_KEY_INT64: break;
+    }
+    char lo[32] = "-inf", hi[32] = "inf";
+    if (isfinite(k->min)) gf_keys_format_double(k->min, lo, sizeof lo);
+    if (isfinite(k->max)) gf_keys_format_double(k->max, hi, sizeof hi);
+    snprintf(buf, n, "%c%s, %s%c%s", k->min_open || !isfinite(k->min) ? '(' : '[', lo, hi,
+             k->max_open || !isfinite(k->max) ? ')' : ']',
+             k->type == GF_KEY_AUTO ? " or auto" : "");
+}
+
+static gf_key_result gf_keys_out_of_range(const gf_key *k, char *why, size_t n)
+{
+    char range[64];
+    gf_keys_range(k, range, sizeof range);
+    snprintf(why, n, "out of range %s", range);
+    return GF_KEY_OUT_OF_RANGE;
+}
+
+// strtod/strtoll over the whole string; NULL or "" never parse.
+static bool gf_keys_parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0') return false;
+    *out = v;
+    return true;
+}
+
+static gf_key_result gf_keys_assign_double(const gf_key *k, gf_config *cfg, const char *value,
+                                           char *why, size_t n)
+{
+    double v;
+    if (!gf_keys_parse_double(value, &v)) {
+        snprintf(why, n, k->type == GF_KEY_AUTO ? "not a number or 'auto'" : "not a number");
+        return GF_KEY_BAD_VALUE;
+    }
+    if (!isfinite(v)) {
+        snprintf(why, n, "not a finite number");
+        return GF_KEY_BAD_VALUE;
+    }
+    if (!gf_keys_in_range(k, v)) return gf_keys_out_of_range(k, why, n);
+    *gf_keys_dfield(cfg, k) = v;
+    return GF_KEY_OK;
+}
+
+static gf_key_result gf_keys_bad_integer(const char *value, char *why, size_t n)
+{
+    double v;
+    snprintf(why, n, gf_keys_parse_double(value, &v) ? "not an integer" : "not a number");
+    return GF_KEY_BAD_VALUE;
+}
+
+static gf_key_result gf_keys_assign_int64(const gf_key *k, gf_config *cfg, const char *value,
+                                          char *why, size_t n)
+{
+    char *end;
+    errno = 0;
+    long long v = strtoll(value, &end, 10);
+    if (end == value || *end != '\0') return gf_keys_bad_integer(value, why, n);
+    if (errno == ERANGE || !gf_keys_in_range(k, (double)v)) return gf_keys_out_of_range(k, why, n);
+    int64_t x = (int64_t)v;
+    memcpy((char *)cfg + k->offset, &x, sizeof x);
+    return GF_KEY_OK;
+}
+
+static gf_key_result gf_keys_assign_uint64(const gf_key *k, gf_config *cfg, const char *value,
+                                           char *why, size_t n)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(value, &end, 10);
+    if (end == value || *end != '\0') return gf_keys_bad_integer(value, why, n);
+    // strtoull accepts "-1" and wraps it around; a minus sign is out of range here.
+    if (errno == ERANGE || value[0] == '-') return gf_keys_out_of_range(k, why, n);
+    uint64_t x = (uint64_t)v;
+    memcpy((char *)cfg + k->offset, &x, sizeof x);
+    return GF_KEY_OK;
+}
+
+static gf_key_result gf_keys_assign_enum(const gf_key *k, gf_config *cfg, const char *value,
+                                         char *why, size_t n)
+{
+    for (int i = 0; k->names[i]; i++) {
+        if (strcmp(k->names[i], value) == 0) {
+            memcpy((char *)cfg + k->offset, &i, sizeof i);
+            return GF_KEY_OK;
+        }
+    }
+    char names[128];
+    gf_keys_range(k, names, sizeof names);
+    snprintf(why, n, "not one of: %s", names);
+    return GF_KEY_BAD_VALUE;
+}
+
+gf_key_result gf_keys_assign(const gf_key *k, gf_config *cfg, const char *value, char *why,
+                             size_t n)
+{
+    if (value[0] == '\0' && k->type != GF_KEY_PATH) {
+        snprintf(why, n, "empty value");
+        return GF_KEY_BAD_VALUE;
+    }
+    switch (k->type) {
+    case GF_KEY_AUTO:
+        if (strcmp(value, "auto") == 0) {
+            *gf_keys_dfield(cfg, k) = NAN;
+            return GF_KEY_OK;
+        }
+        return gf_keys_assign_double(k, cfg, value, why, n);
+    case GF_KEY_DOUBLE: return gf_keys_assign_double(k, cfg, value, why, n);
+    case GF_KEY_INT64: return gf_keys_assign_int64(k, cfg, value, why, n);
+    case GF_KEY_UINT64: return gf_keys_assign_uint64(k, cfg, value, why, n);
+    case GF_KEY_ENUM: return gf_keys_assign_enum(k, cfg, value, why, n);
+    case GF_KEY_PATH: {
+        size_t len = strlen(value);
+        if (len >= GF_PATH_MAX) {
+            snprintf(why, n, "path too long (%zu bytes, at most %d)", len, GF_PATH_MAX - 1);
+            return GF_KEY_BAD_VALUE;
+        }
+        char *dst = (char *)cfg + k->offset;
+        memset(dst, 0, GF_PATH_MAX);
+        memcpy(dst, value, len);
+        return GF_KEY_OK;
+    }
+    }
+    snprintf(why, n, "unknown key type");
+    return GF_KEY_BAD_VALUE;
+}
+
+bool gf_keys_check(const gf_key *k, const gf_config *cfg, char *why, size_t n)
+{
+    const char *field = (const char *)cfg + k->offset;
+    switch (k->type) {
+    case GF_KEY_AUTO:
+    case GF_KEY_DOUBLE: {
+        double v = *gf_keys_cdfield(cfg, k);
+        if (k->type == GF_KEY_AUTO && isnan(v)) return true;
+        if (!isfinite(v)) {
+            snprintf(why, n, "not a finite number");
+            return false;
+        }
+        if (gf_keys_in_range(k, v)) return true;
+        gf_keys_out_of_range(k, why, n);
+        return false;
+    }
+    case GF_KEY_INT64: {
+        int64_t v;
+        memcpy(&v, field, sizeof v);
+        if (gf_keys_in_range(k, (double)v)) return true;
+        gf_keys_out_of_range(k, why, n);
+        return false;
+    }
+    case GF_KEY_UINT64: return true;
+    case GF_KEY_ENUM: {
+        int v, count = 0;
+        memcpy(&v, field, sizeof v);
+        while (k->names[count]) count++;
+        if (v < 0 || v >= count) {
+            char names[128];
+            gf_keys_range(k, names, sizeof names);
+            snprintf(why, n, "enum value %d is not one of: %s", v, names);
+            return false;
+        }
+        return true;
+    }
+    case GF_KEY_PATH:
+        if (!memchr(field, '\0', GF_PATH_MAX)) {
+            snprintf(why, n, "path is not NUL-terminated within %d bytes", GF_PATH_MAX);
+            return false;
+        }
+        return true;
+    }
+    return false;
+}
+
+void gf_keys_format(const gf_key *k, const gf_config *cfg, char *buf, size_t n)
+{
+    const char *field = (const char *)cfg + k->offset;
+    switch (k->type) {
+    case GF_KEY_AUTO:
+        if (isnan(*gf_keys_cdfield(cfg, k))) {
+            snprintf(buf, n, "auto");
+            return;
+        }
+        gf_keys_format_double(*gf_keys_cdfield(cfg, k), buf, n);
+        return;
+    case GF_KEY_DOUBLE: gf_keys_format_double(*gf_keys_cdfield(cfg, k), buf, n); return;
+    case GF_KEY_INT64: {
+        int64_t v;
+        memcpy(&v, field, sizeof v);
+        snprintf(buf, n, "%" PRId64, v);
+        return;
+    }
+    case GF_KEY_UINT64: {
+        uint64_t v;
+        memcpy(&v, field, sizeof v);
+        snprintf(buf, n, "%" PRIu64, v);
+        return;
+    }
+    case GF_KEY_ENUM: {
+        int v, count = 0;
+        memcpy(&v, field, sizeof v);
+        while (k->names[count]) count++;
+        if (v >= 0 && v < count)
+            snprintf(buf, n, "%s", k->names[v]);
+        else
+            snprintf(buf, n, "%d", v);
+        return;
+    }
+    case GF_KEY_PATH: snprintf(buf, n, "%.*s", GF_PATH_MAX - 1, field); return;
+    }
+    if (n) buf[0] = '\0';
+}
