@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+#include "io/textscan.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+
+enum {
+    GF_TEXTSCAN_CHUNK = 1 << 16,            // bytes per fread
+    GF_TEXTSCAN_MAX_LINE = 64 * 1024 * 1024 // longer lines mean a binary or broken file
+};
+
+gf_status gf_textscan_open(gf_textscan *ts, const char *path)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->path = path;
+    ts->f = fopen(path, "rb");
+    if (!ts->f) return gf_error_set(GF_ERR_IO, "cannot open %s: %s", path, strerror(errno));
+    ts->cap = 2 * (size_t)GF_TEXTSCAN_CHUNK;
+    ts->buf = gf_alloc(ts->cap);
+    if (!ts->buf) {
+        fclose(ts->f);
+        ts->f = NULL;
+        return gf_error_set(GF_ERR_NOMEM, "out of memory reading %s", path);
+    }
+    ts->seekable = fseeko(ts->f, 0, SEEK_CUR) == 0 && ftello(ts->f) == 0;
+    return GF_OK;
+}
+
+void gf_textscan_close(gf_textscan *ts)
+{
+    if (ts->f) fclose(ts->f);
+    gf_free(ts->buf, ts->cap);
+    ts->f = NULL;
+    ts->buf = NULL;
+    ts->cap = 0;
+}
+
+// Refills: moves the unread tail to the front, grows the buffer when a single
+// line fills it, then reads one more chunk. Always leaves room for a NUL.
+static gf_status gf_textscan_fill(gf_textscan *ts)
+{
+    if (ts->beg > 0) {
+        memmove(ts->buf, ts->buf + ts->beg, ts->end - ts->beg);
+        ts->base += (long long)ts->beg;
+        ts->end -= ts->beg;
+        ts->beg = 0;
+    }
+    if (ts->cap - ts->end < (size_t)GF_TEXTSCAN_CHUNK + 1) {
+        if (ts->cap >= (size_t)GF_TEXTSCAN_MAX_LINE)
+            return gf_error_set(GF_ERR_FORMAT,
+                                "%s:%ld: line longer than %d bytes (not a text file?)", ts->path,
+                                ts->line + 1, GF_TEXTSCAN_MAX_LINE);
+        char *nb = gf_realloc(ts->buf, ts->cap, 2 * ts->cap);
+        if (!nb) return gf_error_set(GF_ERR_NOMEM, "out of memory reading %s", ts->path);
+        ts->buf = nb;
+        ts->cap *= 2;
+    }
+    size_t got = fread(ts->buf + ts->end, 1, GF_TEXTSCAN_CHUNK, ts->f);
+    ts->end += got;
+    if (got < (size_t)GF_TEXTSCAN_CHUNK) {
+        if (ferror(ts->f))
+            return gf_error_set(GF_ERR_IO, "%s:%ld: read error: %s", ts->path, ts->line + 1,
+                                strerror(errno));
+        ts->eof = 1;
+    }
+    return GF_OK;
+}
+
+int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st)
+{
+    *st = GF_OK;
+    size_t scanned = 0; // bytes of the current line already searched for '\n'
+    for (;;) {
+        char *start = ts->buf + ts->beg;
+        size_t avail = ts->end - ts->beg;
+        char *nl = memchr(start + scanned, '\n', avail - scanned);
+        size_t n;
+        ts->partial = !nl;
+        if (nl) {
+            n = (size_t)(nl - start);
+            ts->beg += n + 1;
+        } else if (ts->eof) {
+            if (avail == 0) return 0;
+            n = avail; // last line without a newline
+            ts->beg = ts->end;
+        } else {
+            scanned = avail;
+            *st = gf_textscan_fill(ts);
+            if (*st != GF_OK) return -1;
+            continue;
+        }
+        ts->line_off = ts->base + (long long)(start - ts->buf);
+        ts->line++;
+        if (n > 0 && start[n - 1] == '\r') n--;
+        start[n] = '\0'; // the '\n' slot, or the spare byte fill() keeps
+        *line = start;
+        *len = n;
+        return 1;
+    }
+}
+
+gf_status gf_textscan_seek(gf_textscan *ts, long long offset, long line_no)
+{
+    if (!ts->seekable || fseeko(ts->f, (off_t)offset, SEEK_SET) != 0)
+        return gf_error_set(GF_ERR_IO, "%s: cannot seek back to line %ld: %s", ts->path, line_no,
+                            strerror(errno));
+    clearerr(ts->f);
+    ts->beg = ts->end = 0;
+    ts->base = offset;
+    ts->eof = 0;
+    ts->line = line_no - 1;
+    return GF_OK;
+}
+
+static int gf_textscan_is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+const char *gf_textscan_skip_blank(const char *s)
+{
+    while (gf_textscan_is_blank(*s)) s++;
+    return s;
+}
+
+size_t gf_textscan_split(char *s, char **tok, size_t max)
+{
+    size_t n = 0;
+    for (;;) {
+        while (gf_textscan_is_blank(*s)) s++;
+        if (!*s) return n;
+        if (n == max) return n + gf_textscan_count(s);
+        tok[n++] = s;
+        while (*s && !gf_textscan_is_blank(*s)) s++;
+        if (!*s) return n;
+        *s++ = '\0';
+    }
+}
+
+size_t gf_textscan_count(const char *s)
+{
+    size_t n = 0;
+    for (;;) {
+        while (gf_textscan_is_blank(*s)) s++;
+        if (!*s) return n;
+        n++;
+        while (*s && !gf_textscan_is_blank(*s)) s++;
+    }
+}
+
+int gf_textscan_double(const char *tok, double *v)
+{
+    char *end;
+    if (!*tok) return -1;
+    *v = strtod(tok, &end);
+    if (end == tok || *end != '\0') return -1;
+    if (!isfinite(*v)) return -2;
+    return 0;
+}
+
+int gf_textscan_int(const char *tok, long long *v)
+{
+    char *end;
+    if (!*tok) return -1;
+    errno = 0;
+    *v = strtoll(tok, &end, 10);
+    if (end == tok || *end != '\0' || errno == ERANGE) return -1;
+    return 0;
+}

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// Internal: a buffered line reader for big text files (one growing buffer, no
+// allocation per line, \n or \r\n endings, line numbers and byte offsets so a
+// reader can come back to a line), and in-place whitespace tokenising.
+#ifndef GF_IO_TEXTSCAN_H
+#define GF_IO_TEXTSCAN_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "granflow/core.h"
+
+/// A file being read line by line. Fields are private to textscan.c except
+/// `path` and `line`, which error messages use.
+typedef struct gf_textscan {
+    FILE *f;
+    const char *path;   ///< as given to gf_textscan_open (not copied)
+    char *buf;          ///< gf_alloc'd; the current line lives here
+    size_t cap;         ///< bytes allocated for buf
+    size_t beg, end;    ///< unread bytes are buf[beg, end)
+    long long base;     ///< file offset of buf[0]
+    long long line_off; ///< file offset of the line last returned
+    long line;          ///< 1-based number of the line last returned (0 before the first)
+    int eof;            ///< fread has reached the end of the file
+    int partial;        ///< the line last returned had no newline (a cut-off last line?)
+    int seekable;       ///< gf_textscan_seek can be used (regular file)
+} gf_textscan;
+
+/// Opens `path` for reading. GF_ERR_IO ("cannot open <path>: <strerror>") on failure.
+gf_status gf_textscan_open(gf_textscan *ts, const char *path);
+
+/// Closes the file and frees the buffer (safe on a zeroed or closed scanner).
+void gf_textscan_close(gf_textscan *ts);
+
+/// Reads the next line into *line (NUL-terminated, without its \n or \r\n;
+/// valid until the next call, and the caller may modify it in place).
+/// Returns 1 for a line, 0 at the end of the file, or -1 on failure with the
+/// last error set (GF_ERR_IO for a read error, GF_ERR_NOMEM); *st gets the status.
+int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st);
+
+/// Repositions at a line start recorded earlier from `line_off`, so that the
+/// next gf_textscan_next returns that line with number `line_no`.
+gf_status gf_textscan_seek(gf_textscan *ts, long long offset, long line_no);
+
+/// Splits `s` at blanks (space, tab, \r, \v, \f) in place. Stores up to `max`
+/// token pointers in tok and returns the total number of tokens (which may
+/// exceed max; the tail is then left unsplit).
+size_t gf_textscan_split(char *s, char **tok, size_t max);
+
+/// Number of blank-separated tokens in `s`, without modifying it.
+size_t gf_textscan_count(const char *s);
+
+/// Pointer to the first non-blank character of `s`.
+const char *gf_textscan_skip_blank(const char *s);
+
+/// Parses a whole token as a double (strtod). 0 on success, -1 when the token
+/// is not a number, -2 when it is one but not finite (nan, inf, overflow).
+int gf_textscan_double(const char *tok, double *v);
+
+/// Parses a whole token as a decimal integer (strtoll). 0 on success, -1 otherwise.
+int gf_textscan_int(const char *tok, long long *v);
+
+#endif
