@@ -1,11 +1,50 @@
 // SPDX-License-Identifier: MIT
-// granflow CLI entry point (placeholder until the subcommands land).
+// granflow: the command line, a thin layer over libgranflow.
 #include <stdio.h>
+#include <string.h>
 
-#include "granflow/core.h"
+#include "cli.h"
 
-int main(void)
+static const char gf_usage[] =
+    "granflow %s: fast spot-model simulations of dense granular drainage\n"
+    "\n"
+    "usage: granflow COMMAND [CONFIG] [options]\n"
+    "\n"
+    "commands:\n"
+    "  run [CONFIG] [-o DIR] [--set k=v]...  drain a silo into DIR (default runs/silo)\n"
+    "  run --resume DIR [--set run.duration=T]  continue (or extend) a run from its checkpoint\n"
+    "  pack [CONFIG] [--set k=v]... -o FILE  build the initial packing (.dump, .xyz or .csv)\n"
+    "  config [CONFIG] [--set k=v]...        print the effective configuration as INI\n"
+    "  bench [--json] [--particles N] [--warmup T] [--window T]\n"
+    "                                        time spot(), relax() and whole steps\n"
+    "  help                                  this text\n"
+    "\n"
+    "options:\n"
+    "  --set section.key=value   override one configuration key (repeatable)\n"
+    "  -o PATH                   output directory (run) or file (pack)\n"
+    "  --force                   let a fresh run overwrite a directory holding a run\n"
+    "  -q, --quiet               no progress line\n"
+    "\n"
+    "exit codes: 0 ok, 1 failure (I/O, memory), 2 bad command line or configuration,\n"
+    "            3 malformed data file, 130 interrupted (checkpoint written)\n"
+    "SIGINT/SIGTERM during a run write a checkpoint; resume with --resume DIR.\n";
+
+int main(int argc, char **argv)
 {
-    printf("granflow %s\n", gf_version());
-    return 0;
+    const char *cmd = argc > 1 ? argv[1] : "help";
+    if (!strcmp(cmd, "run")) return gf_cmd_run(argc - 2, argv + 2);
+    if (!strcmp(cmd, "pack")) return gf_cmd_pack(argc - 2, argv + 2);
+    if (!strcmp(cmd, "config")) return gf_cmd_config(argc - 2, argv + 2);
+    if (!strcmp(cmd, "bench")) return gf_cmd_bench(argc - 2, argv + 2);
+    if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
+        printf("granflow %s\n", gf_version());
+        return GF_EXIT_OK;
+    }
+    if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
+        printf(gf_usage, gf_version());
+        return GF_EXIT_OK;
+    }
+    fprintf(stderr, "granflow: error: unknown command '%s'\n\n", cmd);
+    fprintf(stderr, gf_usage, gf_version());
+    return GF_EXIT_USAGE;
 }

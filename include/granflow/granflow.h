@@ -5,4 +5,6 @@
 #include "granflow/config.h"
 #include "granflow/core.h"
 #include "granflow/packing.h"
+#include "granflow/run.h"
+#include "granflow/sim.h"
 #endif

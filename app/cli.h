@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// The CLI's shared pieces: option parsing into a config, exit codes, messages.
+#ifndef GF_APP_CLI_H
+#define GF_APP_CLI_H
+
+#include <stdbool.h>
+
+#include "granflow/granflow.h"
+
+/// Exit codes of every subcommand (listed in `granflow help` and the README).
+enum {
+    GF_EXIT_OK = 0,          ///< success
+    GF_EXIT_FAIL = 1,        ///< the run failed (I/O error, out of memory, ...)
+    GF_EXIT_USAGE = 2,       ///< bad command line or configuration
+    GF_EXIT_DATA = 3,        ///< a data file (packing, checkpoint) is malformed
+    GF_EXIT_INTERRUPTED = 130, ///< stopped by SIGINT/SIGTERM; a checkpoint was written
+};
+
+/// Options common to the subcommands.
+typedef struct gf_cli {
+    const char *config_path; ///< positional CONFIG, or NULL
+    const char *out;         ///< -o
+    const char *resume;      ///< --resume DIR
+    bool json, force, quiet;
+    const char *sets[256];   ///< --set assignments, applied after the file
+    int nsets;
+    const char *extra[8];    ///< further positionals
+    int nextra;
+    double bench_particles, bench_warmup, bench_window; ///< bench options (0 = default)
+} gf_cli;
+
+/// Parses argv (after the subcommand name). Returns false after printing a
+/// usage error.
+bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli);
+
+/// Default config, then the CONFIG file, then the --set overrides, validated.
+/// Prints the error and returns false on failure.
+bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg);
+
+/// Maps a status to the exit code and prints `granflow CMD: error: ...`.
+int gf_cli_fail(const char *cmd, gf_status st);
+
+int gf_cmd_run(int argc, char **argv);
+int gf_cmd_pack(int argc, char **argv);
+int gf_cmd_config(int argc, char **argv);
+int gf_cmd_bench(int argc, char **argv);
+
+#endif

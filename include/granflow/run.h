@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// A run directory: what `granflow run` writes (config.ini, snapshots/,
+// exits.csv, summary.json, checkpoint.bin) and how a run resumes from it.
+#ifndef GRANFLOW_RUN_H
+#define GRANFLOW_RUN_H
+
+#include <signal.h>
+
+#include "granflow/config.h"
+#include "granflow/core.h"
+#include "granflow/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// What a progress callback sees.
+typedef struct gf_run_progress {
+    const char *phase;      ///< "packing", "running" or "done"
+    double time, until;     ///< simulated time and the run's end, tau
+    size_t initial, remaining; ///< particles at t = 0 and now
+    double steps_per_second;   ///< spot moves per wall second, this invocation
+    double wall_seconds;       ///< wall time of this invocation so far
+} gf_run_progress;
+
+/// Options of gf_run_dir.
+typedef struct gf_run_opts {
+    const char *dir;      ///< run directory (created as needed)
+    int resume;           ///< continue from dir/checkpoint.bin (cfg = dir/config.ini + overrides)
+    int force;            ///< allow a fresh run over a directory that already holds one
+    volatile sig_atomic_t *stop; ///< set non-zero (e.g. by SIGINT) to checkpoint and stop
+    void (*progress)(void *ctx, const gf_run_progress *p); ///< may be NULL
+    void *ctx;            ///< passed to progress
+} gf_run_opts;
+
+/// Runs (or resumes) a simulation into opts->dir: snapshots every
+/// output.snapshot_interval as LAMMPS dumps in dir/snapshots/, exits.csv,
+/// summary.json, and a checkpoint at every run.checkpoint_interval, on stop
+/// and at the end. Returns GF_OK, GF_ERR_INTERRUPTED (checkpoint written) or
+/// an error. `stats` (may be NULL) receives the final counters.
+GF_API gf_status gf_run_dir(const gf_config *cfg, const gf_run_opts *opts, gf_sim_stats *stats);
+
+/// Writes one snapshot frame in LAMMPS text-dump form (`ITEM: TIME`, then
+/// `ITEM: TIMESTEP`, box, `ITEM: ATOMS id type x y z`, type = layer tag) to
+/// `path`, atomically. Shared by the run directory and tools.
+GF_API gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p,
+                                       double time, uint64_t step);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+#include "geom/grid.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+
+gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np)
+{
+    memset(g, 0, sizeof *g);
+    int n[3];
+    for (int k = 0; k < 3; k++) {
+        double span = hi[k] - lo[k];
+        double cells = ceil(span / h);
+        if (!(cells >= 1.0)) cells = 1.0;
+        if (cells > 1 << 20) return gf_error_set(GF_ERR_PARAM, "grid too large (%g cells on an axis)", cells);
+        n[k] = (int)cells;
+    }
+    g->ox = lo[0];
+    g->oy = lo[1];
+    g->oz = lo[2];
+    g->h = h;
+    g->inv_h = 1.0 / h;
+    g->nx = n[0];
+    g->ny = n[1];
+    g->nz = n[2];
+    g->ncell = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
+    g->np = np;
+    g->count = GF_NEW(uint32_t, g->ncell);
+    g->slot = GF_NEW(uint32_t, g->ncell * GF_CELL_CAP);
+    g->top = GF_NEW(int32_t, (size_t)n[0] * (size_t)n[1]);
+    g->cell_of = GF_NEW(uint32_t, np ? np : 1);
+    g->slot_of = GF_NEW(uint32_t, np ? np : 1);
+    if (!g->count || !g->slot || !g->top || !g->cell_of || !g->slot_of) {
+        gf_grid_free(g);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for a %zu-cell grid", (size_t)n[0] * n[1] * n[2]);
+    }
+    gf_grid_clear(g);
+    return GF_OK;
+}
+
+void gf_grid_free(gf_grid *g)
+{
+    GF_DELETE(g->count, g->ncell);
+    GF_DELETE(g->slot, g->ncell * GF_CELL_CAP);
+    GF_DELETE(g->top, (size_t)g->nx * (size_t)g->ny);
+    GF_DELETE(g->cell_of, g->np ? g->np : 1);
+    GF_DELETE(g->slot_of, g->np ? g->np : 1);
+    memset(g, 0, sizeof *g);
+}
+
+void gf_grid_clear(gf_grid *g)
+{
+    memset(g->count, 0, sizeof(uint32_t) * g->ncell);
+    for (size_t c = 0; c < (size_t)g->nx * (size_t)g->ny; c++) g->top[c] = -1;
+    for (size_t i = 0; i < g->np; i++) g->cell_of[i] = GF_NO_CELL;
+}
+
+gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c)
+{
+    uint32_t k = g->count[c];
+    if (k >= GF_CELL_CAP) {
+        return gf_error_set(GF_ERR_STATE,
+                            "more than %d particle centres in one %.2g d cell (cell %u): the packing "
+                            "overlaps far too much",
+                            GF_CELL_CAP, g->h, c);
+    }
+    g->slot[(size_t)c * GF_CELL_CAP + k] = i;
+    g->count[c] = k + 1;
+    g->cell_of[i] = c;
+    g->slot_of[i] = k;
+    int32_t cz = (int32_t)(c / ((uint32_t)g->nx * (uint32_t)g->ny));
+    uint32_t col = c % ((uint32_t)g->nx * (uint32_t)g->ny);
+    if (cz > g->top[col]) g->top[col] = cz;
+    return GF_OK;
+}
+
+void gf_grid_remove(gf_grid *g, uint32_t i)
+{
+    uint32_t c = g->cell_of[i];
+    if (c == GF_NO_CELL) return;
+    uint32_t k = g->slot_of[i], last = g->count[c] - 1;
+    uint32_t *s = g->slot + (size_t)c * GF_CELL_CAP;
+    if (k != last) {
+        s[k] = s[last];
+        g->slot_of[s[k]] = k;
+    }
+    g->count[c] = last;
+    g->cell_of[i] = GF_NO_CELL;
+    if (last == 0) {
+        uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
+        int32_t cz = (int32_t)(c / layer);
+        uint32_t col = c % layer;
+        if (g->top[col] == cz) {
+            int32_t z = cz - 1;
+            while (z >= 0 && g->count[(uint32_t)z * layer + col] == 0) z--;
+            g->top[col] = z;
+        }
+    }
+}
+
+void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int hi[3])
+{
+    lo[0] = gf_grid_axis(c[0] - r, g->ox, g->inv_h, g->nx);
+    hi[0] = gf_grid_axis(c[0] + r, g->ox, g->inv_h, g->nx);
+    lo[1] = gf_grid_axis(c[1] - r, g->oy, g->inv_h, g->ny);
+    hi[1] = gf_grid_axis(c[1] + r, g->oy, g->inv_h, g->ny);
+    lo[2] = gf_grid_axis(c[2] - r, g->oz, g->inv_h, g->nz);
+    hi[2] = gf_grid_axis(c[2] + r, g->oz, g->inv_h, g->nz);
+}
+
+double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride)
+{
+    int cx = gf_grid_axis(x, g->ox, g->inv_h, g->nx);
+    int cy = gf_grid_axis(y, g->oy, g->inv_h, g->ny);
+    uint32_t col = (uint32_t)(cy * g->nx + cx);
+    int32_t cz = g->top[col];
+    if (cz < 0) return -INFINITY;
+    uint32_t c = (uint32_t)cz * (uint32_t)g->nx * (uint32_t)g->ny + col;
+    const uint32_t *s = g->slot + (size_t)c * GF_CELL_CAP;
+    double best = -INFINITY;
+    for (uint32_t k = 0; k < g->count[c]; k++) {
+        double v = z[(size_t)s[k] * stride];
+        if (v > best) best = v;
+    }
+    return best;
+}
+
+gf_status gf_grid_restore(gf_grid *g, const uint32_t *count, const uint32_t *slot, size_t np)
+{
+    gf_grid_clear(g);
+    for (size_t c = 0; c < g->ncell; c++) {
+        if (count[c] > GF_CELL_CAP) return gf_error_set(GF_ERR_FORMAT, "cell %zu holds %u particles", c, count[c]);
+        for (uint32_t k = 0; k < count[c]; k++) {
+            uint32_t i = slot[c * GF_CELL_CAP + k];
+            if (i >= np || g->cell_of[i] != GF_NO_CELL)
+                return gf_error_set(GF_ERR_FORMAT, "cell %zu lists particle %u twice or out of range", c, i);
+            gf_status st = gf_grid_insert(g, i, (uint32_t)c);
+            if (st != GF_OK) return st;
+        }
+    }
+    return GF_OK;
+}

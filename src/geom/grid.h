@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// Internal: uniform cell grid over the container with fixed-capacity cells
+// (STYLE item 8). Points outside the grid are clamped into its edge cells, so
+// every particle is always findable; queries test true distances.
+#ifndef GF_GEOM_GRID_H
+#define GF_GEOM_GRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/limits.h"
+#include "granflow/core.h"
+
+#define GF_NO_CELL UINT32_MAX
+
+typedef struct gf_grid {
+    double ox, oy, oz;   ///< origin (lower corner)
+    double h, inv_h;     ///< cell edge and its inverse
+    int nx, ny, nz;      ///< cells per axis
+    size_t ncell;        ///< nx * ny * nz
+    uint32_t *count;     ///< particles per cell
+    uint32_t *slot;      ///< cell c holds slot[c * GF_CELL_CAP + k], k < count[c]
+    int32_t *top;        ///< per column (cx + nx cy): highest non-empty cz, -1 if none
+    size_t np;           ///< capacity of the per-particle arrays
+    uint32_t *cell_of;   ///< per particle: its cell, GF_NO_CELL when not in the grid
+    uint32_t *slot_of;   ///< per particle: its position k in that cell
+} gf_grid;
+
+/// Grid covering [lo, hi] with cells of edge ~h, for particle indices < np.
+gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np);
+void gf_grid_free(gf_grid *g);
+/// Empties every cell.
+void gf_grid_clear(gf_grid *g);
+
+static inline int gf_grid_axis(double v, double o, double inv_h, int n)
+{
+    double f = (v - o) * inv_h;
+    if (!(f >= 0.0)) return 0; // also catches NaN
+    int k = (int)f;
+    return k >= n ? n - 1 : k;
+}
+
+/// Cell index of a point (clamped).
+static inline uint32_t gf_grid_cell(const gf_grid *g, double x, double y, double z)
+{
+    int cx = gf_grid_axis(x, g->ox, g->inv_h, g->nx);
+    int cy = gf_grid_axis(y, g->oy, g->inv_h, g->ny);
+    int cz = gf_grid_axis(z, g->oz, g->inv_h, g->nz);
+    return (uint32_t)((cz * g->ny + cy) * g->nx + cx);
+}
+
+/// Puts particle i into cell c. GF_ERR_STATE when the cell is full.
+gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c);
+/// Takes particle i out of its cell (no-op when it is in none).
+void gf_grid_remove(gf_grid *g, uint32_t i);
+
+/// Moves particle i to the cell of (x, y, z) if that differs from its cell.
+static inline gf_status gf_grid_update(gf_grid *g, uint32_t i, double x, double y, double z)
+{
+    uint32_t c = gf_grid_cell(g, x, y, z);
+    if (c == g->cell_of[i]) return GF_OK;
+    gf_grid_remove(g, i);
+    return gf_grid_insert(g, i, c);
+}
+
+/// Refills the cells from saved counts and slots (a checkpoint), so that the
+/// order particles are found in, and with it every floating-point sum, is
+/// the one of the run that saved them. GF_ERR_FORMAT if they are inconsistent.
+gf_status gf_grid_restore(gf_grid *g, const uint32_t *count, const uint32_t *slot, size_t np);
+
+/// Inclusive cell ranges of the box [c - r, c + r] (clamped to the grid).
+void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int hi[3]);
+
+/// Largest z among particles in the column of cells containing (x, y), or
+/// -INFINITY when the column is empty. `z` is the particles' z array, stride `stride`.
+double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride);
+
+#endif

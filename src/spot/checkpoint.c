@@ -1,0 +1,343 @@
+// SPDX-License-Identifier: MIT
+// Checkpoints: the whole engine state in one file, so a run resumes exactly.
+// Layout: "GFCKPT\r\n", u32 version, u32 byte-order mark, u64 payload size,
+// u32 CRC-32 of the payload, then the payload (native doubles and integers).
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "spot/sim_internal.h"
+
+#define GF_CKPT_MAGIC "GFCKPT\r\n"
+#define GF_CKPT_VERSION 1u
+#define GF_CKPT_BOM 0x01020304u
+
+typedef struct gf_buf {
+    unsigned char *data;
+    size_t len, cap;
+    bool oom;
+} gf_buf;
+
+static void gf_put(gf_buf *b, const void *src, size_t n)
+{
+    if (b->oom) return;
+    if (b->len + n > b->cap) {
+        size_t cap = b->cap ? b->cap : 4096;
+        while (cap < b->len + n) cap *= 2;
+        unsigned char *q = gf_realloc(b->data, b->cap, cap);
+        if (!q) {
+            b->oom = true;
+            return;
+        }
+        b->data = q;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->len, src, n);
+    b->len += n;
+}
+
+#define GF_PUT(b, v) gf_put((b), &(v), sizeof(v))
+
+typedef struct gf_rd {
+    const unsigned char *data;
+    size_t len, pos;
+    bool bad;
+} gf_rd;
+
+static void gf_get(gf_rd *r, void *dst, size_t n)
+{
+    if (r->bad || n > r->len - r->pos) {
+        r->bad = true;
+        memset(dst, 0, n);
+        return;
+    }
+    memcpy(dst, r->data + r->pos, n);
+    r->pos += n;
+}
+
+#define GF_GET(r, v) gf_get((r), &(v), sizeof(v))
+
+// Physics part of a config as text: the keys that must not change on resume.
+static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
+{
+    gf_config c = *cfg;
+    gf_config d = gf_config_default();
+    c.run_duration = d.run_duration;
+    c.run_checkpoint_interval = d.run_checkpoint_interval;
+    c.output_snapshot_interval = d.output_snapshot_interval;
+    FILE *f = open_memstream(text, len);
+    if (!f) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    gf_status st = gf_config_write(&c, f);
+    fclose(f);
+    return st;
+}
+
+gf_status gf_sim_save(const gf_sim *sim, const char *path)
+{
+    gf_buf b = {0};
+    char *phys = NULL;
+    size_t plen = 0;
+    gf_status st = gf_ckpt_physics(&sim->cfg, &phys, &plen);
+    if (st != GF_OK) return st;
+    uint64_t n64 = plen;
+    GF_PUT(&b, n64);
+    gf_put(&b, phys, plen);
+    free(phys);
+
+    GF_PUT(&b, sim->t);
+    GF_PUT(&b, sim->t_reached);
+    GF_PUT(&b, sim->t_pending);
+    uint8_t flags[2] = {sim->pending, sim->rebuild_due};
+    GF_PUT(&b, flags);
+    GF_PUT(&b, sim->rng.s);
+    GF_PUT(&b, sim->next_snap);
+    GF_PUT(&b, sim->next_ckpt);
+    GF_PUT(&b, sim->st);
+    uint64_t counts[5] = {sim->n, sim->n_alive, sim->n_initial, sim->ns, sim->nexit};
+    GF_PUT(&b, counts);
+    GF_PUT(&b, sim->rmax);
+    GF_PUT(&b, sim->grid_ztop);
+    GF_PUT(&b, sim->next_birth);
+    GF_PUT(&b, sim->nl_built_at);
+    gf_put(&b, sim->p, sizeof(gf_pos) * sim->n);
+    gf_put(&b, sim->p0, sizeof(gf_pos) * sim->n);
+    gf_put(&b, sim->id, sizeof(int64_t) * sim->n);
+    gf_put(&b, sim->layer, sizeof(int32_t) * sim->n);
+    gf_put(&b, sim->alive, sizeof(uint8_t) * sim->n);
+    gf_put(&b, sim->sx, sizeof(double) * sim->ns);
+    gf_put(&b, sim->sy, sizeof(double) * sim->ns);
+    gf_put(&b, sim->sz, sizeof(double) * sim->ns);
+    gf_put(&b, sim->sbirth, sizeof(uint64_t) * sim->ns);
+    gf_put(&b, sim->exits, sizeof(gf_exit) * sim->nexit);
+    uint64_t ncell = sim->grid.ncell;
+    GF_PUT(&b, ncell);
+    gf_put(&b, sim->grid.count, sizeof(uint32_t) * ncell);
+    for (size_t c = 0; c < ncell; c++) // only the used slots, so unused ones cannot make files differ
+        gf_put(&b, sim->grid.slot + c * GF_CELL_CAP, sizeof(uint32_t) * sim->grid.count[c]);
+    if (b.oom) {
+        gf_free(b.data, b.cap);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory writing checkpoint %s", path);
+    }
+
+    char tmp[GF_PATH_MAX + 8];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        gf_free(b.data, b.cap);
+        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint: %s", tmp, strerror(errno));
+    }
+    uint32_t version = GF_CKPT_VERSION, bom = GF_CKPT_BOM;
+    uint64_t size = b.len;
+    uint32_t crc = (uint32_t)crc32(0L, b.data, (uInt)0);
+    for (size_t off = 0; off < b.len;) { // crc32 takes uInt lengths
+        size_t chunk = b.len - off > (1u << 30) ? (1u << 30) : b.len - off;
+        crc = (uint32_t)crc32(crc, b.data + off, (uInt)chunk);
+        off += chunk;
+    }
+    bool ok = fwrite(GF_CKPT_MAGIC, 1, 8, f) == 8 && fwrite(&version, 4, 1, f) == 1 &&
+              fwrite(&bom, 4, 1, f) == 1 && fwrite(&size, 8, 1, f) == 1 && fwrite(&crc, 4, 1, f) == 1 &&
+              fwrite(b.data, 1, b.len, f) == b.len;
+    ok = (fflush(f) == 0) && ok;
+    ok = (fclose(f) == 0) && ok;
+    gf_free(b.data, b.cap);
+    if (!ok || rename(tmp, path) != 0) {
+        int e = errno;
+        remove(tmp);
+        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint: %s", path, strerror(e));
+    }
+    return GF_OK;
+}
+
+static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open checkpoint: %s", path, strerror(errno));
+    size_t cap = 1 << 16, n = 0;
+    unsigned char *buf = malloc(cap);
+    while (buf) {
+        size_t got = fread(buf + n, 1, cap - n, f);
+        n += got;
+        if (n < cap) break;
+        unsigned char *q = realloc(buf, cap * 2);
+        if (!q) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = q;
+        cap *= 2;
+    }
+    bool err = ferror(f);
+    fclose(f);
+    if (!buf) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory reading checkpoint", path);
+    if (err) {
+        free(buf);
+        return gf_error_set(GF_ERR_IO, "%s: read error", path);
+    }
+    *data = buf;
+    *len = n;
+    return GF_OK;
+}
+
+static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, gf_status st)
+{
+    free(data);
+    gf_sim_destroy(sim);
+    return st;
+}
+
+gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
+{
+    *out = NULL;
+    unsigned char *data = NULL;
+    size_t len = 0;
+    gf_status st = gf_read_all(path, &data, &len);
+    if (st != GF_OK) return st;
+    const size_t head = 8 + 4 + 4 + 8 + 4;
+    uint32_t version, bom, crc;
+    uint64_t size;
+    if (len < head || memcmp(data, GF_CKPT_MAGIC, 8) != 0) {
+        free(data);
+        return gf_error_set(GF_ERR_FORMAT, "%s: not a granflow checkpoint", path);
+    }
+    memcpy(&version, data + 8, 4);
+    memcpy(&bom, data + 12, 4);
+    memcpy(&size, data + 16, 8);
+    memcpy(&crc, data + 24, 4);
+    if (bom != GF_CKPT_BOM) {
+        free(data);
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint written on a machine of other byte order", path);
+    }
+    if (version != GF_CKPT_VERSION) {
+        free(data);
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint version %u, this granflow reads version %u",
+                            path, version, GF_CKPT_VERSION);
+    }
+    if (size != len - head) {
+        free(data);
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint truncated (%zu of %llu payload bytes)", path,
+                            len - head, (unsigned long long)size);
+    }
+    uint32_t got = (uint32_t)crc32(0L, Z_NULL, 0);
+    for (size_t off = 0; off < size;) {
+        size_t chunk = size - off > (1u << 30) ? (1u << 30) : size - off;
+        got = (uint32_t)crc32(got, data + head + off, (uInt)chunk);
+        off += chunk;
+    }
+    if (got != crc) {
+        free(data);
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint checksum mismatch (file corrupted)", path);
+    }
+    gf_rd r = {data + head, size, 0, false};
+
+    gf_sim *sim = gf_alloc(sizeof *sim);
+    if (!sim) {
+        free(data);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    }
+    sim->cfg = *cfg;
+    if ((st = gf_config_validate(&sim->cfg)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    uint64_t plen = 0;
+    GF_GET(&r, plen);
+    char *mine = NULL;
+    size_t mlen = 0;
+    if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    bool same = !r.bad && plen == mlen && plen <= r.len - r.pos && memcmp(r.data + r.pos, mine, mlen) == 0;
+    free(mine);
+    if (!same)
+        return gf_ckpt_fail(sim, data,
+                            gf_error_set(GF_ERR_PARAM, "%s: the configuration differs from the one the "
+                                                       "checkpoint was made with (only [run] and [output] "
+                                                       "keys may change on resume)",
+                                         path));
+    r.pos += plen;
+    gf_sim_derive(sim);
+
+    uint8_t flags[2];
+    uint64_t counts[5];
+    GF_GET(&r, sim->t);
+    GF_GET(&r, sim->t_reached);
+    GF_GET(&r, sim->t_pending);
+    GF_GET(&r, flags);
+    GF_GET(&r, sim->rng.s);
+    GF_GET(&r, sim->next_snap);
+    GF_GET(&r, sim->next_ckpt);
+    GF_GET(&r, sim->st);
+    GF_GET(&r, counts);
+    GF_GET(&r, sim->rmax);
+    GF_GET(&r, sim->grid_ztop);
+    GF_GET(&r, sim->next_birth);
+    GF_GET(&r, sim->nl_built_at);
+    sim->pending = flags[0];
+    sim->rebuild_due = flags[1];
+    uint64_t n = counts[0];
+    if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
+        counts[4] > counts[2])
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
+    if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    sim->n = n;
+    sim->n_alive = counts[1];
+    sim->n_initial = counts[2];
+    sim->ns = sim->ns_cap = counts[3];
+    sim->nexit = counts[4];
+    sim->sx = GF_NEW(double, sim->ns_cap);
+    sim->sy = GF_NEW(double, sim->ns_cap);
+    sim->sz = GF_NEW(double, sim->ns_cap);
+    sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
+    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth))
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
+    gf_get(&r, sim->p, sizeof(gf_pos) * n);
+    gf_get(&r, sim->p0, sizeof(gf_pos) * n);
+    gf_get(&r, sim->id, sizeof(int64_t) * n);
+    gf_get(&r, sim->layer, sizeof(int32_t) * n);
+    gf_get(&r, sim->alive, sizeof(uint8_t) * n);
+    gf_get(&r, sim->sx, sizeof(double) * sim->ns);
+    gf_get(&r, sim->sy, sizeof(double) * sim->ns);
+    gf_get(&r, sim->sz, sizeof(double) * sim->ns);
+    gf_get(&r, sim->sbirth, sizeof(uint64_t) * sim->ns);
+    gf_get(&r, sim->exits, sizeof(gf_exit) * sim->nexit);
+    size_t live = 0;
+    for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;
+    if (r.bad || live != sim->n_alive)
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path));
+    if ((st = gf_sim_make_grid(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    uint64_t ncell = 0;
+    GF_GET(&r, ncell);
+    if (r.bad || ncell != sim->grid.ncell)
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: grid does not match the container", path));
+    uint32_t *slot = GF_NEW(uint32_t, ncell * GF_CELL_CAP), *cnt = GF_NEW(uint32_t, ncell);
+    if (!slot || !cnt) {
+        GF_DELETE(slot, ncell * GF_CELL_CAP);
+        GF_DELETE(cnt, ncell);
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
+    }
+    gf_get(&r, cnt, sizeof(uint32_t) * ncell);
+    for (size_t c = 0; !r.bad && c < ncell; c++) {
+        if (cnt[c] > GF_CELL_CAP) r.bad = true;
+        else gf_get(&r, slot + c * GF_CELL_CAP, sizeof(uint32_t) * cnt[c]);
+    }
+    st = r.bad || r.pos != r.len ? gf_error_set(GF_ERR_FORMAT, "%s: checkpoint payload has the wrong size", path)
+                                 : gf_grid_restore(&sim->grid, cnt, slot, n);
+    GF_DELETE(slot, ncell * GF_CELL_CAP);
+    GF_DELETE(cnt, ncell);
+    if (st != GF_OK) return gf_ckpt_fail(sim, data, st);
+    free(data);
+    data = NULL;
+    for (size_t i = 0; i < n; i++)
+        if (sim->alive[i] && sim->grid.cell_of[i] == GF_NO_CELL)
+            return gf_ckpt_fail(sim, NULL, gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path));
+    // Lists are rebuilt without re-sorting: same order, same sums, same bits.
+    uint64_t builds = sim->st.nlist_builds;
+    bool due = sim->rebuild_due;
+    if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, st);
+    sim->st.nlist_builds = builds;
+    sim->rebuild_due = due;
+    *out = sim;
+    return GF_OK;
+}

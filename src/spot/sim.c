@@ -1,0 +1,426 @@
+// SPDX-License-Identifier: MIT
+// The event-driven spot simulation (2009 paper Sec. 2, its pseudocode; SPEC 1.4).
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "spot/sim_internal.h"
+
+static double gf_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void gf_sim_derive(gf_sim *sim)
+{
+    const gf_config *c = &sim->cfg;
+    sim->box = gf_container_make(c);
+    sim->rs = c->spot_radius;
+    sim->rs2 = c->spot_radius * c->spot_radius;
+    sim->re = c->relax_radius;
+    sim->re2 = c->relax_radius * c->relax_radius;
+    sim->alpha = c->relax_alpha;
+    sim->inv_w = 1.0 / c->spot_w;
+    sim->ball_frac = c->spot_ball_centre == GF_BALL_END ? 1.0 : 0.5;
+    sim->spot_ins_r = fmax(0.0, 0.5 * c->orifice_diameter - c->spot_insertion_margin);
+    // SPEC 1.3 mass balance: a spot is born one radius below the exit, so its
+    // ball sweeps its whole volume past the exit plane as it rises.
+    sim->spot_birth_z = c->exit_z - c->spot_radius;
+}
+
+gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
+{
+    sim->cap = n;
+    sim->p = GF_NEW(gf_pos, n);
+    sim->p0 = GF_NEW(gf_pos, n);
+    sim->id = GF_NEW(int64_t, n);
+    sim->layer = GF_NEW(int32_t, n);
+    sim->alive = GF_NEW(uint8_t, n);
+    sim->exit_cap = n;
+    sim->mark = GF_NEW(uint32_t, n);
+    sim->exits = GF_NEW(gf_exit, n);
+    if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->exits || !sim->mark)
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu particles", n);
+    return GF_OK;
+}
+
+gf_status gf_sim_alloc_scratch(gf_sim *sim)
+{
+    // The gather of one step scans at most this many cells of GF_CELL_CAP slots.
+    size_t span = (size_t)ceil(2.0 * sim->re / sim->grid.h) + 2;
+    size_t cap = span * span * span * GF_CELL_CAP;
+    if (cap > sim->cap) cap = sim->cap ? sim->cap : 1;
+    sim->scratch_cap = cap;
+    sim->inside = GF_NEW(uint32_t, cap);
+    sim->in_ball = GF_NEW(uint8_t, cap);
+    sim->disp = gf_alloc(sizeof(double[3]) * cap);
+    if (!sim->inside || !sim->in_ball || !sim->disp) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    return GF_OK;
+}
+
+gf_status gf_sim_make_grid(gf_sim *sim)
+{
+    if (sim->grid_ztop == 0.0) {
+        double top = 0.0;
+        for (size_t i = 0; i < sim->n; i++)
+            if (sim->alive[i] && sim->p[i].z > top) top = sim->p[i].z;
+        sim->grid_ztop = top + 2.0;
+    }
+    const gf_container *b = &sim->box;
+    double lo[3] = {b->xlo, b->ylo, fmin(0.0, b->exit_z) - 1.0};
+    double hi[3] = {b->xhi, b->yhi, sim->grid_ztop};
+    return gf_grid_init(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap);
+}
+
+static void gf_sim_free_all(gf_sim *sim)
+{
+    GF_DELETE(sim->p, sim->cap);
+    GF_DELETE(sim->p0, sim->cap);
+    GF_DELETE(sim->id, sim->cap);
+    GF_DELETE(sim->layer, sim->cap);
+    GF_DELETE(sim->alive, sim->cap);
+    GF_DELETE(sim->mark, sim->cap);
+    GF_DELETE(sim->exits, sim->exit_cap);
+    GF_DELETE(sim->nl_start, sim->cap + 1);
+    GF_DELETE(sim->nl, sim->nl_cap);
+    GF_DELETE(sim->sx, sim->ns_cap);
+    GF_DELETE(sim->sy, sim->ns_cap);
+    GF_DELETE(sim->sz, sim->ns_cap);
+    GF_DELETE(sim->sbirth, sim->ns_cap);
+    GF_DELETE(sim->inside, sim->scratch_cap);
+    GF_DELETE(sim->in_ball, sim->scratch_cap);
+    gf_free(sim->disp, sizeof(double[3]) * sim->scratch_cap);
+    gf_grid_free(&sim->grid);
+    gf_free(sim, sizeof *sim);
+}
+
+void gf_sim_destroy(gf_sim *sim)
+{
+    if (sim) gf_sim_free_all(sim);
+}
+
+gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim **out)
+{
+    *out = NULL;
+    if (packing->n == 0) return gf_error_set(GF_ERR_PARAM, "the packing has no particles");
+    if (packing->n > GF_MAX_PARTICLES)
+        return gf_error_set(GF_ERR_PARAM, "%zu particles: more than the engine's limit of %d",
+                            packing->n, GF_MAX_PARTICLES);
+    gf_sim *sim = gf_alloc(sizeof *sim);
+    if (!sim) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    sim->cfg = *cfg;
+    gf_status st = gf_config_validate(&sim->cfg);
+    if (st != GF_OK) goto fail;
+    gf_sim_derive(sim);
+    if ((st = gf_sim_alloc_particles(sim, packing->n)) != GF_OK) goto fail;
+    sim->n = sim->n_alive = sim->n_initial = packing->n;
+    for (size_t i = 0; i < packing->n; i++) {
+        sim->p[i] = (gf_pos){packing->x[i], packing->y[i], packing->z[i], packing->r[i]};
+        sim->id[i] = packing->id[i];
+        sim->layer[i] = packing->layer[i];
+        sim->alive[i] = 1;
+        if (packing->r[i] > sim->rmax) sim->rmax = packing->r[i];
+        if (!gf_container_contains(&sim->box, packing->x[i], packing->y[i], packing->z[i], 0.0, 0.0)) {
+            st = gf_error_set(GF_ERR_PARAM,
+                              "particle id %lld at (%g, %g, %g) is outside the container "
+                              "(|x| <= %g, |y| <= %g, z >= 0)",
+                              (long long)packing->id[i], packing->x[i], packing->y[i], packing->z[i],
+                              sim->box.xhi, sim->box.yhi);
+            goto fail;
+        }
+    }
+    if ((st = gf_sim_make_grid(sim)) != GF_OK) goto fail;
+    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
+    if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
+    gf_rng_seed(&sim->rng, cfg->run_seed, 0x5350u /* "SP": the spot stream */);
+    sim->st.particles_initial = sim->n_initial;
+    sim->next_ckpt = cfg->run_checkpoint_interval;
+    *out = sim;
+    return GF_OK;
+fail:
+    gf_sim_free_all(sim);
+    return st;
+}
+
+gf_status gf_sim_after_move(gf_sim *sim, uint32_t i)
+{
+    gf_pos *q = &sim->p[i];
+    if (q->z < sim->box.exit_z && gf_container_over_hole(&sim->box, q->x, q->y)) {
+        gf_exit *e = &sim->exits[sim->nexit++];
+        *e = (gf_exit){sim->id[i], sim->t, q->x, q->y};
+        gf_grid_remove(&sim->grid, i);
+        sim->alive[i] = 0;
+        sim->n_alive--;
+        q->x = q->y = q->z = GF_PARK_COORD;
+        return GF_OK;
+    }
+    const gf_pos *a = &sim->p0[i];
+    double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
+    if (dx * dx + dy * dy + dz * dz > lim * lim) sim->rebuild_due = true;
+    return gf_grid_update(&sim->grid, i, q->x, q->y, q->z);
+}
+
+static gf_status gf_spot_insert(gf_sim *sim)
+{
+    if (sim->ns == sim->ns_cap) {
+        size_t old = sim->ns_cap, cap = old ? 2 * old : 1024;
+        double *x = gf_realloc(sim->sx, old * sizeof(double), cap * sizeof(double));
+        if (x) sim->sx = x;
+        double *y = gf_realloc(sim->sy, old * sizeof(double), cap * sizeof(double));
+        if (y) sim->sy = y;
+        double *z = gf_realloc(sim->sz, old * sizeof(double), cap * sizeof(double));
+        if (z) sim->sz = z;
+        uint64_t *b = gf_realloc(sim->sbirth, old * sizeof(uint64_t), cap * sizeof(uint64_t));
+        if (b) sim->sbirth = b;
+        if (!x || !y || !z || !b) return gf_error_set(GF_ERR_NOMEM, "out of memory for spots");
+        sim->ns_cap = cap;
+    }
+    // SPEC 1.3 insertion: uniform on the orifice shrunk by the margin.
+    double x, y;
+    if (sim->box.shape == GF_ORIFICE_SLIT) {
+        x = (2.0 * gf_rng_uniform(&sim->rng) - 1.0) * sim->spot_ins_r;
+        double ylo = sim->box.ylo + sim->cfg.spot_wall_distance, yhi = sim->box.yhi - sim->cfg.spot_wall_distance;
+        y = ylo + (yhi - ylo) * gf_rng_uniform(&sim->rng);
+    } else {
+        double rad = sim->spot_ins_r * sqrt(gf_rng_uniform(&sim->rng));
+        double ang = 2.0 * 3.14159265358979323846 * gf_rng_uniform(&sim->rng);
+        x = rad * cos(ang);
+        y = rad * sin(ang);
+    }
+    size_t k = sim->ns++;
+    sim->sx[k] = x;
+    sim->sy[k] = y;
+    sim->sz[k] = sim->spot_birth_z;
+    sim->sbirth[k] = sim->next_birth++;
+    sim->st.spots_inserted++;
+    return GF_OK;
+}
+
+static void gf_spot_delete(gf_sim *sim, size_t k)
+{
+    size_t last = --sim->ns;
+    sim->sx[k] = sim->sx[last];
+    sim->sy[k] = sim->sy[last];
+    sim->sz[k] = sim->sz[last];
+    sim->sbirth[k] = sim->sbirth[last];
+    sim->st.spots_deleted++;
+}
+
+static double gf_clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+// One step of a spot at s (2009 paper Sec. 2 pseudocode; SPEC 1.3): the
+// walk, wall truncation, removal test, spot() and relax().
+gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
+{
+    const gf_config *c = &sim->cfg;
+    const gf_container *b = &sim->box;
+    *deleted = false;
+    *ball = 0;
+    // The BCC walk: (+-dx, 0, dz) or (0, +-dy, dz), equal probability.
+    uint64_t dir = gf_rng_below(&sim->rng, 4);
+    double h = c->spot_step_xy;
+    double nx = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
+    double ny = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
+    double nz = s[2] + c->spot_step_z;
+    // Truncate so the centre stays d_w from each side wall.
+    double dw = c->spot_wall_distance;
+    nx = gf_clamp(nx, b->xlo + dw, b->xhi - dw);
+    ny = gf_clamp(ny, b->ylo + dw, b->yhi - dw);
+    if (nz < 0.0) {
+        // Below the base plate a spot stays over the region it was born in.
+        if (b->shape == GF_ORIFICE_SLIT) {
+            nx = gf_clamp(nx, -sim->spot_ins_r, sim->spot_ins_r);
+        } else {
+            double rho2 = nx * nx + ny * ny, R = sim->spot_ins_r;
+            if (rho2 > R * R) {
+                double f = R / sqrt(rho2);
+                nx *= f;
+                ny *= f;
+            }
+        }
+    }
+    // SPEC 1.3 removal: above the highest particle of its column.
+    if (nz > gf_grid_column_top(&sim->grid, nx, ny, &sim->p[0].z, 4)) {
+        *deleted = true;
+        return GF_OK;
+    }
+    double v[3] = {nx - s[0], ny - s[1], nz - s[2]};
+    double f = sim->ball_frac;
+    double centre[3] = {s[0] + f * v[0], s[1] + f * v[1], s[2] + f * v[2]};
+    double u[3] = {-v[0] * sim->inv_w, -v[1] * sim->inv_w, -v[2] * sim->inv_w};
+
+    double t0 = sim->timing ? gf_now() : 0.0;
+    long moved = gf_spot_apply(sim, centre, u);
+    double t1 = sim->timing ? gf_now() : 0.0;
+    if (moved < 0) return GF_ERR_STATE;
+    sim->st.spot_moves++;
+    *ball = moved;
+    if (moved == 0) {
+        gf_spot_unmark(sim);
+        // SPEC 1.3 removal: no particle in reach; never keep moving in empty
+        // space (below the base, on the way up from its birth, it may).
+        if (nz > 0.0) {
+            *deleted = true;
+            return GF_OK;
+        }
+    } else if (sim->no_relax) {
+        gf_spot_unmark(sim);
+    } else {
+        gf_status st = gf_relax_apply(sim, centre);
+        if (st != GF_OK) return st;
+        sim->st.relax_calls++;
+    }
+    if (sim->timing) {
+        double t2 = gf_now();
+        sim->st.spot_seconds += t1 - t0;
+        sim->st.relax_seconds += t2 - t1;
+    }
+    s[0] = nx;
+    s[1] = ny;
+    s[2] = nz;
+    return GF_OK;
+}
+
+static gf_status gf_spot_move(gf_sim *sim, size_t k)
+{
+    double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
+    bool deleted;
+    long ball;
+    gf_status st = gf_spot_step(sim, s, &deleted, &ball);
+    if (st != GF_OK) return st;
+    if (deleted) {
+        gf_spot_delete(sim, k);
+        return GF_OK;
+    }
+    sim->sx[k] = s[0];
+    sim->sy[k] = s[1];
+    sim->sz[k] = s[2];
+    return GF_OK;
+}
+
+// Applies the pending event (its time is sim->t_pending).
+static gf_status gf_sim_event(gf_sim *sim)
+{
+    gf_status st;
+    if (sim->rebuild_due && (st = gf_nlist_build(sim, true)) != GF_OK) return st;
+    sim->t = sim->t_pending;
+    sim->pending = false;
+    sim->st.events++;
+    double lambda = sim->cfg.spot_insertion_rate;
+    double rate = lambda + (double)sim->ns * sim->cfg.spot_move_rate;
+    if (gf_rng_uniform(&sim->rng) * rate < lambda) return gf_spot_insert(sim);
+    return gf_spot_move(sim, (size_t)gf_rng_below(&sim->rng, sim->ns));
+}
+
+static void gf_sim_draw_pending(gf_sim *sim)
+{
+    if (sim->pending) return;
+    double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;
+    sim->t_pending = sim->t + gf_rng_exp(&sim->rng, rate);
+    sim->pending = true;
+}
+
+gf_status gf_sim_step(gf_sim *sim)
+{
+    gf_sim_draw_pending(sim);
+    gf_status st = gf_sim_event(sim);
+    if (sim->t > sim->t_reached) sim->t_reached = sim->t;
+    return st;
+}
+
+gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
+{
+    static const gf_run_hooks none = {0};
+    if (!hooks) hooks = &none;
+    const double dsnap = sim->cfg.output_snapshot_interval, dck = sim->cfg.run_checkpoint_interval;
+    const double last_snap = until + 1e-9 * dsnap; // k * dsnap may round just above until
+    uint64_t every = hooks->progress_every ? hooks->progress_every : UINT64_MAX;
+    uint64_t countdown = every;
+    gf_status st = GF_OK;
+    for (;;) {
+        if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
+        gf_sim_draw_pending(sim);
+        for (double ts; (ts = (double)sim->next_snap * dsnap) <= sim->t_pending && ts <= last_snap;) {
+            if (ts > sim->t_reached) sim->t_reached = ts;
+            if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
+                return st;
+            sim->next_snap++;
+        }
+        while (dck > 0 && sim->next_ckpt <= sim->t_pending && sim->next_ckpt <= until) {
+            if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
+            if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
+            sim->next_ckpt += dck;
+        }
+        if (sim->t_pending > until || sim->n_alive == 0) {
+            if (until > sim->t_reached && sim->t_pending > until) sim->t_reached = until;
+            return GF_OK;
+        }
+        if ((st = gf_sim_event(sim)) != GF_OK) return st;
+        sim->t_reached = sim->t;
+        if (--countdown == 0) {
+            countdown = every;
+            if (hooks->progress) hooks->progress(hooks->ctx, sim);
+        }
+    }
+}
+
+gf_sim_stats gf_sim_get_stats(const gf_sim *sim)
+{
+    gf_sim_stats s = sim->st;
+    s.time = sim->t_reached;
+    s.particles_remaining = sim->n_alive;
+    s.particles_exited = sim->nexit;
+    s.spots_active = sim->ns;
+    return s;
+}
+
+const gf_config *gf_sim_config(const gf_sim *sim) { return &sim->cfg; }
+
+void gf_sim_set_timing(gf_sim *sim, int on) { sim->timing = on != 0; }
+
+static const gf_sim *gf_sort_sim; // qsort has no context argument in C17
+static int gf_cmp_by_id(const void *a, const void *b)
+{
+    int64_t x = gf_sort_sim->id[*(const uint32_t *)a], y = gf_sort_sim->id[*(const uint32_t *)b];
+    return (x > y) - (x < y);
+}
+
+gf_status gf_sim_particles(const gf_sim *sim, gf_packing *out)
+{
+    size_t m = 0;
+    uint32_t *idx = GF_NEW(uint32_t, sim->n_alive ? sim->n_alive : 1);
+    if (!idx) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->alive[i]) idx[m++] = (uint32_t)i;
+    gf_sort_sim = sim;
+    qsort(idx, m, sizeof *idx, gf_cmp_by_id);
+    out->n = 0;
+    gf_status st = gf_packing_reserve(out, m);
+    for (size_t k = 0; st == GF_OK && k < m; k++) {
+        const gf_pos *q = &sim->p[idx[k]];
+        st = gf_packing_push(out, sim->id[idx[k]], sim->layer[idx[k]], q->x, q->y, q->z, q->r);
+    }
+    GF_DELETE(idx, sim->n_alive ? sim->n_alive : 1);
+    return st;
+}
+
+static int gf_cmp_exit(const void *a, const void *b)
+{
+    const gf_exit *x = a, *y = b;
+    if (x->time != y->time) return x->time < y->time ? -1 : 1;
+    return (x->id > y->id) - (x->id < y->id);
+}
+
+const gf_exit *gf_sim_exits(const gf_sim *sim, size_t *n)
+{
+    // Exits of one step share its time; order them by id so the list does not
+    // depend on the order particles were found in.
+    qsort(((gf_sim *)sim)->exits, sim->nexit, sizeof(gf_exit), gf_cmp_exit);
+    *n = sim->nexit;
+    return sim->exits;
+}

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// Internal: the simulation state behind the opaque gf_sim handle, shared by
+// the engine files (sim.c, mechanism.c, nlist.c, checkpoint.c) and the tests.
+#ifndef GF_SPOT_SIM_INTERNAL_H
+#define GF_SPOT_SIM_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/rng.h"
+#include "geom/container.h"
+#include "geom/grid.h"
+#include "granflow/sim.h"
+
+/// Particle positions and radius packed in one 32-byte record: spot and relax
+/// touch particles in random order, and one cache line then brings all four.
+typedef struct gf_pos {
+    double x, y, z, r;
+} gf_pos;
+
+struct gf_sim {
+    gf_config cfg;
+    gf_container box;
+
+    // Particles. Entries [0, n) are live or parked (exited, awaiting compaction).
+    size_t n, cap;
+    gf_pos *p;        ///< hot: position and radius
+    gf_pos *p0;       ///< position at the last neighbour-list build; .r holds the particle's skin h
+    int64_t *id;      ///< cold: stable id
+    int32_t *layer;   ///< cold: initial-layer tag
+    uint8_t *alive;   ///< 1 while in the container
+    size_t n_alive, n_initial;
+    double rmax;      ///< largest radius
+
+    gf_grid grid;
+    double grid_ztop; ///< top of the grid, fixed at creation (cell order depends on it)
+
+    // Neighbour lists (CSR), each sorted by index so that sums over overlaps
+    // do not depend on when the list was built (exact resume).
+    uint32_t *nl_start; ///< n + 1 offsets
+    uint32_t *nl;       ///< neighbour indices
+    size_t nl_cap;
+    uint64_t nl_built_at; ///< event count at the last re-sorting rebuild
+    bool rebuild_due;
+
+    // Spots (SoA).
+    size_t ns, ns_cap;
+    double *sx, *sy, *sz;
+    uint64_t *sbirth; ///< insertion serial number
+    uint64_t next_birth;
+
+    // Clock and randomness.
+    double t;          ///< time of the last event, tau
+    double t_reached;  ///< time up to which the state is known to be current
+    double t_pending;  ///< time of the next event, when pending
+    bool pending;
+    gf_rng rng;
+    uint64_t next_snap;  ///< index of the next snapshot
+    double next_ckpt;    ///< time of the next periodic checkpoint
+
+    // Exits.
+    gf_exit *exits;
+    size_t nexit, exit_cap;
+
+    // Scratch for one spot step.
+    uint32_t *inside;   ///< particles within r_e of the step centre
+    uint8_t *in_ball;   ///< per inside entry: 1 if within r_s (moved by spot)
+    double (*disp)[3];  ///< relax displacements of the inside particles
+    uint32_t *mark;     ///< per particle: 1 + its position in inside[], 0 if not inside
+    size_t scratch_cap;
+    size_t scratch_used; ///< entries of inside[] filled by the last gather
+
+    // Derived parameters.
+    double rs, rs2, re, re2, alpha, inv_w, ball_frac;
+    double spot_ins_r;  ///< radius (circle) or half-width (slit) where spots are born
+    double spot_birth_z;
+
+    gf_sim_stats st;
+    bool timing;
+    bool no_relax; ///< skip relax() (tests; relax.method = none later)
+};
+
+/// Gathers the particles within r_e of c into sim->inside and moves those
+/// within r_s by u (SPEC 1.3 spot()). Returns the number moved (the ball's
+/// population), or -1 with an error set.
+long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3]);
+
+/// One step of a spot at s: walk, truncation, removal test, spot(), relax().
+/// Updates s, or sets *deleted when the spot is to be removed; *ball receives
+/// the number of particles it moved.
+gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball);
+
+/// Clears the inside marks of a gather that is not followed by relax().
+void gf_spot_unmark(gf_sim *sim);
+
+/// Relaxes around c the particles gathered by gf_spot_apply (SPEC 1.3 relax()).
+gf_status gf_relax_apply(gf_sim *sim, const double c[3]);
+
+/// Standalone relax(c, r_e) (gathers first): for tests and global relaxation.
+gf_status gf_relax_at(gf_sim *sim, const double c[3]);
+
+/// Rebuilds the neighbour lists. With `reorder`, exited particles are
+/// compacted away, the rest sorted by cell, and p0 reset; without, the order
+/// and p0 are kept and the cutoff widened so the lists stay exact until the
+/// rebuild the saved p0 schedules (used when resuming; the grid must then
+/// already hold the live particles).
+gf_status gf_nlist_build(gf_sim *sim, bool reorder);
+
+/// Records that particle i moved; schedules a list rebuild when it has gone
+/// far from where the lists were built; removes it if it fell out of the orifice.
+gf_status gf_sim_after_move(gf_sim *sim, uint32_t i);
+
+/// Allocates the particle arrays for n particles.
+gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n);
+/// Grows the scratch buffers to hold the gather of one step.
+gf_status gf_sim_alloc_scratch(gf_sim *sim);
+/// Derived parameters and container from sim->cfg.
+void gf_sim_derive(gf_sim *sim);
+/// Grid over the container and the packing's current extent.
+gf_status gf_sim_make_grid(gf_sim *sim);
+
+#endif

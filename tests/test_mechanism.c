@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: MIT
+// spot() and relax() on hand-built configurations whose results were worked
+// out by hand (SPEC 1.3): pairs, a particle at a wall, inside and shell.
+#include "support.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "granflow/granflow.h"
+#include "spot/sim_internal.h"
+
+// A config for a 20 x 8 box with the papers' spot parameters.
+static gf_config small_box(void)
+{
+    gf_config c = gf_config_default();
+    c.container_width = 20;
+    c.container_depth = 8;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    return c;
+}
+
+static gf_sim *make_sim(const double (*pos)[3], size_t n)
+{
+    gf_config c = small_box();
+    gf_packing pk = {0};
+    for (size_t i = 0; i < n; i++)
+        assert_int_equal(gf_packing_push(&pk, (int64_t)i + 1, 1, pos[i][0], pos[i][1], pos[i][2], 0.5), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
+    gf_packing_free(&pk);
+    return sim;
+}
+
+// Position of the particle with id (index order changes when lists are built).
+static const gf_pos *by_id(const gf_sim *sim, int64_t id)
+{
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->id[i] == id) return &sim->p[i];
+    fail_msg("no particle with id %lld", (long long)id);
+    return NULL;
+}
+
+static void spot_moves_exactly_the_ball(void **state)
+{
+    (void)state;
+    // Centre (0,0,10), r_s = 2.6: ids 1-3 inside the ball, 4-5 outside it.
+    const double pos[][3] = {{0, 0, 10}, {2.5, 0, 10}, {0, 1.5, 11.5}, {2.7, 0, 10}, {0, 0, 12.61}};
+    gf_sim *sim = make_sim(pos, 5);
+    const double c[3] = {0, 0, 10}, u[3] = {1e-3, -2e-3, -2.5e-4};
+    long moved = gf_spot_apply(sim, c, u);
+    gf_spot_unmark(sim);
+    assert_int_equal(moved, 3);
+    for (int id = 1; id <= 5; id++) {
+        const gf_pos *q = by_id(sim, id);
+        double k = id <= 3 ? 1.0 : 0.0;
+        gf_assert_near(q->x, pos[id - 1][0] + k * u[0], 1e-15);
+        gf_assert_near(q->y, pos[id - 1][1] + k * u[1], 1e-15);
+        gf_assert_near(q->z, pos[id - 1][2] + k * u[2], 1e-15);
+    }
+    gf_sim_destroy(sim);
+}
+
+static void relax_pair_both_inside(void **state)
+{
+    (void)state;
+    // Two spheres 0.9 apart, both inside r_e = 3.6: overlap 0.1, each moves
+    // apart by alpha * 0.1 / 2 = 0.04 along x.
+    const double pos[][3] = {{-0.45, 0, 10}, {0.45, 0, 10}};
+    gf_sim *sim = make_sim(pos, 2);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, -0.49, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, 0.49, 1e-12);
+    gf_assert_near(by_id(sim, 1)->z, 10.0, 1e-15);
+    gf_sim_destroy(sim);
+}
+
+static void relax_pair_inside_and_shell(void **state)
+{
+    (void)state;
+    // A at 3.4 from c (inside r_e = 3.6), B at 4.2 (shell r_e < r < r_e + 1):
+    // overlap 0.2, only A moves, by alpha * 0.2 = 0.16 towards c.
+    const double pos[][3] = {{3.4, 0, 10}, {4.2, 0, 10}};
+    gf_sim *sim = make_sim(pos, 2);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, 3.4 - 0.16, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, 4.2, 0.0);
+    gf_sim_destroy(sim);
+}
+
+static void relax_ignores_pairs_outside(void **state)
+{
+    (void)state;
+    // Both members in the shell: neither moves, though they overlap by 0.3.
+    const double pos[][3] = {{3.7, 0, 10}, {4.4, 0, 10}};
+    gf_sim *sim = make_sim(pos, 2);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, 3.7, 0.0);
+    gf_assert_near(by_id(sim, 2)->x, 4.4, 0.0);
+    gf_sim_destroy(sim);
+}
+
+static void relax_wall_and_base(void **state)
+{
+    (void)state;
+    // Wall x = -10: a centre 0.3 from it moves away by alpha (0.5 - 0.3) = 0.16.
+    // Wall y = 4 at the same time: gap 0.4 -> -0.08 in y. Base (outside the
+    // hole, x = -9.7): z = 0.45 -> +0.04.
+    const double pos[][3] = {{-9.7, 3.6, 0.45}};
+    gf_sim *sim = make_sim(pos, 1);
+    const double c[3] = {-8, 2, 1};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, -9.7 + 0.16, 1e-12);
+    gf_assert_near(by_id(sim, 1)->y, 3.6 - 0.08, 1e-12);
+    gf_assert_near(by_id(sim, 1)->z, 0.45 + 0.04, 1e-12);
+    gf_sim_destroy(sim);
+}
+
+static void relax_orifice_rim(void **state)
+{
+    (void)state;
+    // Over the hole (radius 4), centre at rho = 3.8, z = 0.2: the rim point is
+    // (4, 0, 0), at distance sqrt(0.2^2 + 0.2^2) = 0.28284; the sphere moves
+    // away from it by alpha (0.5 - 0.28284) along (-0.2, 0, 0.2) / 0.28284.
+    const double pos[][3] = {{3.8, 0, 0.2}};
+    gf_sim *sim = make_sim(pos, 1);
+    const double c[3] = {2, 0, 1};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    double d = sqrt(0.08), push = 0.8 * (0.5 - d) / d;
+    gf_assert_near(by_id(sim, 1)->x, 3.8 - push * 0.2, 1e-12);
+    gf_assert_near(by_id(sim, 1)->z, 0.2 + push * 0.2, 1e-12);
+    gf_sim_destroy(sim);
+}
+
+static void relax_displacements_applied_together(void **state)
+{
+    (void)state;
+    // A chain 1 - 2 - 3 on the x axis, gaps 0.9 and 0.8, all inside. From the
+    // original positions: 1 moves -0.04, 3 moves +0.08, and 2 gets +0.04 from
+    // pair (1,2) and -0.08 from pair (2,3): net -0.04.
+    const double pos[][3] = {{-0.9, 0, 10}, {0, 0, 10}, {0.8, 0, 10}};
+    gf_sim *sim = make_sim(pos, 3);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, -0.94, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, -0.04, 1e-12);
+    gf_assert_near(by_id(sim, 3)->x, 0.88, 1e-12);
+    gf_sim_destroy(sim);
+}
+
+static void spot_exit_through_orifice(void **state)
+{
+    (void)state;
+    // A particle just above the exit over the hole leaves when pushed below
+    // z = 0; one over the plate at the same height stays (the plate holds it).
+    const double pos[][3] = {{0, 0, 0.0001}, {6, 0, 0.5}};
+    gf_sim *sim = make_sim(pos, 2);
+    const double c[3] = {0, 0, 0}, u[3] = {0, 0, -0.001};
+    assert_int_equal(gf_spot_apply(sim, c, u), 1);
+    gf_spot_unmark(sim);
+    gf_sim_stats s = gf_sim_get_stats(sim);
+    assert_int_equal(s.particles_exited, 1);
+    assert_int_equal(s.particles_remaining, 1);
+    size_t n;
+    const gf_exit *e = gf_sim_exits(sim, &n);
+    assert_int_equal(n, 1);
+    assert_int_equal(e[0].id, 1);
+    gf_sim_destroy(sim);
+}
+
+static void create_rejects_particle_outside(void **state)
+{
+    (void)state;
+    gf_config c = small_box();
+    gf_packing pk = {0};
+    assert_int_equal(gf_packing_push(&pk, 7, 1, 10.5, 0, 5, 0.5), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_ERR_PARAM);
+    assert_null(sim);
+    assert_non_null(strstr(gf_last_error(), "id 7"));
+    gf_packing_free(&pk);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(spot_moves_exactly_the_ball),
+    cmocka_unit_test(relax_pair_both_inside),
+    cmocka_unit_test(relax_pair_inside_and_shell),
+    cmocka_unit_test(relax_ignores_pairs_outside),
+    cmocka_unit_test(relax_wall_and_base),
+    cmocka_unit_test(relax_orifice_rim),
+    cmocka_unit_test(relax_displacements_applied_together),
+    cmocka_unit_test(spot_exit_through_orifice),
+    cmocka_unit_test(create_rejects_particle_outside),
+};
+
+GF_TEST_MAIN("mechanism", tests)
