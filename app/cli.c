@@ -42,7 +42,11 @@ bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
             }
             cli->sets[cli->nsets++] = val;
         } else if (!strncmp(a, "--set=", 6)) {
-            if (cli->nsets < (int)(sizeof cli->sets / sizeof cli->sets[0])) cli->sets[cli->nsets++] = a + 6;
+            if (cli->nsets == (int)(sizeof cli->sets / sizeof cli->sets[0])) {
+                fprintf(stderr, "granflow %s: error: too many --set options\n", cmd);
+                return false;
+            }
+            cli->sets[cli->nsets++] = a + 6;
         } else if (!strcmp(a, "--resume")) {
             GF_NEED_VALUE();
             cli->resume = val;
@@ -66,10 +70,9 @@ bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
             return false;
         } else if (!cli->config_path) {
             cli->config_path = a;
-        } else if (cli->nextra < (int)(sizeof cli->extra / sizeof cli->extra[0])) {
-            cli->extra[cli->nextra++] = a;
         } else {
-            fprintf(stderr, "granflow %s: error: too many arguments\n", cmd);
+            fprintf(stderr, "granflow %s: error: unexpected argument '%s' (one CONFIG file at most; "
+                            "see granflow help)\n", cmd, a);
             return false;
         }
 #undef GF_NEED_VALUE

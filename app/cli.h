@@ -24,8 +24,6 @@ typedef struct gf_cli {
     bool json, force, quiet;
     const char *sets[256];   ///< --set assignments, applied after the file
     int nsets;
-    const char *extra[8];    ///< further positionals
-    int nextra;
     double bench_particles, bench_warmup, bench_window; ///< bench options (0 = default)
 } gf_cli;
 

@@ -26,6 +26,7 @@ int gf_cmd_pack(int argc, char **argv)
         if (!cli.quiet) fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
         st = gf_packing_generate(&cfg, &pk);
     }
+    if (st == GF_OK) st = gf_packing_check(&pk, &cfg);
     if (st == GF_OK) st = gf_packing_write(&pk, cli.out, GF_FORMAT_AUTO, &cfg);
     if (st != GF_OK) {
         gf_packing_free(&pk);

@@ -31,8 +31,8 @@ static void gf_fmt_duration(char *buf, size_t n, double s)
 static void gf_show_progress(void *ctx, const gf_run_progress *p)
 {
     gf_progress_ctx *pc = ctx;
-    if (!strcmp(p->phase, "packing")) {
-        fprintf(stderr, "granflow run: building the initial packing...\n");
+    if (!strcmp(p->phase, "packing") || !strcmp(p->phase, "reading")) {
+        fprintf(stderr, "granflow run: %s the initial packing...\n", p->phase[0] == 'p' ? "building" : "reading");
         return;
     }
     if (!strcmp(p->phase, "done")) {
@@ -64,8 +64,11 @@ int gf_cmd_run(int argc, char **argv)
         }
         dir = cli.resume;
         snprintf(base, sizeof base, "%s/config.ini", cli.resume);
-        if (access(base, R_OK) != 0) {
-            fprintf(stderr, "granflow run: error: %s: no run to resume (cannot read %s)\n", cli.resume, base);
+        char ck[GF_PATH_MAX + 32];
+        snprintf(ck, sizeof ck, "%s/checkpoint.bin", cli.resume);
+        if (access(base, R_OK) != 0 || access(ck, R_OK) != 0) {
+            fprintf(stderr, "granflow run: error: %s: no run to resume (cannot read %s)\n", cli.resume,
+                    access(base, R_OK) != 0 ? base : ck);
             return GF_EXIT_USAGE;
         }
         if (!gf_cli_config(&cli, base, &cfg)) return GF_EXIT_USAGE;

@@ -206,27 +206,27 @@ static void outflow_matches_mass_balance(void **state)
     gf_rng_seed(&m.rng, 99, 0);
     gf_run_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
     assert_int_equal(gf_sim_run(sim, m.t0, &hooks), GF_OK);
-    size_t e0 = gf_sim_get_stats(sim).particles_exited;
+    gf_sim_stats a = gf_sim_get_stats(sim);
     const double T = 10.0;
     assert_int_equal(gf_sim_run(sim, m.t0 + T, &hooks), GF_OK);
-    double exited = (double)(gf_sim_get_stats(sim).particles_exited - e0);
+    gf_sim_stats b = gf_sim_get_stats(sim);
+    double exited = (double)(b.particles_exited - a.particles_exited);
     double p = m.ball_sum / (double)m.ball_n, rate = exited / T;
-    // A spot carries V_s = p V_p / w; relax() hands part of each step's
-    // displacement back (the fixed shell below the ball resists), so the
-    // volume actually carried is kappa V_s, kappa measured in this packing.
-    drift d = measure_drift(sim, 1500, 4.0);
-    double kappa = -d.mean[2] * c.spot_w / c.spot_step_z;
-    double kappa_se = d.se[2] * c.spot_w / c.spot_step_z;
+    // A spot carries V_s = p V_p / w. relax() hands part of each step's
+    // displacement back (the fixed shell below the ball resists the push), so
+    // the volume actually carried is kappa V_s, with kappa the ratio of net
+    // (spot + relax) to spot-only vertical displacement over the window.
+    double kappa = 1.0 + (b.relax_dz - a.relax_dz) / (b.spot_dz - a.spot_dz);
     double ideal = c.spot_insertion_rate * p / c.spot_w, expect = kappa * ideal;
     // Exits are a sum of ~lambda T spot contributions of p/w particles each
     // plus the discreteness of the count: Var(N) ~ N + lambda T (p/w)^2.
     double sd = sqrt(exited + c.spot_insertion_rate * T * (p / c.spot_w) * (p / c.spot_w)) / T;
-    sd = sqrt(sd * sd + (kappa_se * ideal) * (kappa_se * ideal));
     print_message("mass balance: outflow %.2f per tau; lambda p / w = %.2f (p = %.2f); relax keeps kappa = "
-                  "%.3f +- %.3f of it: %.2f +- %.2f\n",
-                  rate, ideal, p, kappa, kappa_se, expect, sd);
+                  "%.3f of it: %.2f +- %.2f\n",
+                  rate, ideal, p, kappa, expect, sd);
     assert_true(fabs(rate - expect) <= 4 * sd);
-    assert_true(kappa > 0.75 && kappa <= 1.0 + 4 * kappa_se);
+    // The thesis: relaxation moves particles by less than 25% of the block motion.
+    assert_true(kappa > 0.75 && kappa <= 1.0);
     gf_packing_free(&m.pk);
     gf_sim_destroy(sim);
 }

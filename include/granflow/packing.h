@@ -58,6 +58,11 @@ GF_API gf_status gf_packing_read(const char *path, gf_packing_format format, gf_
 GF_API gf_status gf_packing_write(const gf_packing *p, const char *path, gf_packing_format format,
                                   const gf_config *cfg);
 
+/// Checks that every centre lies in the container of `cfg`: between the side
+/// walls, and above the base unless over the orifice. GF_ERR_PARAM naming the
+/// first particle outside.
+GF_API gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg);
+
 /// Packing fraction of the particles whose centres lie in the box
 /// [x0,x1] x [y0,y1] x [z0,z1] (sphere volume over box volume, centre count).
 GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0, double y1,

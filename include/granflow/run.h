@@ -16,7 +16,7 @@ extern "C" {
 
 /// What a progress callback sees.
 typedef struct gf_run_progress {
-    const char *phase;      ///< "packing", "running" or "done"
+    const char *phase;      ///< "packing" (building), "reading" (importing), "running" or "done"
     double time, until;     ///< simulated time and the run's end, tau
     size_t initial, remaining; ///< particles at t = 0 and now
     double steps_per_second;   ///< spot moves per wall second, this invocation

@@ -34,6 +34,8 @@ typedef struct gf_sim_stats {
     uint64_t nlist_builds;       ///< neighbour-list rebuilds
     double spot_seconds;         ///< wall time inside spot(), when timing is on
     double relax_seconds;        ///< wall time inside relax(), when timing is on
+    double spot_dz;              ///< sum of the z displacements spot() gave particles, d
+    double relax_dz;             ///< sum of the z displacements relax() gave particles, d
 } gf_sim_stats;
 
 /// One particle that left: id, time (tau) and where it crossed (x, y).

@@ -217,16 +217,16 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                             "%s already holds a run (%s exists): resume it with --resume %s, "
                             "overwrite it with --force, or choose another -o",
                             rd.dir, ckpt, rd.dir);
-    if ((st = gf_mkdirs(rd.dir)) != GF_OK || (st = gf_mkdir(snaps)) != GF_OK) return st;
-    if (!opts->resume && (st = gf_clear_snapshots(snaps)) != GF_OK) return st;
-
+    // Everything that can fail on bad input happens before the directory is touched.
     gf_sim *sim = NULL;
-    rd.wall0 = gf_wall();
     if (opts->resume) {
         st = gf_sim_load(&cfg, ckpt, &sim);
+        if (st == GF_OK && cfg.run_duration < gf_sim_get_stats(sim).time)
+            st = gf_error_set(GF_ERR_PARAM, "run.duration = %g is before the time this run already reached (%g tau)",
+                              cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {"packing", 0.0, cfg.run_duration, 0, 0, 0.0, 0.0};
+            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0, 0, 0.0, 0.0};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -234,6 +234,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }
+    if (st == GF_OK && ((st = gf_mkdirs(rd.dir)) == GF_OK && (st = gf_mkdir(snaps)) == GF_OK) && !opts->resume)
+        st = gf_clear_snapshots(snaps);
     if (st == GF_OK) st = gf_config_save(&cfg, cfgpath);
     if (st != GF_OK) {
         gf_sim_destroy(sim);

@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/container.h"
 
 gf_status gf_packing_reserve(gf_packing *p, size_t cap)
 {
@@ -147,4 +148,17 @@ double gf_packing_min_distance(const gf_packing *p)
     GF_DELETE(order, p->n);
     GF_DELETE(cell, p->n);
     return sqrt(best2);
+}
+
+gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
+{
+    gf_container box = gf_container_make(cfg);
+    for (size_t i = 0; i < p->n; i++) {
+        if (!gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0))
+            return gf_error_set(GF_ERR_PARAM,
+                                "particle id %lld at (%g, %g, %g) is outside the container "
+                                "(|x| <= %g, |y| <= %g, z >= 0 except over the orifice)",
+                                (long long)p->id[i], p->x[i], p->y[i], p->z[i], box.xhi, box.yhi);
+    }
+    return GF_OK;
 }

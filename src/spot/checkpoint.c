@@ -69,7 +69,6 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
     gf_config d = gf_config_default();
     c.run_duration = d.run_duration;
     c.run_checkpoint_interval = d.run_checkpoint_interval;
-    c.output_snapshot_interval = d.output_snapshot_interval;
     FILE *f = open_memstream(text, len);
     if (!f) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     gf_status st = gf_config_write(&c, f);
@@ -220,8 +219,9 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     }
     if (size != len - head) {
         free(data);
-        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint truncated (%zu of %llu payload bytes)", path,
-                            len - head, (unsigned long long)size);
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint %s (%zu payload bytes, header says %llu)", path,
+                            len - head < size ? "truncated" : "has trailing bytes", len - head,
+                            (unsigned long long)size);
     }
     uint32_t got = (uint32_t)crc32(0L, Z_NULL, 0);
     for (size_t off = 0; off < size;) {
@@ -247,14 +247,33 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     char *mine = NULL;
     size_t mlen = 0;
     if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen)) != GF_OK) return gf_ckpt_fail(sim, data, st);
-    bool same = !r.bad && plen == mlen && plen <= r.len - r.pos && memcmp(r.data + r.pos, mine, mlen) == 0;
-    free(mine);
-    if (!same)
+    bool ok = !r.bad && plen <= r.len - r.pos;
+    bool same = ok && plen == mlen && memcmp(r.data + r.pos, mine, mlen) == 0;
+    if (!same) {
+        // Name the first key that differs: compare the two INI texts line by line.
+        char key[160] = "?", section[64] = "";
+        const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
+        const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
+        while (a < ae && b < be) {
+            const char *an = memchr(a, '\n', (size_t)(ae - a)), *bn = memchr(b, '\n', (size_t)(be - b));
+            size_t al = an ? (size_t)(an - a) : (size_t)(ae - a), bl = bn ? (size_t)(bn - b) : (size_t)(be - b);
+            if (b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
+            if (al != bl || memcmp(a, b, al) != 0) {
+                const char *eq = memchr(b, '=', bl);
+                snprintf(key, sizeof key, "%s.%.*s", section, (int)(eq ? (size_t)(eq - b) - 1 : bl), b);
+                break;
+            }
+            a += al + 1;
+            b += bl + 1;
+        }
+        free(mine);
         return gf_ckpt_fail(sim, data,
-                            gf_error_set(GF_ERR_PARAM, "%s: the configuration differs from the one the "
-                                                       "checkpoint was made with (only [run] and [output] "
-                                                       "keys may change on resume)",
-                                         path));
+                            gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
+                                                       "was made with (on resume only run.duration and "
+                                                       "run.checkpoint_interval may change)",
+                                         path, key));
+    }
+    free(mine);
     r.pos += plen;
     gf_sim_derive(sim);
 

@@ -87,6 +87,7 @@ long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3])
         if (sim->alive[i]) sim->inside[keep++] = i;
     }
     gf_mark_inside(sim, keep);
+    sim->st.spot_dz += (double)moved * u[2];
     return moved;
 }
 
@@ -136,13 +137,16 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
     }
     // All displacements are applied together, after every pair was seen.
     gf_spot_unmark(sim);
+    double dz_sum = 0.0;
     for (size_t k = 0; k < m; k++) {
         if (disp[k][0] == 0.0 && disp[k][1] == 0.0 && disp[k][2] == 0.0) continue;
         uint32_t i = inside[k];
+        dz_sum += disp[k][2];
         sim->p[i].x += disp[k][0];
         sim->p[i].y += disp[k][1];
         sim->p[i].z += disp[k][2];
     }
+    sim->st.relax_dz += dz_sum;
     for (size_t k = 0; k < m; k++) {
         if (disp[k][0] == 0.0 && disp[k][1] == 0.0 && disp[k][2] == 0.0) continue;
         gf_status st = gf_sim_after_move(sim, inside[k]);

@@ -125,15 +125,8 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
         sim->layer[i] = packing->layer[i];
         sim->alive[i] = 1;
         if (packing->r[i] > sim->rmax) sim->rmax = packing->r[i];
-        if (!gf_container_contains(&sim->box, packing->x[i], packing->y[i], packing->z[i], 0.0, 0.0)) {
-            st = gf_error_set(GF_ERR_PARAM,
-                              "particle id %lld at (%g, %g, %g) is outside the container "
-                              "(|x| <= %g, |y| <= %g, z >= 0)",
-                              (long long)packing->id[i], packing->x[i], packing->y[i], packing->z[i],
-                              sim->box.xhi, sim->box.yhi);
-            goto fail;
-        }
     }
+    if ((st = gf_packing_check(packing, &sim->cfg)) != GF_OK) goto fail;
     if ((st = gf_sim_make_grid(sim)) != GF_OK) goto fail;
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
     if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
