@@ -22,10 +22,13 @@ build-san: deps
 	@cmake -S . -B $(BUILD_SAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGF_SANITIZE=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
 
-# The papers' silo: pack, drain, write snapshots + summary into $(RUN_DIR).
+# The papers' silo: pack, drain, write snapshots + summary into $(RUN_DIR),
+# then draw the central slice at the start, half-way and at the end.
 run: build
-	./$(BUILD)/granflow run -o $(RUN_DIR)
-	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json)"
+	./$(BUILD)/granflow run --force -o $(RUN_DIR)
+	@snaps=$$(ls $(RUN_DIR)/snapshots/snap_*.dump); n=$$(echo "$$snaps" | wc -l); \
+	  scripts/slice.sh $(RUN_DIR)/slices.png $$(echo "$$snaps" | sed -n "1p;$$(( (n + 1) / 2 ))p;$${n}p")
+	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, slices.png)"
 
 # The whole suite: optimised build, then again under ASan + UBSan.
 test: test-fast test-san
