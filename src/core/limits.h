@@ -14,19 +14,28 @@
 /// for overlapping input (DEM packings overlap by ~0.1%).
 #define GF_CELL_CAP 24
 
-/// Neighbour-list skin, d: pair (i, j) is listed when closer than contact +
-/// h_i + h_j (all h_i = GF_SKIN today; the data model keeps one per
-/// particle), and the lists are rebuilt once any particle has moved
-/// h_i - GF_SKIN_SLACK from where they were built. Thinner skins make relax()
-/// cheaper (fewer candidates) and rebuilds more frequent.
-#define GF_SKIN 0.11
-/// Skin at the orifice centre and the distance over which it falls to
-/// GF_SKIN: particles there are swept by every spot (see nlist.c).
-#define GF_SKIN_ORIFICE 0.6
-#define GF_SKIN_REACH 8.0
+/// Neighbour-list skin, d. Pair (i, j) is listed while its reference
+/// positions p0 (see nlist.c) are closer than contact + h_i + h_j (all
+/// h_i = GF_SKIN today; the data model keeps one per particle); a particle
+/// that has moved h_i - GF_SKIN_SLACK from its p0 gets a new p0 and its pairs
+/// are redone then and there, so only its own list and its neighbours' change.
+/// Such refreshes cost ~0.2 us each, hence thin skins: fewer list entries
+/// for relax() to test, at the price of more (cheap) refreshes.
+#define GF_SKIN 0.05
 /// Motion allowed in the one step that crosses a trigger (a spot moves
 /// particles ~0.002 d, a relaxation far less).
 #define GF_SKIN_SLACK 0.01
+
+/// Slots per neighbour list: slot 0 holds the count, the rest up to
+/// GF_NL_CAP - 1 neighbours (two cache lines per particle). Within contact
+/// + 2 GF_SKIN a unit sphere has ~7 centres at random close packing and at
+/// most ~14 without gross overlap; the margin is for overlapping input.
+#define GF_NL_CAP 32
+
+/// Events between two full list rebuilds, which compact exited particles
+/// away and re-sort the rest by cell (memory locality). Between them lists
+/// are kept exact by per-particle refreshes alone.
+#define GF_REORDER_EVENTS 1000000
 
 /// Where exited particles are parked until the next list rebuild compacts
 /// them away: far enough that no live particle can overlap them.

@@ -351,7 +351,9 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     for (size_t i = 0; i < n; i++)
         if (sim->alive[i] && sim->grid.cell_of[i] == GF_NO_CELL)
             return gf_ckpt_fail(sim, NULL, gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path));
-    // Lists are rebuilt without re-sorting: same order, same sums, same bits.
+    // Lists are rebuilt without re-sorting from the saved p0 (they are a
+    // function of it, see sim_internal.h): the very lists the run had, so
+    // the same order, the same sums, the same bits.
     uint64_t builds = sim->st.nlist_builds;
     bool due = sim->rebuild_due;
     if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, st);

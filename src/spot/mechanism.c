@@ -35,15 +35,15 @@ static size_t gf_gather(gf_sim *sim, const double c[3])
                 size_t cell = row + (size_t)cx;
                 const uint32_t *s = g->slot + cell * GF_CELL_CAP;
                 uint32_t cnt = g->count[cell];
+                // Branch-free: every candidate is written, and kept by
+                // advancing m (~40% are kept: a branch would mispredict).
                 for (uint32_t k = 0; k < cnt; k++) {
                     uint32_t i = s[k];
                     double dx = p[i].x - c[0], dy = p[i].y - c[1], dz = p[i].z - c[2];
                     double d2 = dx * dx + dy * dy + dz * dz;
-                    if (d2 < re2) {
-                        inside[m] = i;
-                        in_ball[m] = d2 < rs2;
-                        m++;
-                    }
+                    inside[m] = i;
+                    in_ball[m] = d2 < rs2;
+                    m += d2 < re2;
                 }
             }
         }
@@ -52,39 +52,63 @@ static size_t gf_gather(gf_sim *sim, const double c[3])
 }
 
 // Numbers the inside particles (mark = position + 1) so relax() can tell an
-// inside neighbour from a shell one with one load.
+// inside neighbour from a shell one with one load, and copies their
+// positions (after spot()), p0 and cells next to each other.
 static void gf_mark_inside(gf_sim *sim, size_t m)
 {
-    for (size_t k = 0; k < m; k++) sim->mark[sim->inside[k]] = (uint32_t)k + 1;
+    const uint32_t *restrict inside = sim->inside;
+    const gf_pos *restrict p = sim->p, *restrict p0 = sim->p0;
+    const uint32_t *restrict cell_of = sim->grid.cell_of;
+    gf_pos *restrict ip = sim->ip, *restrict ip0 = sim->ip0;
+    uint32_t *restrict mark = sim->mark, *restrict icell = sim->icell;
+    for (size_t k = 0; k < m; k++) {
+        uint32_t i = inside[k];
+        mark[i] = (uint32_t)k + 1;
+        ip[k] = p[i];
+        // For gf_sim_track_moves: fetched here, in a loop of independent
+        // loads, they arrive in parallel while relax() computes.
+        ip0[k] = p0[i];
+        icell[k] = cell_of[i];
+    }
     sim->scratch_used = m;
 }
 
-void gf_spot_unmark(gf_sim *sim)
+static void gf_clear_marks(gf_sim *sim)
 {
     for (size_t k = 0; k < sim->scratch_used; k++) sim->mark[sim->inside[k]] = 0;
+}
+
+gf_status gf_spot_unmark(gf_sim *sim)
+{
+    gf_clear_marks(sim);
+    return gf_sim_track_moves(sim, sim->scratch_used, sim->in_ball);
 }
 
 long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3])
 {
     size_t m = gf_gather(sim, c);
     long moved = 0;
-    gf_pos *restrict p = sim->p;
+    gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
+    uint32_t *restrict inside = sim->inside;
+    uint8_t *restrict in_ball = sim->in_ball;
     // SPEC 1.3 spot(c, u, r_s): every particle within r_s of c moves by u.
-    for (size_t k = 0; k < m; k++) {
-        if (!sim->in_ball[k]) continue;
-        uint32_t i = sim->inside[k];
-        p[i].x += u[0];
-        p[i].y += u[1];
-        p[i].z += u[2];
-        moved++;
-    }
-    // Bookkeeping after all moves: exits, cells, rebuild schedule. Exited
-    // particles leave the inside list, which relax() then uses as it is.
+    // Particles that fall out leave the inside list, which relax() then uses
+    // as it is; in_ball stays aligned with it (it marks the moved ones, whose
+    // cells and lists are brought up to date after relax(): gf_sim_track_moves).
     size_t keep = 0;
     for (size_t k = 0; k < m; k++) {
-        uint32_t i = sim->inside[k];
-        if (sim->in_ball[k] && gf_sim_after_move(sim, i) != GF_OK) return -1;
-        if (sim->alive[i]) sim->inside[keep++] = i;
+        uint32_t i = inside[k];
+        uint8_t b = in_ball[k];
+        if (b) {
+            p[i].x += u[0];
+            p[i].y += u[1];
+            p[i].z += u[2];
+            moved++;
+            if (gf_sim_exit_check(sim, i)) continue;
+        }
+        inside[keep] = i;
+        in_ball[keep] = b;
+        keep++;
     }
     gf_mark_inside(sim, keep);
     sim->st.spot_dz += (double)moved * u[2];
@@ -95,10 +119,11 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
 {
     (void)c; // inside/shell membership was fixed by the gather (marks)
     const size_t m = sim->scratch_used;
-    const gf_pos *restrict p = sim->p;
-    const uint32_t *restrict start = sim->nl_start, *restrict nl = sim->nl;
+    gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
+    const gf_pos *restrict ip = sim->ip;
     const uint32_t *restrict mark = sim->mark;
     const uint32_t *restrict inside = sim->inside;
+    uint8_t *restrict moved = sim->in_ball;
     double (*restrict disp)[3] = sim->disp;
     const double alpha = sim->alpha, half = 0.5 * sim->alpha;
     for (size_t k = 0; k < m; k++) disp[k][0] = disp[k][1] = disp[k][2] = 0.0;
@@ -106,19 +131,37 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
     // delta / 2 each when both are inside r_e, by alpha delta for the inside
     // one when the other is in the fixed shell; walls push by alpha (r - gap).
     // A pair of inside particles is seen once, from its earlier member.
+    const uint32_t *restrict nl = sim->nl;
+    uint32_t *restrict cnts = sim->cross; // free until gf_sim_track_moves
+    // Row lengths first: a loop of independent loads fetches the rows, cold
+    // in memory (spots move in random order all over the silo), in parallel
+    // rather than one at a time in the loop below.
+    for (size_t k = 0; k < m; k++) cnts[k] = nl[(size_t)inside[k] * GF_NL_CAP];
     for (size_t k = 0; k < m; k++) {
-        uint32_t i = inside[k];
-        const double xi = p[i].x, yi = p[i].y, zi = p[i].z, ri = p[i].r;
+        const uint32_t *row = nl + (size_t)inside[k] * GF_NL_CAP + 1;
+        const uint32_t cnt = cnts[k];
+        const double xi = ip[k].x, yi = ip[k].y, zi = ip[k].z, ri = ip[k].r;
+        // Pass 1, branch-free: the overlapping neighbours (~1 in 8 entries;
+        // a branch per entry would mispredict).
+        uint32_t hit[GF_NL_CAP];
+        size_t nh = 0;
+        for (uint32_t e = 0; e < cnt; e++) {
+            uint32_t j = row[e];
+            double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
+            double s = ri + p[j].r;
+            double r2 = dx * dx + dy * dy + dz * dz;
+            hit[nh] = j;
+            nh += (size_t)((r2 < s * s) & (r2 > 0.0));
+        }
+        // Pass 2: their pushes, in row (index) order.
         double ax = 0.0, ay = 0.0, az = 0.0;
-        for (uint32_t e = start[i], end = start[i + 1]; e < end; e++) {
-            uint32_t j = nl[e];
+        for (size_t h = 0; h < nh; h++) {
+            uint32_t j = hit[h];
             uint32_t kj = mark[j];
             if (kj != 0 && kj <= k) continue; // inside, and handled already from j's side
             double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
             double s = ri + p[j].r;
-            double r2 = dx * dx + dy * dy + dz * dz;
-            if (r2 >= s * s || r2 <= 0.0) continue;
-            double r = sqrt(r2);
+            double r = sqrt(dx * dx + dy * dy + dz * dz);
             double f = (kj ? half : alpha) * (s - r) / r;
             double fx = f * dx, fy = f * dy, fz = f * dz;
             ax += fx;
@@ -136,27 +179,26 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
         disp[k][2] += az;
     }
     // All displacements are applied together, after every pair was seen.
-    gf_spot_unmark(sim);
+    gf_clear_marks(sim);
     double dz_sum = 0.0;
     for (size_t k = 0; k < m; k++) {
         if (disp[k][0] == 0.0 && disp[k][1] == 0.0 && disp[k][2] == 0.0) continue;
         uint32_t i = inside[k];
         dz_sum += disp[k][2];
-        sim->p[i].x += disp[k][0];
-        sim->p[i].y += disp[k][1];
-        sim->p[i].z += disp[k][2];
+        p[i].x += disp[k][0];
+        p[i].y += disp[k][1];
+        p[i].z += disp[k][2];
+        moved[k] = 1;
+        if (gf_sim_exit_check(sim, i)) moved[k] = 0;
     }
     sim->st.relax_dz += dz_sum;
-    for (size_t k = 0; k < m; k++) {
-        if (disp[k][0] == 0.0 && disp[k][1] == 0.0 && disp[k][2] == 0.0) continue;
-        gf_status st = gf_sim_after_move(sim, inside[k]);
-        if (st != GF_OK) return st;
-    }
-    return GF_OK;
+    return gf_sim_track_moves(sim, m, moved);
 }
 
 gf_status gf_relax_at(gf_sim *sim, const double c[3])
 {
-    gf_mark_inside(sim, gf_gather(sim, c));
+    size_t m = gf_gather(sim, c);
+    for (size_t k = 0; k < m; k++) sim->in_ball[k] = 0; // nothing moved yet
+    gf_mark_inside(sim, m);
     return gf_relax_apply(sim, c);
 }

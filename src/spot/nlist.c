@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Verlet neighbour lists for relax(): every pair closer than contact + skin,
-// rebuilt when a particle has moved a good part of the skin. Rebuilds also
-// compact exited particles away and re-sort the rest by cell for locality.
+// Verlet neighbour lists for relax(), kept per particle. Each particle has a
+// reference position p0 and a skin h; pair (i, j) is listed exactly while
+// |p0_i - p0_j| < r_i + r_j + h_i + h_j. A particle that has moved (almost)
+// h_i from p0_i gets p0_i = x_i and its pairs are redone on the spot
+// (gf_nlist_refresh), so no pair closer than contact is ever missing and no
+// global rebuild is ever forced by motion. Full rebuilds come on a fixed event
+// schedule only, to compact exited particles away and re-sort the rest by
+// cell for locality.
 #include <math.h>
 #include <string.h>
 
@@ -73,38 +78,108 @@ static void gf_sort_u32(uint32_t *a, size_t n)
     }
 }
 
-// Skins by position: every spot is born over the orifice, so the particles
-// just above it are swept by all of them and move ~50 times faster than the
-// bulk; they get thick skins (growing linearly to GF_SKIN_ORIFICE at the
-// orifice centre over GF_SKIN_REACH), so they do not force a rebuild every
-// few thousand steps. (Skins scaled to each particle's recent motion were
-// tried and lose: spots, and so relax(), live exactly where particles move,
-// which then carry the longest lists.)
-// Distance of a point from the orifice centre (from the slit's mid-plane).
-static double gf_orifice_distance(const gf_sim *sim, double x, double y, double z)
+// The listing rule. Symmetric in i and j to the last bit (negating a
+// difference is exact, and the sums are written symmetrically), so the rows
+// of i and j always agree, whoever computed them.
+static inline bool gf_nlist_listed(const gf_sim *sim, uint32_t i, uint32_t j)
 {
-    double zr = z - sim->box.exit_z, d2 = zr * zr + x * x;
-    if (sim->box.shape == GF_ORIFICE_CIRCLE) d2 += y * y;
-    return sqrt(d2);
+    const gf_pos *a = &sim->p0[i], *b = &sim->p0[j];
+    double dx = a->x - b->x, dy = a->y - b->y, dz = a->z - b->z;
+    double cut = (sim->p[i].r + sim->p[j].r) + (a->r + b->r);
+    return dx * dx + dy * dy + dz * dz < cut * cut;
 }
 
-static double gf_skin_at(double d)
+static inline uint32_t *gf_nlist_row(const gf_sim *sim, uint32_t i) { return sim->nl + (size_t)i * GF_NL_CAP; }
+
+static gf_status gf_nlist_overflow(const gf_sim *sim, uint32_t i)
 {
-    double w = d < GF_SKIN_REACH ? 1.0 - (d > 0 ? d : 0) / GF_SKIN_REACH : 0.0;
-    return GF_SKIN + (GF_SKIN_ORIFICE - GF_SKIN) * w;
+    return gf_error_set(GF_ERR_STATE,
+                        "particle %lld has more than %d neighbours within contact + skin: the packing "
+                        "overlaps far too much",
+                        (long long)sim->id[i], GF_NL_CAP - 1);
 }
 
-static void gf_nlist_skins(gf_sim *sim)
+// Fills row i with its neighbours by the listing rule, sorted. The grid holds
+// current positions, each within h_j of its p0_j, hence the reach of the search.
+static gf_status gf_nlist_find(gf_sim *sim, uint32_t i)
 {
-    for (size_t i = 0; i < sim->n; i++)
-        sim->p0[i].r = gf_skin_at(gf_orifice_distance(sim, sim->p[i].x, sim->p[i].y, sim->p[i].z));
+    const gf_grid *g = &sim->grid;
+    const gf_pos *a = &sim->p0[i];
+    const double c[3] = {a->x, a->y, a->z};
+    double reach = sim->p[i].r + sim->rmax + a->r + 2.0 * sim->hmax + GF_SKIN_SLACK;
+    int lo[3], hi[3];
+    gf_grid_range(g, c, reach, lo, hi);
+    uint32_t *row = gf_nlist_row(sim, i), n = 0;
+    for (int cz = lo[2]; cz <= hi[2]; cz++)
+        for (int cy = lo[1]; cy <= hi[1]; cy++)
+            for (int cx = lo[0]; cx <= hi[0]; cx++) {
+                size_t cell = ((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx;
+                const uint32_t *s = g->slot + cell * GF_CELL_CAP;
+                for (uint32_t k = 0; k < g->count[cell]; k++) {
+                    uint32_t j = s[k];
+                    if (j == i || !gf_nlist_listed(sim, i, j)) continue;
+                    if (n == GF_NL_CAP - 1) {
+                        row[0] = 0;
+                        return gf_nlist_overflow(sim, i);
+                    }
+                    row[1 + n++] = j;
+                }
+            }
+    gf_sort_u32(row + 1, n);
+    row[0] = n;
+    return GF_OK;
+}
+
+static gf_status gf_row_insert(gf_sim *sim, uint32_t j, uint32_t v)
+{
+    uint32_t *row = gf_nlist_row(sim, j), n = row[0];
+    if (n == GF_NL_CAP - 1) return gf_nlist_overflow(sim, j);
+    uint32_t *e = row + 1, k = n;
+    while (k > 0 && e[k - 1] > v) {
+        e[k] = e[k - 1];
+        k--;
+    }
+    e[k] = v;
+    row[0] = n + 1;
+    return GF_OK;
+}
+
+static void gf_row_remove(gf_sim *sim, uint32_t j, uint32_t v)
+{
+    uint32_t *row = gf_nlist_row(sim, j), n = row[0], *e = row + 1, k = 0;
+    while (k < n && e[k] != v) k++;
+    if (k == n) return;
+    for (; k + 1 < n; k++) e[k] = e[k + 1];
+    row[0] = n - 1;
+}
+
+void gf_nlist_drop(gf_sim *sim, uint32_t i)
+{
+    uint32_t *row = gf_nlist_row(sim, i);
+    for (uint32_t k = 1; k <= row[0]; k++) gf_row_remove(sim, row[k], i);
+    row[0] = 0;
+}
+
+gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i)
+{
+    gf_nlist_drop(sim, i);
+    sim->p0[i].x = sim->p[i].x;
+    sim->p0[i].y = sim->p[i].y;
+    sim->p0[i].z = sim->p[i].z;
+    gf_status st = gf_nlist_find(sim, i);
+    if (st != GF_OK) return st;
+    const uint32_t *row = gf_nlist_row(sim, i);
+    for (uint32_t k = 1; k <= row[0]; k++)
+        if ((st = gf_row_insert(sim, row[k], i)) != GF_OK) return st;
+    sim->nl_refreshes++;
+    return GF_OK;
 }
 
 gf_status gf_nlist_build(gf_sim *sim, bool reorder)
 {
     gf_status st;
     if (reorder) {
-        gf_nlist_skins(sim);
+        for (size_t i = 0; i < sim->n; i++) sim->p0[i].r = GF_SKIN;
         if ((st = gf_nlist_reorder(sim)) != GF_OK) return st;
     }
     gf_grid *g = &sim->grid;
@@ -121,50 +196,20 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
         }
         sim->nl_built_at = sim->st.events;
     }
-    // A list built away from p0 must also cover the motion since p0 (resume):
-    // each particle may have moved up to h since p0 and h again until the trigger.
-    double widen = reorder ? 1.0 : 2.0;
-
-    GF_DELETE(sim->nl_start, sim->cap + 1);
-    sim->nl_start = GF_NEW(uint32_t, sim->cap + 1);
-    if (!sim->nl_start) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
-    size_t len = 0;
-    for (size_t i = 0; i < sim->n; i++) {
-        sim->nl_start[i] = (uint32_t)len;
-        if (!sim->alive[i]) continue;
-        const double c[3] = {sim->p[i].x, sim->p[i].y, sim->p[i].z};
-        const double hskin = sim->p0[i].r;
-        // The thickest skin a neighbour can have: skins grow towards the
-        // orifice and neighbours are within ~3.5 d (reach plus their motion).
-        double hnear = gf_skin_at(gf_orifice_distance(sim, c[0], c[1], c[2]) - 3.5);
-        int lo[3], hi[3];
-        gf_grid_range(g, c, 2.0 * sim->rmax + widen * (hskin + hnear), lo, hi);
-        size_t begin = len;
-        for (int cz = lo[2]; cz <= hi[2]; cz++)
-            for (int cy = lo[1]; cy <= hi[1]; cy++)
-                for (int cx = lo[0]; cx <= hi[0]; cx++) {
-                    size_t cell = ((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx;
-                    const uint32_t *s = g->slot + cell * GF_CELL_CAP;
-                    for (uint32_t k = 0; k < g->count[cell]; k++) {
-                        uint32_t j = s[k];
-                        if (j == i) continue;
-                        double dx = c[0] - sim->p[j].x, dy = c[1] - sim->p[j].y, dz = c[2] - sim->p[j].z;
-                        double cut = sim->p[i].r + sim->p[j].r + widen * (hskin + sim->p0[j].r);
-                        if (dx * dx + dy * dy + dz * dz >= cut * cut) continue;
-                        if (len == sim->nl_cap) {
-                            size_t ncap = sim->nl_cap ? 2 * sim->nl_cap : 16 * sim->n + 64;
-                            uint32_t *q = gf_realloc(sim->nl, sizeof(uint32_t) * sim->nl_cap,
-                                                     sizeof(uint32_t) * ncap);
-                            if (!q) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
-                            sim->nl = q;
-                            sim->nl_cap = ncap;
-                        }
-                        sim->nl[len++] = j;
-                    }
-                }
-        gf_sort_u32(sim->nl + begin, len - begin);
+    sim->hmax = 0.0;
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->alive[i] && sim->p0[i].r > sim->hmax) sim->hmax = sim->p0[i].r;
+    if (!sim->nl) {
+        sim->nl = GF_NEW(uint32_t, sim->cap * GF_NL_CAP);
+        if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
     }
-    sim->nl_start[sim->n] = (uint32_t)len;
+    for (size_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i]) {
+            sim->nl[i * GF_NL_CAP] = 0;
+            continue;
+        }
+        if ((st = gf_nlist_find(sim, (uint32_t)i)) != GF_OK) return st;
+    }
     sim->rebuild_due = false;
     sim->st.nlist_builds++;
     return GF_OK;

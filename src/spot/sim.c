@@ -59,7 +59,12 @@ gf_status gf_sim_alloc_scratch(gf_sim *sim)
     sim->inside = GF_NEW(uint32_t, cap);
     sim->in_ball = GF_NEW(uint8_t, cap);
     sim->disp = gf_alloc(sizeof(double[3]) * cap);
-    if (!sim->inside || !sim->in_ball || !sim->disp) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    sim->cross = GF_NEW(uint32_t, cap);
+    sim->ip = GF_NEW(gf_pos, cap);
+    sim->ip0 = GF_NEW(gf_pos, cap);
+    sim->icell = GF_NEW(uint32_t, cap);
+    if (!sim->inside || !sim->in_ball || !sim->disp || !sim->cross || !sim->ip || !sim->ip0 || !sim->icell)
+        return gf_error_set(GF_ERR_NOMEM, "out of memory");
     return GF_OK;
 }
 
@@ -86,14 +91,17 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->alive, sim->cap);
     GF_DELETE(sim->mark, sim->cap);
     GF_DELETE(sim->exits, sim->exit_cap);
-    GF_DELETE(sim->nl_start, sim->cap + 1);
-    GF_DELETE(sim->nl, sim->nl_cap);
+    GF_DELETE(sim->nl, sim->cap * GF_NL_CAP);
     GF_DELETE(sim->sx, sim->ns_cap);
     GF_DELETE(sim->sy, sim->ns_cap);
     GF_DELETE(sim->sz, sim->ns_cap);
     GF_DELETE(sim->sbirth, sim->ns_cap);
     GF_DELETE(sim->inside, sim->scratch_cap);
     GF_DELETE(sim->in_ball, sim->scratch_cap);
+    GF_DELETE(sim->cross, sim->scratch_cap);
+    GF_DELETE(sim->ip, sim->scratch_cap);
+    GF_DELETE(sim->ip0, sim->scratch_cap);
+    GF_DELETE(sim->icell, sim->scratch_cap);
     gf_free(sim->disp, sizeof(double[3]) * sim->scratch_cap);
     gf_grid_free(&sim->grid);
     gf_free(sim, sizeof *sim);
@@ -140,22 +148,49 @@ fail:
     return st;
 }
 
-gf_status gf_sim_after_move(gf_sim *sim, uint32_t i)
+bool gf_sim_exit_slow(gf_sim *sim, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
-    if (q->z < sim->box.exit_z && gf_container_over_hole(&sim->box, q->x, q->y)) {
-        gf_exit *e = &sim->exits[sim->nexit++];
-        *e = (gf_exit){sim->id[i], sim->t, q->x, q->y};
-        gf_grid_remove(&sim->grid, i);
-        sim->alive[i] = 0;
-        sim->n_alive--;
-        q->x = q->y = q->z = GF_PARK_COORD;
-        return GF_OK;
+    if (!(q->z < sim->box.exit_z) || !gf_container_over_hole(&sim->box, q->x, q->y)) return false;
+    gf_exit *e = &sim->exits[sim->nexit++];
+    *e = (gf_exit){sim->id[i], sim->t, q->x, q->y};
+    gf_grid_remove(&sim->grid, i);
+    gf_nlist_drop(sim, i);
+    sim->alive[i] = 0;
+    sim->n_alive--;
+    q->x = q->y = q->z = GF_PARK_COORD;
+    return true;
+}
+
+gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved)
+{
+    const uint32_t *inside = sim->inside, *icell = sim->icell;
+    const gf_pos *p = sim->p, *ip0 = sim->ip0;
+    gf_grid *g = &sim->grid;
+    uint32_t *cross = sim->cross;
+    size_t nc = 0;
+    // Cells first, so that the refreshes below search a grid that is current.
+    // (Exited particles are not flagged in moved[]; p0 and the cells were
+    // copied by the gather, and cannot have changed since for these.)
+    for (size_t k = 0; k < m; k++) {
+        if (!moved[k]) continue;
+        uint32_t i = inside[k];
+        const gf_pos *q = &p[i], *a = &ip0[k];
+        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
+        cross[nc] = i;
+        nc += dx * dx + dy * dy + dz * dz > lim * lim;
+        uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);
+        if (c != icell[k]) {
+            gf_grid_remove(g, i);
+            gf_status st = gf_grid_insert(g, i, c);
+            if (st != GF_OK) return st;
+        }
     }
-    const gf_pos *a = &sim->p0[i];
-    double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
-    if (dx * dx + dy * dy + dz * dz > lim * lim) sim->rebuild_due = true;
-    return gf_grid_update(&sim->grid, i, q->x, q->y, q->z);
+    for (size_t k = 0; k < nc; k++) {
+        gf_status st = gf_nlist_refresh(sim, cross[k]);
+        if (st != GF_OK) return st;
+    }
+    return GF_OK;
 }
 
 static gf_status gf_spot_insert(gf_sim *sim)
@@ -254,7 +289,8 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
     sim->st.spot_moves++;
     *ball = moved;
     if (moved == 0) {
-        gf_spot_unmark(sim);
+        gf_status st = gf_spot_unmark(sim);
+        if (st != GF_OK) return st;
         // SPEC 1.3 removal: no particle in reach; never keep moving in empty
         // space (below the base, on the way up from its birth, it may).
         if (nz > 0.0) {
@@ -262,7 +298,8 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
             return GF_OK;
         }
     } else if (sim->no_relax) {
-        gf_spot_unmark(sim);
+        gf_status st = gf_spot_unmark(sim);
+        if (st != GF_OK) return st;
     } else {
         gf_status st = gf_relax_apply(sim, centre);
         if (st != GF_OK) return st;
@@ -300,7 +337,9 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
 static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
-    if (sim->rebuild_due && (st = gf_nlist_build(sim, true)) != GF_OK) return st;
+    if ((sim->rebuild_due || sim->st.events - sim->nl_built_at >= GF_REORDER_EVENTS) &&
+        (st = gf_nlist_build(sim, true)) != GF_OK)
+        return st;
     sim->t = sim->t_pending;
     sim->pending = false;
     sim->st.events++;

@@ -36,13 +36,17 @@ struct gf_sim {
     gf_grid grid;
     double grid_ztop; ///< top of the grid, fixed at creation (cell order depends on it)
 
-    // Neighbour lists (CSR), each sorted by index so that sums over overlaps
-    // do not depend on when the list was built (exact resume).
-    uint32_t *nl_start; ///< n + 1 offsets
-    uint32_t *nl;       ///< neighbour indices
-    size_t nl_cap;
-    uint64_t nl_built_at; ///< event count at the last re-sorting rebuild
-    bool rebuild_due;
+    // Neighbour lists, one fixed-capacity row per particle: row i is
+    // nl[i * GF_NL_CAP ...], its count in slot 0, then the neighbours sorted
+    // by index, so that sums over overlaps do not depend on when a row was
+    // made (exact resume). A row lists exactly the live j with
+    // |p0_i - p0_j| < r_i + r_j + h_i + h_j (gf_nlist_listed), so the lists
+    // are a function of p0 alone and a resume rebuilds them bit for bit.
+    uint32_t *nl;
+    double hmax;          ///< largest skin (derived at every full build)
+    uint64_t nl_refreshes; ///< per-particle refreshes (a diagnostic, not saved)
+    uint64_t nl_built_at; ///< event count at the last full (re-sorting) rebuild
+    bool rebuild_due;     ///< a full rebuild before the next event (tests, resume)
 
     // Spots (SoA).
     size_t ns, ns_cap;
@@ -65,9 +69,13 @@ struct gf_sim {
 
     // Scratch for one spot step.
     uint32_t *inside;   ///< particles within r_e of the step centre
-    uint8_t *in_ball;   ///< per inside entry: 1 if within r_s (moved by spot)
+    uint8_t *in_ball;   ///< per inside entry: 1 if moved this step (within r_s, or by relax)
     double (*disp)[3];  ///< relax displacements of the inside particles
     uint32_t *mark;     ///< per particle: 1 + its position in inside[], 0 if not inside
+    uint32_t *cross;    ///< particles that went past their skin this step
+    gf_pos *ip;         ///< per inside entry: its position (after spot())
+    gf_pos *ip0;        ///< per inside entry: its p0
+    uint32_t *icell;    ///< per inside entry: its grid cell
     size_t scratch_cap;
     size_t scratch_used; ///< entries of inside[] filled by the last gather
 
@@ -91,8 +99,9 @@ long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3]);
 /// the number of particles it moved.
 gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball);
 
-/// Clears the inside marks of a gather that is not followed by relax().
-void gf_spot_unmark(gf_sim *sim);
+/// Ends a gather that is not followed by relax(): clears the inside marks
+/// and does the bookkeeping of the particles spot() moved (cells, lists).
+gf_status gf_spot_unmark(gf_sim *sim);
 
 /// Relaxes around c the particles gathered by gf_spot_apply (SPEC 1.3 relax()).
 gf_status gf_relax_apply(gf_sim *sim, const double c[3]);
@@ -101,15 +110,31 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3]);
 gf_status gf_relax_at(gf_sim *sim, const double c[3]);
 
 /// Rebuilds the neighbour lists. With `reorder`, exited particles are
-/// compacted away, the rest sorted by cell, and p0 reset; without, the order
-/// and p0 are kept and the cutoff widened so the lists stay exact until the
-/// rebuild the saved p0 schedules (used when resuming; the grid must then
-/// already hold the live particles).
+/// compacted away, the rest sorted by cell, and p0 reset to the positions;
+/// without, the order and p0 are kept (resume: the grid must then already
+/// hold the live particles), which gives the very lists the run had.
 gf_status gf_nlist_build(gf_sim *sim, bool reorder);
 
-/// Records that particle i moved; schedules a list rebuild when it has gone
-/// far from where the lists were built; removes it if it fell out of the orifice.
-gf_status gf_sim_after_move(gf_sim *sim, uint32_t i);
+/// Particle i has moved past its skin: its p0 becomes its position and its
+/// pairs are redone (its row and its old and new neighbours' rows).
+gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i);
+
+/// Takes particle i out of every list (it has exited).
+void gf_nlist_drop(gf_sim *sim, uint32_t i);
+
+/// Removes particle i (below the exit plane) if it fell out of the orifice;
+/// true when it did.
+bool gf_sim_exit_slow(gf_sim *sim, uint32_t i);
+
+/// Removes particle i if it fell out of the orifice; true when it did.
+static inline bool gf_sim_exit_check(gf_sim *sim, uint32_t i)
+{
+    return sim->p[i].z < sim->box.exit_z && gf_sim_exit_slow(sim, i);
+}
+
+/// Bookkeeping after the moves of one step, for the entries k < m of
+/// inside[] with moved[k] set: cells, and lists of those past their skin.
+gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved);
 
 /// Allocates the particle arrays for n particles.
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n);
