@@ -238,6 +238,7 @@ static gf_config tiny(uint64_t seed)
     gf_config c = silo(12, 1200, seed);
     c.run_duration = 3.0;
     c.output_snapshot_interval = 0.5;
+    c.run_reorder_interval = 20000; // several full re-sorts within the run, and across each resume
     return c;
 }
 

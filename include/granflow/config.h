@@ -63,6 +63,7 @@ typedef struct gf_config {
     double run_duration;               ///< simulated time to reach, tau; default 60
     uint64_t run_seed;                 ///< seed of every random stream; default 1
     double run_checkpoint_interval;    ///< checkpoint every this many tau (0: only on stop/end); default 0
+    int64_t run_reorder_interval;      ///< events between full re-sorts of particle memory; default 1000000
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2

@@ -78,6 +78,9 @@ const gf_key gf_keys[] = {
     {"run", "checkpoint_interval", GF_KEY_DOUBLE, GF_OFF(run_checkpoint_interval), GF_NONNEG,
      .def = "0", .unit = "tau",
      .doc = "write a checkpoint every this long (0: only on stop and at the end)"},
+    {"run", "reorder_interval", GF_KEY_INT64, GF_OFF(run_reorder_interval), .min = 1, .max = 1e12,
+     .def = "1000000", .unit = "events",
+     .doc = "events between full re-sorts of particles in memory (speed only; changes the last bits)"},
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long"},

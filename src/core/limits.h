@@ -32,10 +32,10 @@
 /// most ~14 without gross overlap; the margin is for overlapping input.
 #define GF_NL_CAP 32
 
-/// Events between two full list rebuilds, which compact exited particles
-/// away and re-sort the rest by cell (memory locality). Between them lists
-/// are kept exact by per-particle refreshes alone.
-#define GF_REORDER_EVENTS 1000000
+/// Full list rebuilds (compacting exited particles away and re-sorting the
+/// rest by cell, for memory locality) come every run.reorder_interval events
+/// (default 1,000,000). Between them lists are kept exact by per-particle
+/// refreshes alone.
 
 /// Where exited particles are parked until the next list rebuild compacts
 /// them away: far enough that no live particle can overlap them.

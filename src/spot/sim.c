@@ -337,7 +337,7 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
 static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
-    if ((sim->rebuild_due || sim->st.events - sim->nl_built_at >= GF_REORDER_EVENTS) &&
+    if ((sim->rebuild_due || sim->st.events - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) &&
         (st = gf_nlist_build(sim, true)) != GF_OK)
         return st;
     sim->t = sim->t_pending;
