@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Random initial packing (SPEC 1.2): soft spheres placed at random in a tall
-// column, squeezed uniaxially towards the base while Jacobi sweeps push
-// overlapping pairs apart, then relaxed until no overlap is left. The method,
-// its parameters and the packings it makes are described in docs/packing.md.
+// Random initial packing (SPEC 1.2): a quench of soft spheres. Centres are
+// thrown at random into the container closed by a lid at the height that a
+// packing of fraction PHI_BOX would fill (heavy overlaps allowed); Jacobi
+// sweeps push overlapping pairs apart until the over-compressed packing has
+// settled; then the lid goes and the column expands, each slab of it in
+// proportion to the overlap left there, until no pair is closer than
+// 1 - TOL. docs/packing.md describes the method, why its parameters have
+// their values, and what it makes.
 #include "granflow/packing.h"
 
 #include <math.h>
@@ -11,70 +15,33 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/rng.h"
 
 // Parameters of the method (docs/packing.md says why each has its value).
-#ifndef GF_GEN_PHI_START
-#define GF_GEN_PHI_START 0.30
-#endif
-#define GF_GEN_PHI_START_X    // nominal packing fraction of the random start
-#ifndef GF_GEN_PHI_SIDE
-#define GF_GEN_PHI_SIDE 0.6
-#endif
-#ifndef GF_GEN_LOAD
-#define GF_GEN_LOAD 0.01
-#endif
-#ifndef GF_GEN_EXPAND
-#define GF_GEN_EXPAND 0.05
-#endif
-#ifndef GF_GEN_EXPMAX
-#define GF_GEN_EXPMAX 1.0
-#endif
-#ifndef GF_GEN_TAPS
-#define GF_GEN_TAPS 0
-#endif
-#define GF_GEN_TAP 0.02
-#define GF_GEN_TAP_SWEEPS 20
-#ifndef GF_GEN_NOISE
-#define GF_GEN_NOISE 0.0
-#endif
-#ifndef GF_GEN_STALL
-#define GF_GEN_STALL 200
-#endif
-#ifndef GF_GEN_STALL_GAIN
-#define GF_GEN_STALL_GAIN 0.002
-#endif
-#ifndef GF_GEN_PHI_STOP
-#define GF_GEN_PHI_STOP 0.625
-#endif
-#define GF_GEN_PHI_STOP_X    // bulk packing fraction at which squeezing stops
-#ifndef GF_GEN_STRAIN
-#define GF_GEN_STRAIN 4.0e-3
-#endif
-#define GF_GEN_STRAIN_X     // largest compressive strain of the column per sweep
-#define GF_GEN_LOAD_X         // overlap per particle at which squeezing stalls
-#define GF_GEN_EXPAND_X        // final relaxation: strain per unit overlap per particle
-#ifndef GF_GEN_ALPHA
-#define GF_GEN_ALPHA 0.8
-#endif
-#define GF_GEN_ALPHA_X         // fraction of an overlap removed per sweep
-#define GF_GEN_SKIN 0.3          // Verlet-list skin, d
-#define GF_GEN_TOL 0.005         // final largest overlap: centre distance > 1 - TOL
-#ifndef GF_GEN_PRE_TOL
-#define GF_GEN_PRE_TOL 0.2
-#endif
-#define GF_GEN_PRE_TOL_X       // largest overlap before squeezing starts
-#define GF_GEN_MEASURE 10        // sweeps between two bulk-fraction measurements
-#define GF_GEN_MAX_SWEEPS 200000 // safety net against a relaxation that never ends
+#define GF_GEN_PHI_BOX 0.64       // nominal packing fraction of the closed start box
+#define GF_GEN_ALPHA 0.8          // fraction of an overlap removed per sweep
+#define GF_GEN_SKIN 0.3           // Verlet-list skin, d
+#define GF_GEN_SETTLE_EVERY 50    // sweeps between two looks at the settling under the lid
+#define GF_GEN_SETTLE_GAIN 0.98   // lid off once the overlap falls by < 2 % per look
+#define GF_GEN_SETTLE_MAX 20000   // ... or after this many sweeps at the latest
+#define GF_GEN_EXPAND 0.01        // slab strain per sweep per unit overlap per particle
+#define GF_GEN_SLAB 4.0           // thickness of the slabs of the stretch profile, d
+#define GF_GEN_BOUNCE 0.5         // pushed a through a wall, a particle ends a/2 inside
+#define GF_GEN_TOL 0.005          // final largest overlap: centre distance > 1 - TOL
+#define GF_GEN_SNAP 1e-3          // at the end, closer than this to a wall = on it
+#define GF_GEN_MAX_SWEEPS 200000  // safety net against a relaxation that never ends
 #define GF_GEN_STREAM 0x7061636b696e67ull // "packing": the RNG stream of this module
-#define GF_GEN_MAX_N 2000000000ll         // neighbour indices are 32-bit
 // Acceptance checks of the result (SPEC 1.2).
 #define GF_GEN_MIN_PAIR 0.99
 #define GF_GEN_WALL 0.5
 
-#ifdef GF_GEN_TRACE
-static long gf_gen_builds;
+// A throwaway measuring program may define this to watch the progress; the
+// library itself never prints.
+#ifndef GF_GEN_TRACE
+#define GF_GEN_TRACE(...) ((void)0)
 #endif
+
 static const double gf_gen_pi = 3.14159265358979323846;
 
 // Working state of one generation. Particles are kept in cell order (re-sorted
@@ -83,18 +50,21 @@ typedef struct gf_gen {
     size_t n;
     double *x, *y, *z;    // centres
     double *ux, *uy, *uz; // per-sweep displacement sums; scratch during a build
-    double *rx, *ry, *rz; // centres at the last build, z squeezed with the column
+    double *rx, *ry, *rz; // centres at the last build, z stretched with the column
     size_t *start;        // CSR row starts of the half neighbour list, n + 1
     uint32_t *nbr;        // neighbours j of i in cell order (each pair once)
     size_t nbr_cap;
     size_t *cell_start; // counting-sort scratch, ncell_cap + 1
     size_t ncell_cap;
-    uint32_t *cell;  // cell of each particle during a build
-    double zlo;           // lowest centre height
-    double zhi;           // highest centre height (a lid), or +inf
-    double width, depth;  // current side walls: +-width/2, +-depth/2 (they close in)
-    double width_final, depth_final;
-    double squeeze; // product of (1 - strain) since the last build
+    uint32_t *cell;       // cell of each particle during a build
+    double width, depth;  // side walls at +-width/2, +-depth/2
+    double zlo, zhi;      // lowest and highest allowed centre height (zhi: the lid)
+    double ztop;          // highest centre
+    // Stretch profile of the column: overlap sums per horizontal slab of
+    // thickness GF_GEN_SLAB (measured by the push), and the strain of each.
+    double *slab_sum, *slab_strain;
+    size_t *slab_count;
+    size_t nslab, slab_cap;
 } gf_gen;
 
 static void gf_gen_release(gf_gen *g)
@@ -113,6 +83,9 @@ static void gf_gen_release(gf_gen *g)
     GF_DELETE(g->nbr, g->nbr_cap);
     GF_DELETE(g->cell_start, g->ncell_cap + 1);
     GF_DELETE(g->cell, n);
+    GF_DELETE(g->slab_sum, g->slab_cap);
+    GF_DELETE(g->slab_strain, g->slab_cap);
+    GF_DELETE(g->slab_count, g->slab_cap);
 }
 
 static gf_status gf_gen_init(gf_gen *g, size_t n)
@@ -144,6 +117,7 @@ static gf_status gf_gen_build(gf_gen *g)
     size_t n = g->n;
     double ztop = g->zlo;
     for (size_t i = 0; i < n; i++) ztop = fmax(ztop, g->z[i]);
+    g->ztop = ztop;
     const double cut = 1.0 + GF_GEN_SKIN;
     // Cells of side h >= cut; a sparse tall column gets bigger cells so the
     // grid never has many more cells than particles.
@@ -197,7 +171,6 @@ static gf_status gf_gen_build(gf_gen *g)
     memcpy(g->rx, g->x, sizeof *g->x * n);
     memcpy(g->ry, g->y, sizeof *g->y * n);
     memcpy(g->rz, g->z, sizeof *g->z * n);
-    g->squeeze = 1.0;
 
     // Half stencil: the cell itself (j > i) and its 13 "forward" neighbours.
     const double cut2 = cut * cut;
@@ -246,9 +219,6 @@ static gf_status gf_gen_build(gf_gen *g)
                 }
             }
     g->start[n] = m;
-#ifdef GF_GEN_TRACE
-    gf_gen_builds++;
-#endif
     return GF_OK;
 }
 
@@ -265,10 +235,16 @@ static inline double gf_gen_positive(double s)
 
 // One Jacobi sweep, first half: sums for every particle the pushes of its
 // overlapping neighbours (each moves by alpha * overlap / 2 along the line of
-// centres) into ux, uy, uz. Returns the largest overlap 1 - r.
+// centres) into ux, uy, uz, and the overlaps per slab of the column. Returns
+// the largest overlap 1 - r; *mean = total overlap / particles.
 static double gf_gen_push(gf_gen *g, double *mean)
 {
-    size_t n = g->n;
+    size_t n = g->n, nslab = g->nslab;
+    double *restrict slab_sum = g->slab_sum;
+    size_t *restrict slab_count = g->slab_count;
+    memset(slab_sum, 0, sizeof *slab_sum * nslab);
+    memset(slab_count, 0, sizeof *slab_count * nslab);
+    const double zlo = g->zlo;
     const double *restrict x = g->x, *restrict y = g->y, *restrict z = g->z;
     double *restrict ux = g->ux, *restrict uy = g->uy, *restrict uz = g->uz;
     const size_t *restrict start = g->start;
@@ -280,24 +256,24 @@ static double gf_gen_push(gf_gen *g, double *mean)
     double worst = 0.0, sum = 0.0;
     for (size_t i = 0; i < n; i++) {
         const double xi = x[i], yi = y[i], zi = z[i];
-        double ax = 0.0, ay = 0.0, az = 0.0;
+        double ax = 0.0, ay = 0.0, az = 0.0, si = 0.0;
         for (size_t k = start[i]; k < start[i + 1]; k++) {
             size_t j = nbr[k];
             double dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
             // Branch-free (a mispredicted branch on every other pair costs
             // more than the arithmetic): with s = 1 - r^2 (0 for pairs that do
             // not touch), (1 - r) / r = s/2 + 3s^2/8 + 5s^3/16 + 35s^4/128 + ...
-            // The truncated series has relative error < 1e-5 for overlaps
-            // below 0.05, only ever pushes less than the exact rule for big
-            // ones, and stays finite when two centres coincide.
+            // The truncated series is within 5e-5 (relative) of the exact
+            // rule for overlaps up to 0.05 and pushes less for bigger ones;
+            // below r = 0.71 (s > 0.5) the exact rule takes over.
             double s = 1.0 - (dx * dx + dy * dy + dz * dz);
             s = gf_gen_positive(s);
             worst = s > worst ? s : worst;
-            sum += s;
+            si += s;
             double f = half * s * (0.5 + s * (0.375 + s * (0.3125 + s * 0.2734375)));
             if (s > 0.5) { // r < 0.71: rare, so this branch is well predicted
                 double r = sqrt(1.0 - s);
-                if (r < 1e-9) { // coincident centres (walls can clamp two into a corner)
+                if (r < 1e-9) { // coincident centres: part them vertically
                     dx = 0.0;
                     dy = 0.0;
                     dz = r = 1e-9;
@@ -314,185 +290,197 @@ static double gf_gen_push(gf_gen *g, double *mean)
         ux[i] += ax;
         uy[i] += ay;
         uz[i] += az;
+        sum += si;
+        size_t b = (size_t)((zi - zlo) * (1.0 / GF_GEN_SLAB));
+        b = b < nslab ? b : nslab - 1;
+        slab_sum[b] += si;
+        slab_count[b]++;
     }
     *mean = 0.5 * sum / (double)n; // sum of s/2 ~ sum of overlaps
     return 1.0 - sqrt(1.0 - fmin(worst, 1.0));
 }
 
-// Second half: applies the pushes, squeezes the column by `strain` towards the
-// base, puts particles back inside the walls. Returns the largest squared
-// non-affine displacement since the last build.
-static double gf_gen_move(gf_gen *g, double strain, double noise, gf_rng *rng)
+// Puts a coordinate pushed through a wall back inside, half as far from the
+// wall as it went through it (an exact clamp would line particles up on the
+// wall plane, where overlapping pairs of them could only push each other
+// sideways and a crowded layer on the base would never get unstuck).
+static inline double gf_gen_wall(double v, double lo, double hi)
 {
-    size_t n = g->n;
-    const double sz = 1.0 - strain, zlo = g->zlo;
-    // The side walls close in with the same strain until they reach their
-    // final place (and never move out again).
-    double w = g->width, d = g->depth;
-    if (strain > 0.0) {
-        w = fmax(w * sz, g->width_final);
-        d = fmax(d * sz, g->depth_final);
+    v = v >= lo ? v : lo + GF_GEN_BOUNCE * (lo - v);
+    v = v <= hi ? v : hi - GF_GEN_BOUNCE * (v - hi);
+    v = v >= lo ? v : lo; // (fmin/fmax would be library calls here)
+    return v <= hi ? v : hi;
+}
+
+// The column stretch: z -> z + u(z), u piecewise linear over the slabs with
+// slope slab_strain (>= 0), u(zlo) = 0. It only ever lengthens pair vectors.
+static inline double gf_gen_lift(const double *restrict lift, const double *restrict strain,
+                                 size_t nslab, double zlo, double z)
+{
+    double t = (z - zlo) * (1.0 / GF_GEN_SLAB);
+    size_t b = (size_t)t;
+    b = b < nslab ? b : nslab - 1;
+    return z + lift[b] + strain[b] * GF_GEN_SLAB * (t - (double)b);
+}
+
+// Second half: applies the pushes, stretches the column by `gain` times the
+// overlap per particle of each slab (0: no stretch), puts particles back
+// inside the walls, the base and the lid. Returns the largest squared
+// displacement since the last build that is not due to the stretch.
+static double gf_gen_move(gf_gen *g, double gain)
+{
+    size_t n = g->n, nslab = g->nslab;
+    const double zlo = g->zlo, zhi = g->zhi;
+    const double xhi = 0.5 * g->width - 0.5, xlo = -xhi, yhi = 0.5 * g->depth - 0.5, ylo = -yhi;
+    double *restrict x = g->x, *restrict y = g->y, *restrict z = g->z, *restrict rz = g->rz;
+    const double *restrict ux = g->ux, *restrict uy = g->uy, *restrict uz = g->uz;
+    const double *restrict rx = g->rx, *restrict ry = g->ry;
+    // lift[b]: how far the bottom of slab b rises (reuses slab_sum).
+    double *restrict strain = g->slab_strain, *restrict lift = g->slab_sum;
+    double up = 0.0;
+    for (size_t b = 0; b < nslab; b++) {
+        double e = g->slab_count[b] ? gain * 0.5 * lift[b] / (double)g->slab_count[b] : 0.0;
+        strain[b] = e;
+        lift[b] = up;
+        up += e * GF_GEN_SLAB;
     }
-    const double sx = w / g->width, sy = d / g->depth;
-    g->width = w;
-    g->depth = d;
-    const double xhi = 0.5 * w - 0.5, xlo = -xhi, yhi = 0.5 * d - 0.5, ylo = -yhi;
-    double worst = 0.0;
+    // The top slab reaches to infinity: above the measured ones nothing stretches.
+    strain[nslab - 1] = 0.0;
+    double worst = 0.0, ztop = zlo;
     for (size_t i = 0; i < n; i++) {
-        double x = g->x[i] + g->ux[i], y = g->y[i] + g->uy[i], z = g->z[i] + g->uz[i];
-        if (noise > 0.0) {
-            x += noise * (2.0 * gf_rng_uniform(rng) - 1.0);
-            y += noise * (2.0 * gf_rng_uniform(rng) - 1.0);
-            z += noise * (2.0 * gf_rng_uniform(rng) - 1.0);
+        double xi = x[i] + ux[i], yi = y[i] + uy[i], zi = z[i] + uz[i];
+        xi = gf_gen_wall(xi, xlo, xhi);
+        yi = gf_gen_wall(yi, ylo, yhi);
+        zi = gf_gen_wall(zi, zlo, zhi);
+        double r = rz[i];
+        if (gain > 0.0) {
+            zi = gf_gen_lift(lift, strain, nslab, zlo, zi);
+            r = gf_gen_lift(lift, strain, nslab, zlo, r);
+            rz[i] = r;
         }
-        x *= sx;
-        y *= sy;
-        z = zlo + (z - zlo) * sz;
-        x = x > xlo ? x : xlo;
-        x = x < xhi ? x : xhi;
-        y = y > ylo ? y : ylo;
-        y = y < yhi ? y : yhi;
-        z = z > zlo ? z : zlo;
-        z = z < g->zhi ? z : g->zhi;
-        g->x[i] = x;
-        g->y[i] = y;
-        g->z[i] = z;
-        double rx = g->rx[i] * sx, ry = g->ry[i] * sy, rz = zlo + (g->rz[i] - zlo) * sz;
-        g->rx[i] = rx;
-        g->ry[i] = ry;
-        g->rz[i] = rz;
-        double dx = x - rx, dy = y - ry, dz = z - rz;
+        x[i] = xi;
+        y[i] = yi;
+        z[i] = zi;
+        ztop = zi > ztop ? zi : ztop;
+        double dx = xi - rx[i], dy = yi - ry[i], dz = zi - r;
         double d2 = dx * dx + dy * dy + dz * dz;
         worst = d2 > worst ? d2 : worst;
     }
-    g->squeeze *= fmin(fmin(sx, sy), sz);
+    g->ztop = ztop;
     return worst;
 }
 
-// The list still holds every pair closer than 1 while squeeze * (1 + skin)
-// - 2 * (largest non-affine displacement) > 1 (the squeeze shortens every
-// pair vector by at most the factor `squeeze`).
+// Sizes the slab arrays for the column up to ztop (one spare slab on top,
+// which never stretches).
+static gf_status gf_gen_slabs(gf_gen *g)
+{
+    size_t need = (size_t)((g->ztop - g->zlo) / GF_GEN_SLAB) + 2;
+    if (need > g->slab_cap) {
+        size_t cap = need + need / 2 + 4;
+        double *a = GF_NEW(double, cap), *b = GF_NEW(double, cap);
+        size_t *c = GF_NEW(size_t, cap);
+        if (!a || !b || !c) {
+            GF_DELETE(a, cap);
+            GF_DELETE(b, cap);
+            GF_DELETE(c, cap);
+            return gf_error_set(GF_ERR_NOMEM, "packing: out of memory for %zu slabs", cap);
+        }
+        GF_DELETE(g->slab_sum, g->slab_cap);
+        GF_DELETE(g->slab_strain, g->slab_cap);
+        GF_DELETE(g->slab_count, g->slab_cap);
+        g->slab_sum = a;
+        g->slab_strain = b;
+        g->slab_count = c;
+        g->slab_cap = cap;
+    }
+    g->nslab = need;
+    return GF_OK;
+}
+
+// Rebuilds the neighbour list unless it still holds every pair closer than 1,
+// and sizes the slabs. A stretch only lengthens pair vectors, so a pair
+// outside the list (longer than 1 + skin at the build) is still longer than
+// 1 while no particle has moved more than skin/2 on top of the stretch.
 static gf_status gf_gen_keep_list(gf_gen *g, double disp2)
 {
-    if (fmin(g->squeeze, 1.0) * (1.0 + GF_GEN_SKIN) - 2.0 * sqrt(disp2) > 1.0 + 1e-9) return GF_OK;
-    return gf_gen_build(g);
-}
-
-// Packing fraction of the bulk: away from the side walls, the base and the
-// top. Falls back to the whole column when that region holds few particles.
-static double gf_gen_bulk_fraction(const gf_gen *g)
-{
-    size_t n = g->n;
-    double ztop = g->zlo;
-    for (size_t i = 0; i < n; i++) ztop = fmax(ztop, g->z[i]);
-    double bx = 0.5 * g->width_final - 2.0, by = 0.5 * g->depth_final - 1.5, z0 = 2.0,
-           z1 = ztop - 3.0;
-    double vol = 4.0 * bx * by * (z1 - z0);
-    size_t count = 0;
-    if (bx > 0 && by > 0 && z1 > z0) {
-        for (size_t i = 0; i < n; i++)
-            count += fabs(g->x[i]) < bx && fabs(g->y[i]) < by && g->z[i] >= z0 && g->z[i] < z1;
+    double half_skin = 0.5 * GF_GEN_SKIN * (1.0 - 1e-9);
+    if (disp2 >= half_skin * half_skin) {
+        gf_status st = gf_gen_build(g);
+        if (st != GF_OK) return st;
     }
-    if (count >= 100) return (double)count * gf_gen_pi / 6.0 / vol;
-    return (double)n * gf_gen_pi / 6.0 / (g->width_final * g->depth_final * (ztop + 0.5));
+    return gf_gen_slabs(g);
 }
 
-// Runs the whole method on g (positions are placed here). Returns the status.
+// Runs the whole method on g. Returns the status.
 static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
 {
     size_t n = g->n;
-    // Random start: uniform in the footprint, the column as tall as a packing
-    // of fraction PHI_START would be. Overlaps are allowed.
-    double c = cbrt(GF_GEN_PHI_SIDE / GF_GEN_PHI_START);
-    g->width = c * g->width_final;
-    g->depth = c * g->depth_final;
-    double height = (double)n * gf_gen_pi / 6.0 / (g->width * g->depth * GF_GEN_PHI_START);
-    if (height < 1.0) height = 1.0;
-#ifdef GF_GEN_LID
-    g->zhi = g->zlo + height;
-#else
-    g->zhi = INFINITY;
-#endif
+    // 1. Random centres in the container closed at the height that a packing
+    // of fraction PHI_BOX would fill. Overlaps are allowed (and many).
+    double height = (double)n * gf_gen_pi / 6.0 / (g->width * g->depth * GF_GEN_PHI_BOX);
+    g->zlo = 0.5;
+    g->zhi = fmax(g->zlo, height - 0.5);
     const double xhi = 0.5 * g->width - 0.5, yhi = 0.5 * g->depth - 0.5;
     gf_rng rng;
     gf_rng_seed(&rng, seed, GF_GEN_STREAM);
     for (size_t i = 0; i < n; i++) {
         g->x[i] = xhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
         g->y[i] = yhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
-        g->z[i] = g->zlo + height * gf_rng_uniform(&rng);
+        g->z[i] = g->zlo + (g->zhi - g->zlo) * gf_rng_uniform(&rng);
     }
     gf_status st = gf_gen_build(g);
+    if (st == GF_OK) st = gf_gen_slabs(g);
     if (st != GF_OK) return st;
 
+    // 2. Relax under the lid until the over-compressed packing has settled:
+    // the overlap left no longer falls by much.
     long sweeps = 0;
-    double total, floor_squeeze;
-    // 1. Take the worst random overlaps out before squeezing.
-    double mean = 0.0;
-    while (gf_gen_push(g, &mean) > GF_GEN_PRE_TOL && sweeps < GF_GEN_MAX_SWEEPS) {
-        sweeps++;
-        if ((st = gf_gen_keep_list(g, gf_gen_move(g, 0.0, 0.0, &rng))) != GF_OK) return st;
-    }
-    for (int cycle = 0; cycle <= GF_GEN_TAPS; cycle++) {
-    if (cycle > 0) {
-        for (int t = 0; t < GF_GEN_TAP_SWEEPS; t++, sweeps++) {
-            gf_gen_push(g, &mean);
-            if ((st = gf_gen_keep_list(g, gf_gen_move(g, -GF_GEN_TAP / GF_GEN_TAP_SWEEPS, 0.0, &rng))) != GF_OK) return st;
+    double mean = 0.0, last = INFINITY;
+    for (; sweeps < GF_GEN_SETTLE_MAX; sweeps++) {
+        double worst = gf_gen_push(g, &mean);
+        if (sweeps % GF_GEN_SETTLE_EVERY == 0) {
+            GF_GEN_TRACE("lid: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
+            if (worst < GF_GEN_TOL || mean > GF_GEN_SETTLE_GAIN * last) break;
+            last = mean;
         }
+        if ((st = gf_gen_keep_list(g, gf_gen_move(g, 0.0))) != GF_OK) return st;
     }
-    // 2. Squeeze the column until the bulk reaches PHI_STOP (or the column
-    // has been squeezed well past what that needs: a very shallow bed). The
-    // strain rate falls as the overlap per particle approaches LOAD, so the
-    // squeeze never outruns the relaxation near jamming.
-    total = 1.0, floor_squeeze = 0.5 * GF_GEN_PHI_START / GF_GEN_PHI_STOP;
-    double phi_last = 0.0;
-    total = 1.0;
-    for (long k = 0; total > floor_squeeze && sweeps < GF_GEN_MAX_SWEEPS; k++, sweeps++) {
-        if (g->width == g->width_final && g->depth == g->depth_final) {
-            if (k % GF_GEN_MEASURE == 0) {
-                double phi = gf_gen_bulk_fraction(g);
-                if (phi >= GF_GEN_PHI_STOP) break;
-                if (k % GF_GEN_STALL == 0) {
-                    // Jammed: the bulk no longer gets denser.
-                    if (phi < phi_last + GF_GEN_STALL_GAIN) break;
-                    phi_last = phi;
-                }
-            }
-        }
-        double w = gf_gen_push(g, &mean);
-        double strain = GF_GEN_STRAIN * fmax(-GF_GEN_EXPMAX, 1.0 - mean / GF_GEN_LOAD);
-#ifdef GF_GEN_TRACE
-        if (k % 100000 == 0) GF_GEN_TRACE("squeeze k %ld worst %.4f mean %.5f strain %.5f phi %.4f", k, w, mean, strain, gf_gen_bulk_fraction(g));
-#endif
-        (void)w;
-        if ((st = gf_gen_keep_list(g, gf_gen_move(g, strain, GF_GEN_NOISE, &rng))) != GF_OK) return st;
-        total *= 1.0 - strain;
-    }
-#ifdef GF_GEN_TRACE
-    GF_GEN_TRACE("cycle %d: sweeps %ld phi %.4f", cycle, sweeps, gf_gen_bulk_fraction(g));
-#endif
-    }
-#ifdef GF_GEN_TRACE
-    GF_GEN_TRACE("after squeeze: sweeps %ld phi %.4f", sweeps, gf_gen_bulk_fraction(g));
-#endif
-    // 3. Relax until the largest overlap is below TOL, letting the column
-    // expand in proportion to what overlap is left.
+
+    // 3. Lift the lid and let the column expand. The sweeps alone would let
+    // the compression out from the top down, in a time growing with the
+    // square of the height; stretching every slab in proportion to the
+    // overlap left in it does that part at once, the sweeps the rest.
+    g->zhi = INFINITY;
     for (;;) {
         double worst = gf_gen_push(g, &mean);
-#ifdef GF_GEN_TRACE
-        if (sweeps % 100 == 0) GF_GEN_TRACE("relax %ld worst %.4f mean %.5f phi %.4f", sweeps, worst, mean, gf_gen_bulk_fraction(g));
-#endif
+        if (sweeps % 200 == 0)
+            GF_GEN_TRACE("open: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
         if (worst < GF_GEN_TOL) break;
         if (++sweeps >= GF_GEN_MAX_SWEEPS)
             return gf_error_set(GF_ERR_STATE,
                                 "packing: relaxation did not converge (largest overlap %.3g after "
                                 "%ld sweeps)",
                                 worst, sweeps);
-        if ((st = gf_gen_keep_list(g, gf_gen_move(g, -GF_GEN_EXPAND * mean, 0.0, &rng))) != GF_OK) return st;
+        if ((st = gf_gen_keep_list(g, gf_gen_move(g, GF_GEN_EXPAND))) != GF_OK)
+            return st;
     }
-#ifdef GF_GEN_TRACE
-    GF_GEN_TRACE("done: sweeps %ld phi %.4f", sweeps, gf_gen_bulk_fraction(g));
-#endif
+    GF_GEN_TRACE("done: %ld sweeps", sweeps);
     return GF_OK;
+}
+
+// The bounce leaves particles pressed against a wall hovering a hair (well
+// under SNAP) off it: put them on it. A pair gets closer by at most
+// 2 sqrt(3) SNAP, which keeps the closest pair above 1 - TOL - 0.0035.
+static void gf_gen_snap(gf_gen *g)
+{
+    const double xhi = 0.5 * g->width - 0.5, yhi = 0.5 * g->depth - 0.5, zlo = g->zlo;
+    for (size_t i = 0; i < g->n; i++) {
+        if (g->x[i] > xhi - GF_GEN_SNAP) g->x[i] = xhi;
+        if (g->x[i] < GF_GEN_SNAP - xhi) g->x[i] = -xhi;
+        if (g->y[i] > yhi - GF_GEN_SNAP) g->y[i] = yhi;
+        if (g->y[i] < GF_GEN_SNAP - yhi) g->y[i] = -yhi;
+        if (g->z[i] < zlo + GF_GEN_SNAP) g->z[i] = zlo;
+    }
 }
 
 typedef struct gf_gen_key {
@@ -552,58 +540,64 @@ static gf_status gf_gen_check(const gf_packing *p, double width, double depth)
     return GF_OK;
 }
 
-gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
+// How many particles to build: packing_particles, or for a fill height more
+// than fit below it at any fraction <= 0.66 over the whole footprint plus two
+// layers, so that the column always overshoots and can be cut down to size.
+static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
 {
-    if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
-    out->n = 0;
     double width = cfg->container_width, depth = cfg->container_depth;
     double fill = cfg->packing_fill_height;
     if (!(width >= 1.0 && depth >= 1.0 && isfinite(width) && isfinite(depth)))
         return gf_error_set(GF_ERR_PARAM,
-                            "packing: container %g x %g cannot hold a sphere of diameter 1", width,
-                            depth);
+                            "packing: a container %g x %g cannot hold a sphere of diameter 1",
+                            width, depth);
     if (!(cfg->packing_layer_thickness > 0.0 && isfinite(cfg->packing_layer_thickness)))
         return gf_error_set(GF_ERR_PARAM, "packing: layer thickness must be > 0 (got %g)",
                             cfg->packing_layer_thickness);
-    if (isnan(fill) || !isfinite(fill))
-        return gf_error_set(GF_ERR_PARAM, "packing: fill height must be finite");
-    double count;
+    double n;
     if (fill > 0.0) {
-        if (fill < 1.0)
+        if (!(fill >= 1.0 && isfinite(fill)))
             return gf_error_set(GF_ERR_PARAM,
-                                "packing: fill height %g is below one particle diameter", fill);
-        // More than can fit below the fill height at any fraction <= 0.66
-        // over the whole footprint, plus two layers: the column always
-        // overshoots and is cut down to size.
-        count = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
+                                "packing: fill height %g must be finite and at least one diameter",
+                                fill);
+        n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
     } else {
         if (cfg->packing_particles < 1)
-            return gf_error_set(GF_ERR_PARAM, "packing: number of particles must be >= 1 (got %lld)",
+            return gf_error_set(GF_ERR_PARAM,
+                                "packing: number of particles must be >= 1 (got %lld)",
                                 (long long)cfg->packing_particles);
-        count = (double)cfg->packing_particles;
+        n = (double)cfg->packing_particles;
     }
-    if (count > (double)GF_GEN_MAX_N)
-        return gf_error_set(GF_ERR_PARAM, "packing: %.0f particles is more than the limit %lld",
-                            count, (long long)GF_GEN_MAX_N);
+    if (!(n <= (double)GF_MAX_PARTICLES))
+        return gf_error_set(GF_ERR_PARAM, "packing: %.0f particles is more than the limit %lld", n,
+                            (long long)GF_MAX_PARTICLES);
+    *count = (size_t)n;
+    return GF_OK;
+}
 
+gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
+{
+    if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
+    size_t count = 0;
+    gf_status st = gf_gen_count(cfg, &count);
     gf_gen g = {0};
-    g.width = g.width_final = width;
-    g.depth = g.depth_final = depth;
-    g.zlo = 0.5;
-    gf_status st = gf_gen_init(&g, (size_t)count);
+    g.width = cfg->container_width;
+    g.depth = cfg->container_depth;
+    if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
+    if (st == GF_OK) gf_gen_snap(&g);
     double zmax = INFINITY;
-    if (st == GF_OK && fill > 0.0) {
-        zmax = fill - 0.5;
+    if (st == GF_OK && cfg->packing_fill_height > 0.0) {
+        zmax = cfg->packing_fill_height - 0.5;
         double ztop = 0.0;
         for (size_t i = 0; i < g.n; i++) ztop = fmax(ztop, g.z[i]);
-        if (ztop < zmax + 1.0)
-            st = gf_error_set(GF_ERR_STATE, "packing: the column reached only %g, short of %g", ztop,
-                              zmax);
+        if (ztop < zmax + 1.0) // the count above makes this a bug
+            st = gf_error_set(GF_ERR_STATE, "packing: the column reached only %g, short of %g",
+                              ztop, zmax + 1.0);
     }
     if (st == GF_OK) st = gf_gen_emit(&g, zmax, cfg, out);
     gf_gen_release(&g);
-    if (st == GF_OK) st = gf_gen_check(out, width, depth);
-    if (st != GF_OK) out->n = 0;
+    if (st == GF_OK) st = gf_gen_check(out, cfg->container_width, cfg->container_depth);
+    if (st != GF_OK) gf_packing_free(out); // nothing half-made comes back
     return st;
 }
