@@ -27,10 +27,11 @@
 #define GF_SKIN_SLACK 0.01
 
 /// Slots per neighbour list: slot 0 holds the count, the rest up to
-/// GF_NL_CAP - 1 neighbours (two cache lines per particle). Within contact
-/// + 2 GF_SKIN a unit sphere has ~7 centres at random close packing and at
-/// most ~14 without gross overlap; the margin is for overlapping input.
-#define GF_NL_CAP 32
+/// GF_NL_CAP - 1 neighbours: one 64-byte cache line per particle (relax() is
+/// bound by cold loads; 32 slots cost ~5% per step). Within contact + 2
+/// GF_SKIN a unit sphere has ~7 centres at random close packing and at most
+/// ~12 were seen in flow; more is reported as a packing that overlaps too much.
+#define GF_NL_CAP 16
 
 /// Full list rebuilds (compacting exited particles away and re-sorting the
 /// rest by cell, for memory locality) come every run.reorder_interval events
