@@ -4,41 +4,8 @@
 # with the right exit code, name the file (and line or particle id), and leave
 # no half-written output behind.
 # usage: bash tests/cli/pack_import.sh GRANFLOW_BINARY TESTS_DATA_DIR
-set -u
 NAME=pack_import
-GF=${1:?usage: $0 GRANFLOW_BINARY TESTS_DATA_DIR}
-DATA=${2:?usage: $0 GRANFLOW_BINARY TESTS_DATA_DIR}
-case $GF in /*) ;; *) GF=$PWD/$GF ;; esac
-case $DATA in /*) ;; *) DATA=$PWD/$DATA ;; esac
-[ -x "$GF" ] || { echo "cli $NAME: $GF is not an executable"; exit 1; }
-
-T=$(mktemp -d "${TMPDIR:-/tmp}/gf-cli-$NAME.XXXXXX") || exit 1
-trap 'rm -rf "$T"' EXIT
-cd "$T" || exit 1
-
-PASS=0
-fail() {
-    echo "FAIL: $*"
-    if [ -n "${LAST:-}" ]; then
-        echo "  command: $LAST"
-        echo "  exit code: ${RC:-?}"
-        echo "  --- stderr ---"
-        sed 's/^/  | /' "$T/err" 2>/dev/null | head -n 20
-    fi
-    echo "cli $NAME: $PASS passed, 1 failed"
-    exit 1
-}
-ok() {
-    PASS=$((PASS + 1))
-    echo "ok $PASS - $*"
-}
-gf() {
-    LAST="granflow $*"
-    "$GF" "$@" >"$T/out" 2>"$T/err"
-    RC=$?
-}
-expect_rc() { [ "$RC" -eq "$1" ] || fail "$2: expected exit code $1, got $RC"; }
-expect_err() { grep -qF -- "$1" "$T/err" || fail "$2: stderr does not mention '$1'"; }
+source "$(dirname "$0")/lib.bash" "$@"
 # no_run_output DIR WHAT: a failed run must not leave result files in DIR.
 no_run_output() {
     local f

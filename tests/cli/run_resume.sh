@@ -4,51 +4,18 @@
 # checkpoint, changed physics) are reported; SIGINT/SIGTERM stop with exit
 # 130 and a checkpoint that resumes.
 # usage: bash tests/cli/run_resume.sh GRANFLOW_BINARY TESTS_DATA_DIR
-set -u
 NAME=run_resume
-GF=${1:?usage: $0 GRANFLOW_BINARY TESTS_DATA_DIR}
-DATA=${2:?usage: $0 GRANFLOW_BINARY TESTS_DATA_DIR}
-case $GF in /*) ;; *) GF=$PWD/$GF ;; esac
-case $DATA in /*) ;; *) DATA=$PWD/$DATA ;; esac
-[ -x "$GF" ] || { echo "cli $NAME: $GF is not an executable"; exit 1; }
-
-T=$(mktemp -d "${TMPDIR:-/tmp}/gf-cli-$NAME.XXXXXX") || exit 1
+source "$(dirname "$0")/lib.bash" "$@"
 BGPID=
 cleanup() {
     if [ -n "$BGPID" ]; then kill -KILL "$BGPID" 2>/dev/null; wait "$BGPID" 2>/dev/null; fi
     rm -rf "$T"
 }
-trap cleanup EXIT
-cd "$T" || exit 1
-
-PASS=0
 SKIP=0
-fail() {
-    echo "FAIL: $*"
-    if [ -n "${LAST:-}" ]; then
-        echo "  command: $LAST"
-        echo "  exit code: ${RC:-?}"
-        echo "  --- stderr ---"
-        sed 's/^/  | /' "$T/err" 2>/dev/null | head -n 20
-    fi
-    echo "cli $NAME: $PASS passed, 1 failed"
-    exit 1
-}
-ok() {
-    PASS=$((PASS + 1))
-    echo "ok $PASS - $*"
-}
 skip() {
     SKIP=$((SKIP + 1))
     echo "skip - $*"
 }
-gf() {
-    LAST="granflow $*"
-    "$GF" "$@" >"$T/out" 2>"$T/err"
-    RC=$?
-}
-expect_rc() { [ "$RC" -eq "$1" ] || fail "$2: expected exit code $1, got $RC"; }
-expect_err() { grep -qF -- "$1" "$T/err" || fail "$2: stderr does not mention '$1'"; }
 # json FILE KEY: the value of a top-level scalar key of summary.json (quotes removed).
 json() { sed -n "s/^[[:space:]]*\"$2\":[[:space:]]*\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}[[:space:]]*$/\1/p" "$1"; }
 # same_number A B: numerically equal (summary.json prints %.9g).
