@@ -4,6 +4,7 @@ BUILD      ?= build
 BUILD_SAN  ?= build-san
 GF_WERROR  ?= OFF
 RUN_DIR    ?= runs/silo
+RUN_TAU    ?= 40
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
@@ -22,10 +23,11 @@ build-san: deps
 	@cmake -S . -B $(BUILD_SAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGF_SANITIZE=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
 
-# The papers' silo: pack, drain, write snapshots + summary into $(RUN_DIR),
-# then draw the central slice at the start, half-way and at the end.
+# The papers' silo: pack, drain for $(RUN_TAU) tau (about 3 minutes), write
+# snapshots + summary into $(RUN_DIR), then draw the central slice at the
+# start, half-way and at the end. `make run RUN_TAU=60` for the paper's Fig. 3.
 run: build
-	./$(BUILD)/granflow run --force -o $(RUN_DIR)
+	./$(BUILD)/granflow run --force --set run.duration=$(RUN_TAU) -o $(RUN_DIR)
 	@snaps=$$(ls $(RUN_DIR)/snapshots/snap_*.dump); n=$$(echo "$$snaps" | wc -l); \
 	  scripts/slice.sh $(RUN_DIR)/slices.png $$(echo "$$snaps" | sed -n "1p;$$(( (n + 1) / 2 ))p;$${n}p")
 	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, slices.png)"

@@ -41,7 +41,9 @@ static void gf_show_progress(void *ctx, const gf_run_progress *p)
     }
     if (!pc->tty || p->wall_seconds - pc->last_wall < 0.25) return;
     pc->last_wall = p->wall_seconds;
-    double rate = p->wall_seconds > 0 ? p->time / p->wall_seconds : 0; // tau per second (approximate)
+    // Simulated tau per wall second so far in this invocation. Steps per tau
+    // grow as spots fill the packing, so early ETAs are optimistic.
+    double rate = p->wall_seconds > 0 ? (p->time - p->start) / p->wall_seconds : 0;
     char eta[32];
     gf_fmt_duration(eta, sizeof eta, rate > 0 ? (p->until - p->time) / rate : -1);
     fprintf(stderr, "\r\033[Kt = %.2f / %.2f tau | %zu of %zu particles left | %.0fk steps/s | ETA %s", p->time,

@@ -20,6 +20,7 @@ typedef struct gf_rundir {
     const gf_run_opts *opts;
     char dir[GF_PATH_MAX];
     double wall0;
+    double t0;
     uint64_t moves0;
     gf_packing scratch;
     const char *status;
@@ -183,7 +184,7 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_wall() - rd->wall0;
-    gf_run_progress p = {"running", s.time, rd->cfg->run_duration, s.particles_initial, s.particles_remaining,
+    gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
                          wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall};
     rd->opts->progress(rd->opts->ctx, &p);
 }
@@ -226,7 +227,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                               cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0, 0, 0.0, 0.0};
+            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -242,6 +243,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         return st;
     }
     rd.moves0 = gf_sim_get_stats(sim).spot_moves;
+    rd.t0 = gf_sim_get_stats(sim).time;
     rd.wall0 = gf_wall();
     gf_run_hooks hooks = {
         .ctx = &rd,
@@ -265,7 +267,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_wall() - rd.wall0;
-            gf_run_progress p = {"done", s.time, cfg.run_duration, s.particles_initial, s.particles_remaining,
+            gf_run_progress p = {"done", s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
                                  wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall};
             opts->progress(opts->ctx, &p);
         }
