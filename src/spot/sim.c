@@ -152,8 +152,14 @@ bool gf_sim_exit_slow(gf_sim *sim, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
     if (!(q->z < sim->box.exit_z) || !gf_container_over_hole(&sim->box, q->x, q->y)) return false;
-    gf_exit *e = &sim->exits[sim->nexit++];
-    *e = (gf_exit){sim->id[i], sim->t, q->x, q->y};
+    // Exits of one step share its time; keep them ordered by id so the list
+    // does not depend on the order particles were found in.
+    size_t k = sim->nexit++;
+    while (k > 0 && sim->exits[k - 1].time == sim->t && sim->exits[k - 1].id > sim->id[i]) {
+        sim->exits[k] = sim->exits[k - 1];
+        k--;
+    }
+    sim->exits[k] = (gf_exit){sim->id[i], sim->t, q->x, q->y};
     gf_grid_remove(&sim->grid, i);
     gf_nlist_drop(sim, i);
     sim->alive[i] = 0;
@@ -415,44 +421,37 @@ const gf_config *gf_sim_config(const gf_sim *sim) { return &sim->cfg; }
 
 void gf_sim_set_timing(gf_sim *sim, int on) { sim->timing = on != 0; }
 
-static const gf_sim *gf_sort_sim; // qsort has no context argument in C17
-static int gf_cmp_by_id(const void *a, const void *b)
+typedef struct gf_id_index {
+    int64_t id;
+    uint32_t index;
+} gf_id_index;
+
+static int gf_cmp_id(const void *a, const void *b)
 {
-    int64_t x = gf_sort_sim->id[*(const uint32_t *)a], y = gf_sort_sim->id[*(const uint32_t *)b];
+    int64_t x = ((const gf_id_index *)a)->id, y = ((const gf_id_index *)b)->id;
     return (x > y) - (x < y);
 }
 
 gf_status gf_sim_particles(const gf_sim *sim, gf_packing *out)
 {
-    size_t m = 0;
-    uint32_t *idx = GF_NEW(uint32_t, sim->n_alive ? sim->n_alive : 1);
+    size_t m = 0, cap = sim->n_alive ? sim->n_alive : 1;
+    gf_id_index *idx = GF_NEW(gf_id_index, cap);
     if (!idx) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     for (size_t i = 0; i < sim->n; i++)
-        if (sim->alive[i]) idx[m++] = (uint32_t)i;
-    gf_sort_sim = sim;
-    qsort(idx, m, sizeof *idx, gf_cmp_by_id);
+        if (sim->alive[i]) idx[m++] = (gf_id_index){sim->id[i], (uint32_t)i};
+    qsort(idx, m, sizeof *idx, gf_cmp_id);
     out->n = 0;
     gf_status st = gf_packing_reserve(out, m);
     for (size_t k = 0; st == GF_OK && k < m; k++) {
-        const gf_pos *q = &sim->p[idx[k]];
-        st = gf_packing_push(out, sim->id[idx[k]], sim->layer[idx[k]], q->x, q->y, q->z, q->r);
+        const gf_pos *q = &sim->p[idx[k].index];
+        st = gf_packing_push(out, idx[k].id, sim->layer[idx[k].index], q->x, q->y, q->z, q->r);
     }
-    GF_DELETE(idx, sim->n_alive ? sim->n_alive : 1);
+    GF_DELETE(idx, cap);
     return st;
-}
-
-static int gf_cmp_exit(const void *a, const void *b)
-{
-    const gf_exit *x = a, *y = b;
-    if (x->time != y->time) return x->time < y->time ? -1 : 1;
-    return (x->id > y->id) - (x->id < y->id);
 }
 
 const gf_exit *gf_sim_exits(const gf_sim *sim, size_t *n)
 {
-    // Exits of one step share its time; order them by id so the list does not
-    // depend on the order particles were found in.
-    qsort(((gf_sim *)sim)->exits, sim->nexit, sizeof(gf_exit), gf_cmp_exit);
     *n = sim->nexit;
     return sim->exits;
 }
