@@ -142,23 +142,26 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
         const uint32_t cnt = cnts[k];
         const double xi = ip[k].x, yi = ip[k].y, zi = ip[k].z, ri = ip[k].r;
         // Pass 1, branch-free: the overlapping neighbours (~1 in 8 entries;
-        // a branch per entry would mispredict).
+        // a branch per entry would mispredict), less the inside ones earlier
+        // in inside[] (kj in 1..k: the pair was handled from their side).
+        // Dropping those here rather than in pass 2 spares a branch that
+        // mispredicts (measured: relax ~4% faster).
         uint32_t hit[GF_NL_CAP];
         size_t nh = 0;
         for (uint32_t e = 0; e < cnt; e++) {
-            uint32_t j = row[e];
+            uint32_t j = row[e], kj = mark[j];
             double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
             double s = ri + p[j].r;
             double r2 = dx * dx + dy * dy + dz * dz;
             hit[nh] = j;
-            nh += (size_t)((r2 < s * s) & (r2 > 0.0));
+            // kj - 1 wraps to UINT32_MAX for a shell neighbour (kj = 0).
+            nh += (size_t)((r2 < s * s) & (r2 > 0.0) & (kj - 1u >= (uint32_t)k));
         }
         // Pass 2: their pushes, in row (index) order.
         double ax = 0.0, ay = 0.0, az = 0.0;
         for (size_t h = 0; h < nh; h++) {
             uint32_t j = hit[h];
             uint32_t kj = mark[j];
-            if (kj != 0 && kj <= k) continue; // inside, and handled already from j's side
             double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
             double s = ri + p[j].r;
             double r = sqrt(dx * dx + dy * dy + dz * dz);
