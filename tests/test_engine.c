@@ -101,7 +101,6 @@ static drift measure_drift(gf_sim *sim, size_t trials, double z0)
     for (size_t t = 0; t < trials; t++) {
         double s[3] = {-4 + 8 * gf_rng_uniform(&sim->rng), -1 + 2 * gf_rng_uniform(&sim->rng),
                        z0 + 8 * gf_rng_uniform(&sim->rng)};
-        if (sim->rebuild_due) assert_int_equal(gf_nlist_build(sim, true), GF_OK);
         x0 = realloc(x0, sizeof(double) * 3 * sim->n);
         for (size_t i = 0; i < sim->n; i++) {
             x0[3 * i] = sim->p[i].x;

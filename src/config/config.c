@@ -15,6 +15,7 @@
 
 #include "config/keys.h"
 #include "core/alloc.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 // "gfCF": marks a gf_config that came from gf_config_default().
@@ -365,25 +366,12 @@ gf_status gf_config_save(const gf_config *cfg, const char *path)
     gf_status st = gf_config_check(cfg, "gf_config_save");
     if (st != GF_OK) return st;
     if (!path) return gf_error_set(GF_ERR_PARAM, "gf_config_save: path is NULL");
-    size_t size = strlen(path) + sizeof ".tmp";
-    char *tmp = gf_alloc(size);
-    if (!tmp) return gf_error_set(GF_ERR_NOMEM, "gf_config_save: out of memory");
-    snprintf(tmp, size, "%s.tmp", path);
-
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        st = gf_error_set(GF_ERR_IO, "cannot create '%s': %s", tmp, strerror(errno));
-        gf_free(tmp, size);
+    char tmp[GF_PATH_MAX + 8];
+    FILE *f;
+    if ((st = gf_atomic_open(path, tmp, sizeof tmp, &f)) != GF_OK) return st;
+    if ((st = gf_config_write(cfg, f)) != GF_OK) {
+        gf_atomic_abort(f, tmp);
         return st;
     }
-    st = gf_config_write(cfg, f);
-    if (st == GF_OK && (fflush(f) != 0 || ferror(f) || fsync(fileno(f)) != 0))
-        st = gf_error_set(GF_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-    if (fclose(f) != 0 && st == GF_OK)
-        st = gf_error_set(GF_ERR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-    if (st == GF_OK && rename(tmp, path) != 0)
-        st = gf_error_set(GF_ERR_IO, "cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
-    if (st != GF_OK) remove(tmp);
-    gf_free(tmp, size);
-    return st;
+    return gf_atomic_commit(f, tmp, path);
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 enum { GF_WRITE_PATH_MAX = 4096 };
@@ -112,31 +113,10 @@ gf_status gf_packing_write(const gf_packing *p, const char *path, gf_packing_for
             return gf_error_set(
                 GF_ERR_PARAM, "cannot write %s: particle %lld has a non-finite position or radius",
                 path, (long long)p->id[i]);
-    size_t len = strlen(path);
-    if (len + 5 > GF_WRITE_PATH_MAX)
-        return gf_error_set(GF_ERR_PARAM, "cannot write %s: path too long", path);
     char tmp[GF_WRITE_PATH_MAX];
-    memcpy(tmp, path, len);
-    memcpy(tmp + len, ".tmp", 5);
-
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        return gf_error_set(GF_ERR_IO, "cannot write %s: cannot create %s: %s", path, tmp,
-                            strerror(errno));
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
     gf_write_body(f, p, format, cfg);
-    int bad = ferror(f) || fflush(f) != 0;
-    int err = bad ? errno : 0;
-    if (fclose(f) != 0 && !bad) {
-        bad = 1;
-        err = errno;
-    }
-    if (!bad && rename(tmp, path) != 0) {
-        bad = 1;
-        err = errno;
-    }
-    if (bad) {
-        remove(tmp);
-        return gf_error_set(GF_ERR_IO, "cannot write %s: %s", path, strerror(err ? err : EIO));
-    }
-    return GF_OK;
+    return gf_atomic_commit(f, tmp, path);
 }

@@ -12,6 +12,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/atomic_file.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "granflow/packing.h"
 
@@ -25,13 +27,6 @@ typedef struct gf_rundir {
     gf_packing scratch;
     const char *status;
 } gf_rundir;
-
-static double gf_wall(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static gf_status gf_mkdir(const char *path)
 {
@@ -81,32 +76,13 @@ static void gf_path(char *out, size_t n, const char *dir, const char *name)
     snprintf(out, n, "%s/%s", dir, name);
 }
 
-// fopen of path.tmp; gf_commit closes it and renames over path.
-static FILE *gf_open_tmp(const char *path, char *tmp, size_t n)
-{
-    snprintf(tmp, n, "%s.tmp", path);
-    return fopen(tmp, "wb");
-}
-
-static gf_status gf_commit(FILE *f, const char *tmp, const char *path)
-{
-    bool ok = !ferror(f);
-    ok = fflush(f) == 0 && ok;
-    ok = fclose(f) == 0 && ok;
-    if (!ok || rename(tmp, path) != 0) {
-        int e = errno;
-        remove(tmp);
-        return gf_error_set(GF_ERR_IO, "%s: cannot write: %s", path, strerror(e));
-    }
-    return GF_OK;
-}
-
 gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, double time,
                                 uint64_t step)
 {
     char tmp[GF_PATH_MAX + 8];
-    FILE *f = gf_open_tmp(path, tmp, sizeof tmp);
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot write: %s", tmp, strerror(errno));
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
     double ztop = 1.0;
     for (size_t i = 0; i < p->n; i++)
         if (p->z[i] + p->r[i] > ztop) ztop = p->z[i] + p->r[i];
@@ -117,7 +93,7 @@ gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf
     fputs("ITEM: ATOMS id type x y z\n", f);
     for (size_t i = 0; i < p->n; i++)
         fprintf(f, "%" PRId64 " %d %.7f %.7f %.7f\n", p->id[i], p->layer[i], p->x[i], p->y[i], p->z[i]);
-    return gf_commit(f, tmp, path);
+    return gf_atomic_commit(f, tmp, path);
 }
 
 static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
@@ -134,24 +110,26 @@ static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 40];
     gf_path(path, sizeof path, rd->dir, "exits.csv");
-    FILE *f = gf_open_tmp(path, tmp, sizeof tmp);
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot write: %s", tmp, strerror(errno));
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
     size_t n;
     const gf_exit *e = gf_sim_exits(sim, &n);
     fputs("id,time,x,y\n", f);
     for (size_t i = 0; i < n; i++)
         fprintf(f, "%" PRId64 ",%.9g,%.7f,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y);
-    return gf_commit(f, tmp, path);
+    return gf_atomic_commit(f, tmp, path);
 }
 
 static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 40];
     gf_path(path, sizeof path, rd->dir, "summary.json");
-    FILE *f = gf_open_tmp(path, tmp, sizeof tmp);
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot write: %s", tmp, strerror(errno));
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
     gf_sim_stats s = gf_sim_get_stats(sim);
-    double wall = gf_wall() - rd->wall0;
+    double wall = gf_clock_now() - rd->wall0;
     double sps = wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0;
     fprintf(f, "{\n  \"granflow_version\": \"%s\",\n  \"status\": \"%s\",\n", gf_version(), rd->status);
     fprintf(f, "  \"seed\": %" PRIu64 ",\n", rd->cfg->run_seed);
@@ -164,7 +142,7 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     fprintf(f, "  \"neighbour_list_builds\": %" PRIu64 ",\n", s.nlist_builds);
     fprintf(f, "  \"simulated_time\": %.9g,\n  \"wall_seconds\": %.3f,\n  \"steps_per_second\": %.1f\n}\n", s.time,
             wall, sps);
-    return gf_commit(f, tmp, path);
+    return gf_atomic_commit(f, tmp, path);
 }
 
 static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
@@ -183,7 +161,7 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
 {
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
-    double wall = gf_wall() - rd->wall0;
+    double wall = gf_clock_now() - rd->wall0;
     gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
                          wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall};
     rd->opts->progress(rd->opts->ctx, &p);
@@ -244,7 +222,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     }
     rd.moves0 = gf_sim_get_stats(sim).spot_moves;
     rd.t0 = gf_sim_get_stats(sim).time;
-    rd.wall0 = gf_wall();
+    rd.wall0 = gf_clock_now();
     gf_run_hooks hooks = {
         .ctx = &rd,
         .snapshot = gf_on_snapshot,
@@ -266,7 +244,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         }
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
-            double wall = gf_wall() - rd.wall0;
+            double wall = gf_clock_now() - rd.wall0;
             gf_run_progress p = {"done", s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
                                  wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall};
             opts->progress(opts->ctx, &p);

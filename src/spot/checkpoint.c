@@ -10,6 +10,7 @@
 #include <zlib.h>
 
 #include "core/alloc.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
 
@@ -62,6 +63,18 @@ static void gf_get(gf_rd *r, void *dst, size_t n)
 
 #define GF_GET(r, v) gf_get((r), &(v), sizeof(v))
 
+// CRC-32 of a buffer of any size (zlib's crc32 takes uInt lengths).
+static uint32_t gf_crc32(const unsigned char *data, size_t len)
+{
+    uLong crc = crc32(0L, Z_NULL, 0);
+    for (size_t off = 0; off < len;) {
+        size_t chunk = len - off > (1u << 30) ? (1u << 30) : len - off;
+        crc = crc32(crc, data + off, (uInt)chunk);
+        off += chunk;
+    }
+    return (uint32_t)crc;
+}
+
 // Physics part of a config as text: the keys that must not change on resume.
 static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
 {
@@ -91,8 +104,8 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     GF_PUT(&b, sim->t);
     GF_PUT(&b, sim->t_reached);
     GF_PUT(&b, sim->t_pending);
-    uint8_t flags[2] = {sim->pending, sim->rebuild_due};
-    GF_PUT(&b, flags);
+    uint8_t pending = sim->pending;
+    GF_PUT(&b, pending);
     GF_PUT(&b, sim->rng.s);
     GF_PUT(&b, sim->next_snap);
     GF_PUT(&b, sim->next_ckpt);
@@ -124,32 +137,24 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     }
 
     char tmp[GF_PATH_MAX + 8];
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
+    FILE *f;
+    gf_status st2 = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st2 != GF_OK) {
         gf_free(b.data, b.cap);
-        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint: %s", tmp, strerror(errno));
+        return st2;
     }
     uint32_t version = GF_CKPT_VERSION, bom = GF_CKPT_BOM;
     uint64_t size = b.len;
-    uint32_t crc = (uint32_t)crc32(0L, b.data, (uInt)0);
-    for (size_t off = 0; off < b.len;) { // crc32 takes uInt lengths
-        size_t chunk = b.len - off > (1u << 30) ? (1u << 30) : b.len - off;
-        crc = (uint32_t)crc32(crc, b.data + off, (uInt)chunk);
-        off += chunk;
-    }
+    uint32_t crc = gf_crc32(b.data, b.len);
     bool ok = fwrite(GF_CKPT_MAGIC, 1, 8, f) == 8 && fwrite(&version, 4, 1, f) == 1 &&
               fwrite(&bom, 4, 1, f) == 1 && fwrite(&size, 8, 1, f) == 1 && fwrite(&crc, 4, 1, f) == 1 &&
               fwrite(b.data, 1, b.len, f) == b.len;
-    ok = (fflush(f) == 0) && ok;
-    ok = (fclose(f) == 0) && ok;
     gf_free(b.data, b.cap);
-    if (!ok || rename(tmp, path) != 0) {
-        int e = errno;
-        remove(tmp);
-        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint: %s", path, strerror(e));
+    if (!ok) {
+        gf_atomic_abort(f, tmp);
+        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint", tmp);
     }
-    return GF_OK;
+    return gf_atomic_commit(f, tmp, path);
 }
 
 static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len)
@@ -223,12 +228,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
                             len - head < size ? "truncated" : "has trailing bytes", len - head,
                             (unsigned long long)size);
     }
-    uint32_t got = (uint32_t)crc32(0L, Z_NULL, 0);
-    for (size_t off = 0; off < size;) {
-        size_t chunk = size - off > (1u << 30) ? (1u << 30) : size - off;
-        got = (uint32_t)crc32(got, data + head + off, (uInt)chunk);
-        off += chunk;
-    }
+    uint32_t got = gf_crc32(data + head, size);
     if (got != crc) {
         free(data);
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint checksum mismatch (file corrupted)", path);
@@ -277,12 +277,12 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     r.pos += plen;
     gf_sim_derive(sim);
 
-    uint8_t flags[2];
+    uint8_t pending;
     uint64_t counts[5];
     GF_GET(&r, sim->t);
     GF_GET(&r, sim->t_reached);
     GF_GET(&r, sim->t_pending);
-    GF_GET(&r, flags);
+    GF_GET(&r, pending);
     GF_GET(&r, sim->rng.s);
     GF_GET(&r, sim->next_snap);
     GF_GET(&r, sim->next_ckpt);
@@ -292,8 +292,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     GF_GET(&r, sim->grid_ztop);
     GF_GET(&r, sim->next_birth);
     GF_GET(&r, sim->nl_built_at);
-    sim->pending = flags[0];
-    sim->rebuild_due = flags[1];
+    sim->pending = pending;
     uint64_t n = counts[0];
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
         counts[4] > counts[2])
@@ -355,10 +354,8 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     // function of it, see sim_internal.h): the very lists the run had, so
     // the same order, the same sums, the same bits.
     uint64_t builds = sim->st.nlist_builds;
-    bool due = sim->rebuild_due;
     if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, st);
     sim->st.nlist_builds = builds;
-    sim->rebuild_due = due;
     *out = sim;
     return GF_OK;
 }

@@ -171,7 +171,6 @@ gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i)
     const uint32_t *row = gf_nlist_row(sim, i);
     for (uint32_t k = 1; k <= row[0]; k++)
         if ((st = gf_row_insert(sim, row[k], i)) != GF_OK) return st;
-    sim->nl_refreshes++;
     return GF_OK;
 }
 
@@ -210,7 +209,6 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
         }
         if ((st = gf_nlist_find(sim, (uint32_t)i)) != GF_OK) return st;
     }
-    sim->rebuild_due = false;
     sim->st.nlist_builds++;
     return GF_OK;
 }

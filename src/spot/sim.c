@@ -6,15 +6,9 @@
 #include <time.h>
 
 #include "core/alloc.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
-
-static double gf_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void gf_sim_derive(gf_sim *sim)
 {
@@ -288,9 +282,9 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
     double centre[3] = {s[0] + f * v[0], s[1] + f * v[1], s[2] + f * v[2]};
     double u[3] = {-v[0] * sim->inv_w, -v[1] * sim->inv_w, -v[2] * sim->inv_w};
 
-    double t0 = sim->timing ? gf_now() : 0.0;
+    double t0 = sim->timing ? gf_clock_now() : 0.0;
     long moved = gf_spot_apply(sim, centre, u);
-    double t1 = sim->timing ? gf_now() : 0.0;
+    double t1 = sim->timing ? gf_clock_now() : 0.0;
     if (moved < 0) return GF_ERR_STATE;
     sim->st.spot_moves++;
     *ball = moved;
@@ -312,7 +306,7 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
         sim->st.relax_calls++;
     }
     if (sim->timing) {
-        double t2 = gf_now();
+        double t2 = gf_clock_now();
         sim->st.spot_seconds += t1 - t0;
         sim->st.relax_seconds += t2 - t1;
     }
@@ -343,7 +337,7 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
 static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
-    if ((sim->rebuild_due || sim->st.events - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) &&
+    if (sim->st.events - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval &&
         (st = gf_nlist_build(sim, true)) != GF_OK)
         return st;
     sim->t = sim->t_pending;

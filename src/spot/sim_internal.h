@@ -44,9 +44,7 @@ struct gf_sim {
     // are a function of p0 alone and a resume rebuilds them bit for bit.
     uint32_t *nl;
     double hmax;          ///< largest skin (derived at every full build)
-    uint64_t nl_refreshes; ///< per-particle refreshes (a diagnostic, not saved)
     uint64_t nl_built_at; ///< event count at the last full (re-sorting) rebuild
-    bool rebuild_due;     ///< a full rebuild before the next event (tests, resume)
 
     // Spots (SoA).
     size_t ns, ns_cap;

@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: MIT
+// Internal: the monotonic wall clock, in seconds (timing and progress only;
+// results never depend on it).
+#ifndef GF_CORE_CLOCK_H
+#define GF_CORE_CLOCK_H
+
+#include <time.h>
+
+static inline double gf_clock_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+#endif
