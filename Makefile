@@ -24,13 +24,15 @@ build-san: deps
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
 
 # The papers' silo: pack, drain for $(RUN_TAU) tau (about 3 minutes), write
-# snapshots + summary into $(RUN_DIR), then draw the central slice at the
-# start, half-way and at the end. `make run RUN_TAU=60` for the paper's Fig. 3.
+# snapshots + summary into $(RUN_DIR), then measure it the papers' way
+# ($(RUN_DIR)/analysis: CSV files, plots, summary.json) and draw it
+# ($(RUN_DIR)/render: slices coloured by layer and by packing fraction, a
+# contact sheet). `make run RUN_TAU=60` for the paper's Fig. 3.
 run: build
 	./$(BUILD)/granflow run --force --set run.duration=$(RUN_TAU) -o $(RUN_DIR)
-	@snaps=$$(ls $(RUN_DIR)/snapshots/snap_*.dump); n=$$(echo "$$snaps" | wc -l); \
-	  scripts/slice.sh $(RUN_DIR)/slices.png $$(echo "$$snaps" | sed -n "1p;$$(( (n + 1) / 2 ))p;$${n}p")
-	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, slices.png)"
+	./$(BUILD)/granflow analyze $(RUN_DIR)
+	./$(BUILD)/granflow render $(RUN_DIR)
+	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, analysis/, render/)"
 
 # The whole suite: optimised build, then again under ASan + UBSan.
 test: test-fast test-san

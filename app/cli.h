@@ -42,5 +42,7 @@ int gf_cmd_run(int argc, char **argv);
 int gf_cmd_pack(int argc, char **argv);
 int gf_cmd_config(int argc, char **argv);
 int gf_cmd_bench(int argc, char **argv);
+int gf_cmd_analyze(int argc, char **argv);
+int gf_cmd_render(int argc, char **argv);
 
 #endif

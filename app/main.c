@@ -17,6 +17,10 @@ static const char gf_usage[] =
     "  config [CONFIG] [--set k=v]...        print the effective configuration as INI\n"
     "  bench [--json] [--particles N] [--warmup T] [--window T]\n"
     "                                        time spot(), relax() and whole steps\n"
+    "  analyze [NAME] DIR [--set key=value]... [-o OUTDIR] [--no-plots] [--list]\n"
+    "                                        the papers' statistics of a run: CSV, plots, summary.json\n"
+    "  render DIR [--colour layer|phi] [--sheet] [--times T1,T2|--all] [--format png|svg|pdf]\n"
+    "       [--scale PX] [-o OUTDIR]          pictures of a run's central slice (cairo)\n"
     "  help                                  this text\n"
     "\n"
     "options:\n"
@@ -36,6 +40,8 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "pack")) return gf_cmd_pack(argc - 2, argv + 2);
     if (!strcmp(cmd, "config")) return gf_cmd_config(argc - 2, argv + 2);
     if (!strcmp(cmd, "bench")) return gf_cmd_bench(argc - 2, argv + 2);
+    if (!strcmp(cmd, "analyze") || !strcmp(cmd, "analyse")) return gf_cmd_analyze(argc - 2, argv + 2);
+    if (!strcmp(cmd, "render")) return gf_cmd_render(argc - 2, argv + 2);
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
         printf("granflow %s\n", gf_version());
         return GF_EXIT_OK;

@@ -2,7 +2,8 @@
 # Installs the Debian packages granflow needs to build, test and draw pictures.
 # Idempotent: does nothing when everything is present. Works as root, or with sudo.
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config libinih-dev libcmocka-dev zlib1g-dev gnuplot-nox)
+pkgs=(build-essential cmake pkg-config libinih-dev libcmocka-dev zlib1g-dev gnuplot-nox
+      g++ libcairo2-dev voro++-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,6 +5,7 @@
 #include "granflow/config.h"
 #include "granflow/core.h"
 #include "granflow/packing.h"
+#include "granflow/render.h"
 #include "granflow/run.h"
 #include "granflow/sim.h"
 #endif

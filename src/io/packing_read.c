@@ -7,6 +7,10 @@
 // numbers, and remembers where the last complete frame's ITEM: ATOMS line
 // starts; the second pass seeks back there and converts that frame only.
 // Files that cannot seek (pipes) are converted frame by frame in one pass.
+//
+// gf_packing_read_frames (io/packing_frames.h) uses the same reader in that
+// one-pass mode and hands every frame over, with its TIME and the `type`
+// column; gf_packing_read itself ignores both, as it always has.
 #include "granflow/packing.h"
 
 #include <stdlib.h>
@@ -15,6 +19,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "io/packing_frames.h"
 #include "io/textscan.h"
 
 enum {
@@ -117,6 +122,7 @@ typedef struct gf_columns {
     const char *pos_name[3];
     int scaled;               // positions are fractions of the box (xs ys zs, xsu ysu zsu)
     int id, radius, diameter; // column index or -1
+    int type;                 // LAMMPS `type` column or -1 (read only by gf_packing_read_frames)
     const char *radius_name, *diameter_name;
 } gf_columns;
 
@@ -124,6 +130,8 @@ typedef struct gf_reader {
     gf_textscan ts;
     gf_packing *out;
     gf_idset ids;
+    gf_packing_frame_fn each; // non-NULL: convert every frame, read TIME and type, call this
+    void *each_ctx;
 } gf_reader;
 
 static gf_status gf_read_bad_number(const gf_textscan *ts, const char *col, const char *tok,
@@ -174,7 +182,15 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
                                 ts->path, ts->line, t, first);
         id = (int64_t)t;
     }
-    return gf_packing_push(rd->out, id, 0, v[0], v[1], v[2], r);
+    int32_t layer = 0;
+    if (rd->each && c->type >= 0) {
+        long long t;
+        if (gf_textscan_int(tok[c->type], &t) != 0 || t < INT32_MIN || t > INT32_MAX)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'type': '%.64s' is not an integer",
+                                ts->path, ts->line, tok[c->type]);
+        layer = (int32_t)t;
+    }
+    return gf_packing_push(rd->out, id, layer, v[0], v[1], v[2], r);
 }
 
 /// Finds the position, id and radius columns among `names`. With `lammps`,
@@ -185,7 +201,7 @@ static int gf_columns_resolve(gf_columns *c, char **names, int n, int lammps)
         {"x", "y", "z"}, {"xu", "yu", "zu"}, {"xs", "ys", "zs"}, {"xsu", "ysu", "zsu"}};
     memset(c, 0, sizeof *c);
     c->ncols = n;
-    c->id = c->radius = c->diameter = -1;
+    c->id = c->radius = c->diameter = c->type = -1;
     int found = 0;
     for (int t = 0; t < (lammps ? 4 : 1) && !found; t++) {
         int idx[3] = {-1, -1, -1};
@@ -205,6 +221,8 @@ static int gf_columns_resolve(gf_columns *c, char **names, int n, int lammps)
         const char *s = names[i];
         if (strcasecmp(s, "id") == 0) {
             c->id = i;
+        } else if (lammps && strcasecmp(s, "type") == 0) {
+            c->type = i;
         } else if (strcasecmp(s, "radius") == 0 || (!lammps && strcasecmp(s, "r") == 0)) {
             c->radius = i;
             c->radius_name = strcasecmp(s, "r") == 0 ? "r" : "radius";
@@ -243,6 +261,7 @@ typedef struct gf_lmp_frame {
     long start_line;
     int have_ts, have_time, have_n, have_box, have_units;
     long long timestep, natoms;
+    double time; // ITEM: TIME, converted only for gf_packing_read_frames
     long natoms_line;
     double lo[3], hi[3];
 } gf_lmp_frame;
@@ -422,7 +441,7 @@ static gf_status gf_read_begin_frame(gf_reader *rd, long long n, int trusted)
 static gf_status gf_read_lammps(gf_reader *rd)
 {
     gf_textscan *ts = &rd->ts;
-    const int convert_all = !ts->seekable;
+    const int convert_all = !ts->seekable || rd->each != NULL;
     gf_lmp_frame f = {0};
     gf_lmp_atoms cur = {0}, last = {0};
     int nframes = 0;
@@ -472,6 +491,14 @@ static gf_status gf_read_lammps(gf_reader *rd)
             GF_LMP_ONCE(have_time, "TIME");
             st = gf_lmp_value(rd, &f, "TIME", &line);
             if (st != GF_OK) return st;
+            if (rd->each) {
+                char *tok[2];
+                size_t n = gf_textscan_split(line, tok, 2);
+                if (n != 1 || gf_textscan_double(tok[0], &f.time) != 0)
+                    return gf_error_set(GF_ERR_FORMAT,
+                                        "%s:%ld: ITEM: TIME: '%.64s' is not a finite number",
+                                        ts->path, ts->line, n ? tok[0] : "");
+            }
             f.have_time = 1;
         } else if (strncmp(s, "UNITS", 5) == 0 && gf_is_blank_line(s + 5)) {
             GF_LMP_ONCE(have_units, "UNITS");
@@ -502,6 +529,18 @@ static gf_status gf_read_lammps(gf_reader *rd)
             }
             st = gf_lmp_atom_lines(rd, &cur, convert_all);
             if (st != GF_OK) return st;
+            if (rd->each) {
+                gf_packing_frame info = {.timestep = f.timestep,
+                                         .have_time = f.have_time,
+                                         .time = f.time,
+                                         .have_box = f.have_box,
+                                         .have_type = cur.cols.type >= 0,
+                                         .line = f.start_line};
+                memcpy(info.lo, f.lo, sizeof info.lo);
+                memcpy(info.hi, f.hi, sizeof info.hi);
+                st = rd->each(rd->each_ctx, &info, rd->out);
+                if (st != GF_OK) return st;
+            }
             last = cur;
             nframes++;
             prev_natoms = f.natoms;
@@ -520,7 +559,7 @@ static gf_status gf_read_lammps(gf_reader *rd)
             ts->path, ts->line, gf_lmp_frame_name(&f, name, sizeof name));
     if (nframes == 0)
         return gf_error_set(GF_ERR_FORMAT, "%s: no particles in file (it is empty)", ts->path);
-    if (last.hdr.natoms == 0)
+    if (last.hdr.natoms == 0 && !rd->each) // a drained silo's last snapshot is a valid frame
         return gf_error_set(GF_ERR_FORMAT, "%s:%ld: no particles in file (the last %s has 0 atoms)",
                             ts->path, last.hdr.natoms_line,
                             gf_lmp_frame_name(&last.hdr, name, sizeof name));
@@ -752,4 +791,18 @@ gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing
     }
     *out = tmp;
     return GF_OK;
+}
+
+gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
+{
+    if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no file name");
+    if (!fn) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no frame callback");
+    gf_packing tmp = {0};
+    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx};
+    gf_status st = gf_textscan_open(&rd.ts, path);
+    if (st == GF_OK) st = gf_read_lammps(&rd);
+    gf_textscan_close(&rd.ts);
+    gf_idset_free(&rd.ids);
+    gf_packing_free(&tmp);
+    return st;
 }

@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: MIT
+// Measurements of a run (SPEC 1.6): the statistics the 2009 paper and the
+// thesis plot, computed from a series of snapshots (granflow's or any LAMMPS
+// dumps, so a DEM run is measured the same way) and the exits of a run.
+#ifndef GRANFLOW_ANALYSIS_H
+#define GRANFLOW_ANALYSIS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "granflow/config.h"
+#include "granflow/core.h"
+#include "granflow/packing.h"
+#include "granflow/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+// ---------------------------------------------------------------------------
+// Input: a time series of snapshots.
+
+/// One snapshot: its simulated time and its particles.
+typedef struct gf_frame {
+    double time;   ///< tau (ITEM: TIME, or TIMESTEP x the dump time step)
+    gf_packing pk; ///< particles, in file order
+} gf_frame;
+
+/// Everything a measurement may read. `frames` and `exits` are gf_alloc'ed
+/// arrays of exactly nframes / nexits elements (gf_series_free releases them
+/// and every frame's packing), so a test may build a series in memory.
+typedef struct gf_series {
+    size_t nframes;
+    gf_frame *frames;   ///< in time order
+    gf_exit *exits;     ///< from exits.csv (sorted by time), NULL when there is none
+    size_t nexits;
+    bool has_exits;
+    size_t n_initial;   ///< particles in the first frame
+    gf_config cfg;      ///< the run's config.ini when there is one, else defaults
+                        ///< with the container fitted to the first frame's box
+} gf_series;
+
+/// Loads a run directory (config.ini, snapshots/*.dump, exits.csv), a
+/// directory of LAMMPS dumps, or one (multi-frame) LAMMPS dump. Frames come in
+/// time order; `dump_dt` converts TIMESTEP to tau when a dump has no ITEM: TIME
+/// (0: frames without it are an error).
+GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out);
+GF_API void gf_series_free(gf_series *s);
+
+// ---------------------------------------------------------------------------
+// Output: tables (one CSV each) and headline numbers.
+
+#define GF_TABLE_MAXCOL 12
+#define GF_TABLE_NAME 48
+
+/// A table of doubles with named columns (names carry their units, e.g.
+/// "z_d", "vz_d_per_tau"). Zero-initialise, then gf_table_init.
+typedef struct gf_table {
+    char name[GF_TABLE_NAME];                  ///< file stem: NAME.csv
+    size_t ncol, nrow, cap;
+    char cols[GF_TABLE_MAXCOL][GF_TABLE_NAME];
+    double *v;                                 ///< row-major, nrow x ncol
+} gf_table;
+
+/// `cols`: comma-separated column names.
+GF_API gf_status gf_table_init(gf_table *t, const char *name, const char *cols);
+GF_API gf_status gf_table_add(gf_table *t, const double *row);
+GF_API void gf_table_free(gf_table *t);
+/// Writes the table as CSV (header line, then %.10g values), atomically.
+GF_API gf_status gf_table_write_csv(const gf_table *t, const char *path);
+
+#define GF_MEASURE_MAXTABLE 6
+#define GF_MEASURE_MAXVALUE 12
+
+/// What one measurement produces.
+typedef struct gf_measure_out {
+    size_t ntables;
+    gf_table tables[GF_MEASURE_MAXTABLE];
+    size_t nvalues;
+    struct {
+        char key[GF_TABLE_NAME]; ///< summary.json key, e.g. "flow_rate"
+        double value;            ///< NaN when it could not be measured
+    } values[GF_MEASURE_MAXVALUE];
+    /// gnuplot commands (malloc'd) that draw the measurement's plot from its
+    /// CSV files (named TABLE.csv, read from the current directory) onto the
+    /// terminal and output the caller has set: axes labelled in d and tau.
+    char *gnuplot;
+} gf_measure_out;
+
+GF_API gf_status gf_measure_value(gf_measure_out *o, const char *key, double value);
+GF_API gf_status gf_measure_gnuplot(gf_measure_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+GF_API void gf_measure_free(gf_measure_out *o);
+
+// ---------------------------------------------------------------------------
+// Options: regions, heights and windows, the papers' values by default.
+
+typedef struct gf_analysis_opts {
+    double t0, t1;            ///< time window for steady-state averages, tau; NaN = auto:
+                              ///< from a quarter of the way through the run to its end
+    double dump_dt;           ///< tau per TIMESTEP for dumps without ITEM: TIME (0: required)
+    // velocity
+    double vel_bin;           ///< bin edge of the mean velocity field, d (1)
+    double vel_heights[16];   ///< heights of the v_z(x) profiles, d (10, 20, ..., 60)
+    size_t vel_nheights;
+    double vel_band;          ///< half-thickness of the band around each height, d (1)
+    double vely_xhalf;        ///< v_z(y) region |x| < this (10)
+    double vely_z0, vely_z1;  ///< v_z(y) region in z (50, 70)
+    // diffusion
+    double diff_xhalf;        ///< particles starting with |x| < this (5)
+    double diff_z0;           ///< ... and above this height (60)
+    // correlation
+    double corr_size;         ///< edge of the square region high in the centre, d (16)
+    double corr_zc;           ///< its centre height, d (60)
+    // g(r), g3, badness
+    double gr_x0, gr_x1, gr_z0, gr_z1; ///< region (-15, 15, 15, 45)
+    double gr_rmax, gr_dr;    ///< g(r) range and bin, d (4, 0.02)
+    double g3_rcut;           ///< bond length for bond angles, d (1.38)
+    // voronoi
+    double vor_avg_radius;    ///< averaging radius of the packing-fraction field, d (2.2)
+    // density
+    double dens_z0, dens_z1;  ///< the slice, d (50, 70)
+    // surface
+    double surf_dx;           ///< column spacing, d (2.5): x_j = dx j - dx/2, j = 1..10
+    size_t surf_ncols;        ///< columns (10)
+} gf_analysis_opts;
+
+GF_API void gf_analysis_opts_default(gf_analysis_opts *o);
+/// Sets one option from "key=value" (keys in docs/analysis.md). Errors name the key.
+GF_API gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment);
+/// The window [t0, t1] resolved against the series (auto -> a quarter in, to the end).
+GF_API void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1);
+
+// ---------------------------------------------------------------------------
+// The measurements. Each fills `out` (zero-initialised by the caller).
+
+GF_API gf_status gf_measure_outflow(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_correlation(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_gr(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_voronoi(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_density(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_badness(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+
+/// A measurement by name ("outflow", "velocity", ...), in the order above.
+typedef struct gf_measure_def {
+    const char *name;
+    const char *what; ///< one line for --help
+    gf_status (*run)(const gf_series *, const gf_analysis_opts *, gf_measure_out *);
+} gf_measure_def;
+GF_API const gf_measure_def *gf_measures(size_t *n);
+
+/// Runs the named measurement (NULL: all) on the series and writes into
+/// `outdir`: NAME.csv for each table, NAME.png (gnuplot, when `plots`), and
+/// merges the headline numbers into outdir/summary.json.
+GF_API gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *name,
+                            const char *outdir, bool plots);
+
+// ---------------------------------------------------------------------------
+// Building blocks, public for tests and for calibration (SPEC 1.7).
+
+/// Least squares y = a x + b. Returns GF_ERR_PARAM with fewer than 2 distinct x.
+GF_API gf_status gf_fit_linear(const double *x, const double *y, size_t n, double *a, double *b);
+/// y = A exp(-(x - mu)^2 / (2 var)) (+ nothing): Levenberg-Marquardt from moments.
+GF_API gf_status gf_fit_gaussian(const double *x, const double *y, size_t n, double *amp,
+                                 double *mu, double *var);
+/// y = a exp(-x / beta).
+GF_API gf_status gf_fit_exponential(const double *x, const double *y, size_t n, double *a,
+                                    double *beta);
+
+/// Packing badness B = (1/p) sum_i sum_{j != i} delta_ij^2 over the particles
+/// i whose centres lie in the box [lo, hi] (2009 paper Sec. 5; delta_ij the
+/// overlap r_i + r_j - |x_i - x_j| when positive; p = their number).
+GF_API double gf_badness(const gf_packing *pk, const double lo[3], const double hi[3]);
+
+/// Local packing fraction of every particle: its volume over its Voronoi cell
+/// volume, cells cut by the walls x = +-W/2, y = +-D/2, z = 0 (and an open
+/// top at z = ztop). Particles outside the box get NaN. `phi` has pk->n entries.
+GF_API gf_status gf_voronoi_fraction(const gf_packing *pk, double width, double depth, double ztop,
+                                     double *phi);
+/// The averaged packing-fraction field of the 2009 paper's Fig. 4, per
+/// particle: the total volume of the bulk particles within `radius` d of it
+/// (itself included when it is bulk) over the total volume of their Voronoi
+/// cells, the `phi_avg` column of gf_measure_voronoi (same cells, same bulk).
+/// Cells are cut as in gf_voronoi_fraction, the top at `ztop` (NaN: the
+/// highest centre with z >= 0, plus 1 d, as gf_measure_voronoi does). Bulk
+/// particles: those with a cell that neither reaches the top nor lies within
+/// 1.5 d of the local free surface. NaN for a particle outside the box or with
+/// no bulk particle within `radius` (a surface particle gets the value of the
+/// bulk near it). `phi_avg` has pk->n entries. GF_ERR_PARAM for a box without
+/// volume or a radius that is negative or not finite.
+GF_API gf_status gf_voronoi_field(const gf_packing *pk, double width, double depth, double ztop,
+                                  double radius, double *phi_avg);
+/// Volume of every Voronoi cell (same walls), for tests; NaN outside.
+GF_API gf_status gf_voronoi_volumes(const gf_packing *pk, double width, double depth, double ztop,
+                                    double *vol);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// Pictures of a run (cairo): the central slice of a packing seen from the -y
+// side, coloured by initial layer or by local packing fraction, and a contact
+// sheet of several snapshots side by side (2009 paper Figs. 3, 4 and 6).
+#ifndef GRANFLOW_RENDER_H
+#define GRANFLOW_RENDER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "granflow/analysis.h"
+#include "granflow/config.h"
+#include "granflow/core.h"
+#include "granflow/packing.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// What a particle's colour shows.
+typedef enum gf_render_colour {
+    GF_RENDER_LAYER = 0, ///< its initial layer (`layer` tag): two colours alternating by parity
+    GF_RENDER_PHI = 1,   ///< its local packing fraction (a per-particle array), with a colour bar
+} gf_render_colour;
+
+/// File format of a picture.
+typedef enum gf_render_format {
+    GF_RENDER_AUTO = 0, ///< from the file name: .svg, .pdf, anything else PNG
+    GF_RENDER_PNG,      ///< raster, px_per_d pixels per d
+    GF_RENDER_SVG,      ///< vector, px_per_d points per d
+    GF_RENDER_PDF,      ///< vector, px_per_d points per d
+} gf_render_format;
+
+/// Options of a picture. Make them with gf_render_opts_default(), then change fields.
+///
+/// Layout (in d, times px_per_d, rounded up to whole pixels): the view spans
+/// x in [-W/2 - 2, W/2 + 2] (W = container_width) and z from min(0, exit_z) - 2
+/// up to zmax + 1; a strip of gf_render_label_px() pixels above it carries the
+/// time; in phi mode a strip of max(GF_RENDER_BAR_WIDTH d, 84 px) on the right
+/// holds the colour bar.
+typedef struct gf_render_opts {
+    gf_render_colour colour; ///< GF_RENDER_LAYER (default) or GF_RENDER_PHI
+    gf_render_format format; ///< GF_RENDER_AUTO (default)
+    double px_per_d;         ///< pixels (PNG) or points (SVG, PDF) per particle diameter d; default 10, range [1, 200]
+    double phi_lo, phi_hi;   ///< packing fraction at the two ends of the colour scale; default 0.55, 0.65
+    double zmax;             ///< top of the view, d; NaN (default): the highest particle top (at least the orifice diameter)
+    double ymin;             ///< only particles with y > ymin are drawn, d; default 0 (the central slice)
+    bool label;              ///< write the time (and title) above the picture; default true
+    const char *title;       ///< text after the time, e.g. the run's name; NULL (default) for none
+} gf_render_opts;
+
+/// Width of the colour-bar strip in phi mode, d (84 pixels at least).
+#define GF_RENDER_BAR_WIDTH 10.0
+
+/// The defaults listed in gf_render_opts.
+GF_API gf_render_opts gf_render_opts_default(void);
+
+/// Height of the label strip above a picture, pixels (0 when opts->label is false):
+/// max(4 d, 28 px), so the text stays readable at small scales.
+GF_API int gf_render_label_px(const gf_render_opts *opts);
+
+/// Size of the picture gf_render_slice would make, pixels or points.
+GF_API gf_status gf_render_slice_size(const gf_packing *pk, const gf_config *cfg,
+                                      const gf_render_opts *opts, int *width, int *height);
+
+/// Draws the particles of `pk` with y > opts->ymin as discs of their radius,
+/// x to the right and z up (seen from the -y side), the far ones first, inside
+/// the container of `cfg` (side walls, base and orifice drawn), with "t = TIME τ"
+/// above. `phi` (pk->n packing fractions, NaN = unknown, drawn grey) is required
+/// in phi mode and ignored otherwise. Writes `path` atomically (PATH.tmp, then
+/// rename): on failure no file is left behind. GF_ERR_PARAM on bad options,
+/// GF_ERR_IO when the file cannot be written.
+GF_API gf_status gf_render_slice(const gf_packing *pk, double time, const gf_config *cfg,
+                                 const double *phi, const gf_render_opts *opts, const char *path);
+
+/// A contact sheet: the n frames side by side (at most 10 a row, in the order
+/// given), each drawn as by gf_render_slice with its time above it, all to the
+/// same scale and the same zmax (opts->zmax, or the highest of all frames);
+/// opts->title, when set, goes in a strip above them all, and in phi mode one
+/// colour bar on the right. `phi` is ignored in layer mode; in phi mode it
+/// holds n arrays (frames[k].pk.n values each; a NULL array draws that frame
+/// grey). Written atomically.
+GF_API gf_status gf_render_sheet(const gf_frame *frames, size_t n, const gf_config *cfg,
+                                 const double *const *phi, const gf_render_opts *opts,
+                                 const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

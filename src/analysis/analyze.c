@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: MIT
+// The analysis driver: runs measurements on a series and writes their CSV
+// files, gnuplot plots and headline numbers (analysis/summary.json).
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "granflow/analysis.h"
+
+static const gf_measure_def gf_measure_table[] = {
+    {"outflow", "particles exited vs time, steady flow rate", gf_measure_outflow},
+    {"velocity", "mean velocity field, v_z(x) profiles with Gaussian fits, Var(z), v_z(y)", gf_measure_velocity},
+    {"diffusion", "particle diffusion length b_p = Var(dx)/(2 dz)", gf_measure_diffusion},
+    {"correlation", "spatial correlation of velocity fluctuations, exponential fit", gf_measure_correlation},
+    {"gr", "pair correlation g(r) and bond angles g3(theta)", gf_measure_gr},
+    {"voronoi", "local packing fraction from Voronoi cells, 2.2 d-averaged field", gf_measure_voronoi},
+    {"density", "particles in the slice 50 < z < 70 over time", gf_measure_density},
+    {"surface", "free-surface angle by regression, over time", gf_measure_surface},
+    {"badness", "packing badness B over a region and window", gf_measure_badness},
+    {"rtd", "residence-time distribution by initial layer", gf_measure_rtd},
+};
+
+const gf_measure_def *gf_measures(size_t *n)
+{
+    *n = sizeof gf_measure_table / sizeof gf_measure_table[0];
+    return gf_measure_table;
+}
+
+// One headline number or note for summary.json: value, or text when it is a string.
+typedef struct gf_summary_item {
+    char key[GF_TABLE_NAME];
+    double value;
+    char text[256];
+    int is_text;
+} gf_summary_item;
+
+typedef struct gf_summary {
+    gf_summary_item item[256];
+    size_t n;
+} gf_summary;
+
+static gf_summary_item *gf_summary_slot(gf_summary *s, const char *key)
+{
+    for (size_t k = 0; k < s->n; k++)
+        if (!strcmp(s->item[k].key, key)) return &s->item[k];
+    if (s->n == sizeof s->item / sizeof s->item[0] || strlen(key) >= GF_TABLE_NAME) return NULL;
+    gf_summary_item *it = &s->item[s->n++];
+    memset(it, 0, sizeof *it);
+    strcpy(it->key, key);
+    return it;
+}
+
+static void gf_summary_num(gf_summary *s, const char *key, double v)
+{
+    gf_summary_item *it = gf_summary_slot(s, key);
+    if (it) {
+        it->value = v;
+        it->is_text = 0;
+    }
+}
+
+static void gf_summary_text(gf_summary *s, const char *key, const char *text)
+{
+    gf_summary_item *it = gf_summary_slot(s, key);
+    if (!it) return;
+    it->is_text = 1;
+    snprintf(it->text, sizeof it->text, "%s", text);
+    for (char *c = it->text; *c; c++) // keep the JSON valid whatever the message says
+        if (*c == '"' || *c == '\\' || (unsigned char)*c < 0x20) *c = '\'';
+}
+
+// Reads back a summary.json this file wrote (one "key": value per line), so a
+// single measurement updates its own numbers and keeps the others'.
+static void gf_summary_read(gf_summary *s, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return;
+    char line[512];
+    while (fgets(line, sizeof line, f)) {
+        char key[GF_TABLE_NAME], rest[320];
+        if (sscanf(line, " \"%47[^\"]\" : %319[^\n]", key, rest) != 2) continue;
+        size_t len = strlen(rest);
+        while (len && (rest[len - 1] == ',' || rest[len - 1] == ' ')) rest[--len] = '\0';
+        if (rest[0] == '"') {
+            if (len >= 2) rest[len - 1] = '\0';
+            gf_summary_text(s, key, rest + 1);
+        } else if (!strcmp(rest, "null")) {
+            gf_summary_num(s, key, NAN);
+        } else {
+            char *end;
+            double v = strtod(rest, &end);
+            if (end != rest) gf_summary_num(s, key, v);
+        }
+    }
+    fclose(f);
+}
+
+static gf_status gf_summary_write(const gf_summary *s, const char *path)
+{
+    char tmp[4096];
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
+    fputs("{\n", f);
+    for (size_t k = 0; k < s->n; k++) {
+        const gf_summary_item *it = &s->item[k];
+        const char *sep = k + 1 < s->n ? "," : "";
+        if (it->is_text) fprintf(f, "  \"%s\": \"%s\"%s\n", it->key, it->text, sep);
+        else if (isfinite(it->value)) fprintf(f, "  \"%s\": %.10g%s\n", it->key, it->value, sep);
+        else fprintf(f, "  \"%s\": null%s\n", it->key, sep);
+    }
+    fputs("}\n", f);
+    return gf_atomic_commit(f, tmp, path);
+}
+
+static gf_status gf_mkdir_p(const char *dir)
+{
+    char buf[4096];
+    if (strlen(dir) >= sizeof buf) return gf_error_set(GF_ERR_PARAM, "path too long: %s", dir);
+    strcpy(buf, dir);
+    for (char *c = buf + 1; *c; c++) {
+        if (*c != '/') continue;
+        *c = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
+        *c = '/';
+    }
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
+    return GF_OK;
+}
+
+// Runs `gnuplot NAME.gp` in dir. 0 when the plot was drawn, 1 when gnuplot
+// is missing (-1 when it failed).
+static int gf_gnuplot(const char *dir, const char *script)
+{
+    pid_t pid = fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        if (chdir(dir) != 0) _exit(126);
+        execlp("gnuplot", "gnuplot", script, (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    if (waitpid(pid, &status, 0) < 0) return -1;
+    if (!WIFEXITED(status)) return -1;
+    if (WEXITSTATUS(status) == 127) return 1;
+    return WEXITSTATUS(status) == 0 ? 0 : -1;
+}
+
+static gf_status gf_write_plot(const char *outdir, const char *name, const gf_measure_out *out, int *gnuplot_state)
+{
+    char path[4096], tmp[4096], gp[128];
+    snprintf(gp, sizeof gp, "%s.gp", name);
+    snprintf(path, sizeof path, "%s/%s", outdir, gp);
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
+    fprintf(f, "# Draws %s.png from the CSV files beside it: gnuplot %s\n"
+               "set terminal pngcairo size 1100,800 font 'sans,11'\n"
+               "set output '%s.png'\n"
+               "set datafile separator ','\n"
+               "set grid\n",
+            name, gp, name);
+    fputs(out->gnuplot, f);
+    fputs("\nunset output\n", f);
+    if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
+    if (*gnuplot_state == 1) return GF_OK; // known missing: said once
+    int r = gf_gnuplot(outdir, gp);
+    if (r == 1) {
+        fprintf(stderr, "granflow analyze: warning: gnuplot not found, plots not drawn (scripts/deps.sh installs it; "
+                        "the .gp scripts are in %s)\n", outdir);
+        *gnuplot_state = 1;
+    } else if (r < 0) {
+        return gf_error_set(GF_ERR_IO, "gnuplot failed on %s", path);
+    }
+    return GF_OK;
+}
+
+gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *name, const char *outdir, bool plots)
+{
+    size_t nm;
+    const gf_measure_def *defs = gf_measures(&nm);
+    const gf_measure_def *only = NULL;
+    if (name) {
+        for (size_t k = 0; k < nm; k++)
+            if (!strcmp(defs[k].name, name)) only = &defs[k];
+        if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s' (granflow analyze --list)", name);
+    }
+    gf_status st = gf_mkdir_p(outdir);
+    if (st != GF_OK) return st;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/summary.json", outdir);
+    gf_summary *sum = calloc(1, sizeof *sum);
+    if (!sum) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    if (only) gf_summary_read(sum, path);
+    double t0, t1;
+    gf_analysis_window(o, s, &t0, &t1);
+    gf_summary_num(sum, "frames", (double)s->nframes);
+    gf_summary_num(sum, "window_t0", t0);
+    gf_summary_num(sum, "window_t1", t1);
+    int gnuplot_state = 0;
+    gf_status first_err = GF_OK;
+    for (size_t k = 0; k < nm; k++) {
+        const gf_measure_def *d = &defs[k];
+        if (only && d != only) continue;
+        gf_measure_out out = {0};
+        char note[GF_TABLE_NAME + 16];
+        snprintf(note, sizeof note, "skipped_%s", d->name);
+        st = d->run(s, o, &out);
+        for (size_t t = 0; st == GF_OK && t < out.ntables; t++) {
+            snprintf(path, sizeof path, "%s/%s.csv", outdir, out.tables[t].name);
+            st = gf_table_write_csv(&out.tables[t], path);
+        }
+        if (st == GF_OK && plots && out.gnuplot) st = gf_write_plot(outdir, d->name, &out, &gnuplot_state);
+        if (st == GF_OK) {
+            for (size_t v = 0; v < out.nvalues; v++) gf_summary_num(sum, out.values[v].key, out.values[v].value);
+            gf_summary_item *it = gf_summary_slot(sum, note);
+            if (it) it->key[0] = '\0'; // a previous skip no longer holds
+        } else if (only) {
+            first_err = st;
+        } else {
+            // One measurement that cannot be made (no exits, too few frames)
+            // does not stop the others; the reason goes into summary.json.
+            fprintf(stderr, "granflow analyze: warning: %s skipped: %s\n", d->name, gf_last_error());
+            gf_summary_text(sum, note, gf_last_error());
+        }
+        gf_measure_free(&out);
+        if (first_err != GF_OK) break;
+    }
+    // Drop the entries blanked above.
+    size_t w = 0;
+    for (size_t k = 0; k < sum->n; k++)
+        if (sum->item[k].key[0]) sum->item[w++] = sum->item[k];
+    sum->n = w;
+    if (first_err == GF_OK) {
+        snprintf(path, sizeof path, "%s/summary.json", outdir);
+        first_err = gf_summary_write(sum, path);
+    }
+    free(sum);
+    return first_err;
+}

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// Internal: particle motion between snapshots, shared by the velocity,
+// diffusion and correlation measurements: particles matched by id, velocities
+// between consecutive frames, and the mean velocity field binned in (x, z).
+#ifndef GF_ANALYSIS_MOTION_H
+#define GF_ANALYSIS_MOTION_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "granflow/analysis.h"
+
+/// Id -> index map of one packing: its ids sorted, with their indices.
+typedef struct gf_idmap {
+    size_t n;
+    struct gf_idmap_entry {
+        int64_t id;
+        size_t idx;
+    } *e;
+} gf_idmap;
+
+/// Builds the map; GF_ERR_PARAM when an id occurs twice.
+gf_status gf_idmap_build(const gf_packing *pk, gf_idmap *m);
+/// Index of `id` in the packing, or SIZE_MAX when it is not there (O(log n)).
+size_t gf_idmap_find(const gf_idmap *m, int64_t id);
+void gf_idmap_free(gf_idmap *m);
+
+/// The frames whose times lie in [t0, t1] (to 1e-9 relative): k0 .. k1-1.
+/// Returns the count k1 - k0.
+size_t gf_window_frames(const gf_series *s, double t0, double t1, size_t *k0, size_t *k1);
+
+/// The particles present in two frames: midpoint position and velocity
+/// (r_b - r_a) / (t_b - t_a), d and d/tau. Arrays hold n entries.
+typedef struct gf_steps {
+    size_t n, cap;
+    double dt; ///< t_b - t_a, tau
+    double *x, *y, *z, *vx, *vy, *vz;
+} gf_steps;
+
+/// Fills `st` (reusing its arrays) from frames a and b (t_b > t_a, else GF_ERR_PARAM).
+gf_status gf_steps_between(const gf_frame *a, const gf_frame *b, gf_steps *st);
+void gf_steps_free(gf_steps *st);
+
+/// Mean velocity over y and time in square (x, z) bins of edge `bin`, bins
+/// aligned on multiples of it: bin (i, k) covers x in [bin (ix0 + i), bin (ix0 + i + 1)).
+typedef struct gf_vfield {
+    double bin;
+    long ix0, iz0;
+    size_t nx, nz;
+    double *sum; ///< per bin: sum vx, sum vy, sum vz, samples
+} gf_vfield;
+
+/// An empty field covering the particles of frames k0 .. k1-1.
+gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1, double bin);
+/// Adds every step to its bin.
+void gf_vfield_add(gf_vfield *f, const gf_steps *st);
+/// Mean velocity of the bin holding (x, z); returns its sample count (0: v untouched).
+double gf_vfield_at(const gf_vfield *f, double x, double z, double v[3]);
+void gf_vfield_free(gf_vfield *f);
+
+/// The field over the consecutive frame pairs of [t0, t1]: every frame pair
+/// inside the window, as the velocity measurement averages it. `pairs` gets
+/// the number of pairs used.
+gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, gf_vfield *f, size_t *pairs);
+
+#endif

@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: MIT
+// A time series of snapshots and the exits of a run: what every measurement reads.
+//
+// gf_series_load accepts three inputs:
+//  - a run directory (DIR/snapshots/ exists): the dumps in DIR/snapshots;
+//  - any other directory: the dumps in it (regular files named *.dump,
+//    *.lammpstrj, *.txt or dump.*, hidden files skipped), read in name order;
+//  - one LAMMPS dump file, with one or many frames.
+// In the two directory cases DIR/config.ini and DIR/exits.csv are read when
+// present. Frames are sorted by time (ITEM: TIME, else TIMESTEP x dump_dt);
+// two frames at the same time are an error.
+//
+// Without config.ini the container is fitted to the first frame's BOX BOUNDS
+// (x range -> width, y range -> depth). granflow's container is centred on
+// x = y = 0, so a box that is not (a DEM box 0..50, say) is moved there: every
+// frame's x and y, and the exits', are shifted by minus the box centre.
+// Without a `type` column the layer tags are made from the first frame
+// (1 + floor(z / packing.layer_thickness)) and carried to later frames by id.
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "granflow/analysis.h"
+#include "io/exits_read.h"
+#include "io/packing_frames.h"
+
+enum { GF_SERIES_PATH = GF_PATH_MAX + 512 };
+
+void gf_series_free(gf_series *s)
+{
+    for (size_t k = 0; k < s->nframes; k++) gf_packing_free(&s->frames[k].pk);
+    if (s->frames) GF_DELETE(s->frames, s->nframes);
+    if (s->exits) GF_DELETE(s->exits, s->nexits);
+    memset(s, 0, sizeof *s);
+}
+
+// ---------------------------------------------------------------------------
+// Collecting frames from files.
+
+typedef struct gf_load_frame {
+    double time;          ///< tau
+    size_t file, seq;     ///< which file, and the order read (for a stable sort)
+    gf_packing_frame hdr; ///< timestep, line, box, type column
+    gf_packing pk;
+} gf_load_frame;
+
+typedef struct gf_loader {
+    char (*files)[GF_SERIES_PATH];
+    size_t nfiles, cap_files;
+    gf_load_frame *fr;
+    size_t nfr, cap_fr;
+    size_t cur; ///< file being read
+    double dump_dt;
+} gf_loader;
+
+static void gf_loader_free(gf_loader *L)
+{
+    for (size_t k = 0; k < L->nfr; k++) gf_packing_free(&L->fr[k].pk);
+    if (L->fr) GF_DELETE(L->fr, L->cap_fr);
+    if (L->files) GF_DELETE(L->files, L->cap_files);
+    memset(L, 0, sizeof *L);
+}
+
+static gf_status gf_loader_add_file(gf_loader *L, const char *dir, const char *name)
+{
+    if (L->nfiles == L->cap_files) {
+        size_t nc = L->cap_files ? 2 * L->cap_files : 16;
+        void *p = gf_realloc(L->files, sizeof *L->files * L->cap_files, sizeof *L->files * nc);
+        if (!p) return gf_error_set(GF_ERR_NOMEM, "out of memory listing %s", dir ? dir : name);
+        L->files = p;
+        L->cap_files = nc;
+    }
+    int w = dir ? snprintf(L->files[L->nfiles], GF_SERIES_PATH, "%s/%s", dir, name)
+                : snprintf(L->files[L->nfiles], GF_SERIES_PATH, "%s", name);
+    if (w < 0 || w >= GF_SERIES_PATH) return gf_error_set(GF_ERR_PARAM, "path too long: %s/%s", dir ? dir : "", name);
+    L->nfiles++;
+    return GF_OK;
+}
+
+static gf_status gf_loader_on_frame(void *ctx, const gf_packing_frame *f, gf_packing *pk)
+{
+    gf_loader *L = ctx;
+    const char *path = L->files[L->cur];
+    double t = f->time;
+    if (!f->have_time) {
+        if (!(L->dump_dt > 0))
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s:%ld: the frame at timestep %lld has no ITEM: TIME; pass dump.dt "
+                                "(tau per TIMESTEP) to turn its TIMESTEP into a time",
+                                path, f->line, f->timestep);
+        t = (double)f->timestep * L->dump_dt;
+    }
+    if (L->nfr == L->cap_fr) {
+        size_t nc = L->cap_fr ? 2 * L->cap_fr : 16;
+        gf_load_frame *p = gf_realloc(L->fr, sizeof *p * L->cap_fr, sizeof *p * nc);
+        if (!p) return gf_error_set(GF_ERR_NOMEM, "%s:%ld: out of memory for frames", path, f->line);
+        L->fr = p;
+        L->cap_fr = nc;
+    }
+    gf_load_frame *d = &L->fr[L->nfr];
+    d->time = t;
+    d->file = L->cur;
+    d->seq = L->nfr;
+    d->hdr = *f;
+    d->pk = *pk; // take the particles; the reader starts a fresh packing
+    memset(pk, 0, sizeof *pk);
+    L->nfr++;
+    return GF_OK;
+}
+
+static int gf_frame_cmp(const void *pa, const void *pb)
+{
+    const gf_load_frame *a = pa, *b = pb;
+    if (a->time != b->time) return a->time < b->time ? -1 : 1;
+    return (a->seq > b->seq) - (a->seq < b->seq);
+}
+
+static int gf_name_cmp(const void *a, const void *b) { return strcmp(a, b); }
+
+static int gf_has_suffix(const char *s, const char *suf)
+{
+    size_t n = strlen(s), k = strlen(suf);
+    return n > k && strcmp(s + n - k, suf) == 0;
+}
+
+static int gf_is_dump_name(const char *name)
+{
+    if (name[0] == '.') return 0;
+    return gf_has_suffix(name, ".dump") || gf_has_suffix(name, ".lammpstrj") || gf_has_suffix(name, ".txt") ||
+           (strncmp(name, "dump.", 5) == 0 && name[5] != '\0');
+}
+
+static int gf_is_dir(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 && S_ISDIR(sb.st_mode);
+}
+
+static int gf_is_file(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
+}
+
+/// Lists the dumps of `dir` into L->files, in name order.
+static gf_status gf_list_dumps(gf_loader *L, const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return gf_error_set(GF_ERR_IO, "cannot open directory %s: %s", dir, strerror(errno));
+    gf_status st = GF_OK;
+    for (struct dirent *e; st == GF_OK && (e = readdir(d)) != NULL;) {
+        if (!gf_is_dump_name(e->d_name)) continue;
+        char path[GF_SERIES_PATH];
+        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
+        if (!gf_is_file(path)) continue;
+        st = gf_loader_add_file(L, dir, e->d_name);
+    }
+    closedir(d);
+    if (st != GF_OK) return st;
+    if (L->nfiles == 0)
+        return gf_error_set(GF_ERR_IO,
+                            "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*)",
+                            dir);
+    qsort(L->files, L->nfiles, sizeof *L->files, gf_name_cmp);
+    return GF_OK;
+}
+
+// ---------------------------------------------------------------------------
+// Layers and container.
+
+typedef struct gf_id_layer {
+    int64_t id;
+    int32_t layer;
+} gf_id_layer;
+
+static int gf_id_layer_cmp(const void *pa, const void *pb)
+{
+    const gf_id_layer *a = pa, *b = pb;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+/// Frames without a `type` column: tag the first frame by height, later ones by id.
+static gf_status gf_series_fill_layers(gf_series *s, const gf_load_frame *src)
+{
+    double thick = s->cfg.packing_layer_thickness > 0 ? s->cfg.packing_layer_thickness : 10.0;
+    gf_packing *p0 = &s->frames[0].pk;
+    if (!src[0].hdr.have_type) gf_packing_tag_layers(p0, thick);
+    int need = 0;
+    for (size_t k = 1; k < s->nframes; k++) need |= !src[k].hdr.have_type;
+    if (!need || p0->n == 0) {
+        for (size_t k = 1; k < s->nframes; k++)
+            if (!src[k].hdr.have_type) gf_packing_tag_layers(&s->frames[k].pk, thick);
+        return GF_OK;
+    }
+    gf_id_layer *map = GF_NEW(gf_id_layer, p0->n);
+    if (!map) return gf_error_set(GF_ERR_NOMEM, "out of memory for the layer tags");
+    for (size_t i = 0; i < p0->n; i++) map[i] = (gf_id_layer){p0->id[i], p0->layer[i]};
+    qsort(map, p0->n, sizeof *map, gf_id_layer_cmp);
+    for (size_t k = 1; k < s->nframes; k++) {
+        if (src[k].hdr.have_type) continue;
+        gf_packing *p = &s->frames[k].pk;
+        for (size_t i = 0; i < p->n; i++) {
+            gf_id_layer key = {p->id[i], 0};
+            const gf_id_layer *hit = bsearch(&key, map, p0->n, sizeof *map, gf_id_layer_cmp);
+            p->layer[i] = hit ? hit->layer : (int32_t)(1 + floor(p->z[i] / thick));
+        }
+    }
+    GF_DELETE(map, p0->n);
+    return GF_OK;
+}
+
+/// No config.ini: the papers' defaults with the container fitted to the first frame.
+static void gf_series_fit_container(gf_series *s, const gf_packing_frame *h)
+{
+    gf_config c = gf_config_default();
+    const gf_packing *p0 = &s->frames[0].pk;
+    double cx = 0.0, cy = 0.0;
+    if (h->have_box) {
+        double w = h->hi[0] - h->lo[0], dp = h->hi[1] - h->lo[1];
+        if (w > 0) c.container_width = w;
+        if (dp > 0) c.container_depth = dp;
+        cx = 0.5 * (h->lo[0] + h->hi[0]);
+        cy = 0.5 * (h->lo[1] + h->hi[1]);
+    } else if (p0->n > 0) { // no box: the particles' extent about 0
+        double mx = 0.0, my = 0.0;
+        for (size_t i = 0; i < p0->n; i++) {
+            mx = fmax(mx, fabs(p0->x[i]) + p0->r[i]);
+            my = fmax(my, fabs(p0->y[i]) + p0->r[i]);
+        }
+        c.container_width = 2.0 * mx;
+        c.container_depth = 2.0 * my;
+    }
+    // Shift a box not centred on x = y = 0 there (rounding-level offsets are left alone).
+    double tol = 1e-9 * fmax(1.0, fmax(c.container_width, c.container_depth));
+    if (fabs(cx) > tol || fabs(cy) > tol) {
+        for (size_t k = 0; k < s->nframes; k++) {
+            gf_packing *p = &s->frames[k].pk;
+            for (size_t i = 0; i < p->n; i++) {
+                p->x[i] -= cx;
+                p->y[i] -= cy;
+            }
+        }
+        for (size_t k = 0; k < s->nexits; k++) {
+            s->exits[k].x -= cx;
+            s->exits[k].y -= cy;
+        }
+    }
+    // Resolve derived defaults when the fitted box allows; a box too small for
+    // the papers' orifice is still measurable, so its config is kept as it is.
+    gf_config v = c;
+    if (gf_config_validate(&v) == GF_OK) c = v;
+    else gf_error_clear();
+    s->cfg = c;
+}
+
+// ---------------------------------------------------------------------------
+
+static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
+{
+    qsort(L->fr, L->nfr, sizeof *L->fr, gf_frame_cmp);
+    for (size_t k = 1; k < L->nfr; k++)
+        if (L->fr[k].time == L->fr[k - 1].time) {
+            const gf_load_frame *a = &L->fr[k - 1], *b = &L->fr[k];
+            return gf_error_set(GF_ERR_FORMAT,
+                                "two frames at the same time %.10g tau: %s:%ld (timestep %lld) and %s:%ld "
+                                "(timestep %lld)",
+                                a->time, L->files[a->file], a->hdr.line, a->hdr.timestep, L->files[b->file],
+                                b->hdr.line, b->hdr.timestep);
+        }
+    gf_status st = GF_OK;
+    char path[GF_SERIES_PATH];
+    bool have_cfg = false;
+    s->cfg = gf_config_default();
+    if (dir) {
+        snprintf(path, sizeof path, "%s/config.ini", dir);
+        if (gf_is_file(path)) {
+            have_cfg = true;
+            st = gf_config_load(&s->cfg, path);
+            if (st == GF_OK) st = gf_config_validate(&s->cfg);
+            if (st != GF_OK) return st;
+        }
+        snprintf(path, sizeof path, "%s/exits.csv", dir);
+        if (gf_is_file(path)) {
+            st = gf_exits_read(path, &s->exits, &s->nexits);
+            if (st != GF_OK) return st;
+            s->has_exits = true;
+        }
+    }
+    s->frames = GF_NEW(gf_frame, L->nfr);
+    if (!s->frames) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu frames", L->nfr);
+    s->nframes = L->nfr;
+    for (size_t k = 0; k < L->nfr; k++) {
+        s->frames[k].time = L->fr[k].time;
+        s->frames[k].pk = L->fr[k].pk;
+        memset(&L->fr[k].pk, 0, sizeof L->fr[k].pk);
+    }
+    s->n_initial = s->frames[0].pk.n;
+    if (!have_cfg) gf_series_fit_container(s, &L->fr[0].hdr);
+    return gf_series_fill_layers(s, L->fr);
+}
+
+gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_series_load: no path");
+    if (!(dump_dt >= 0) || !isfinite(dump_dt))
+        return gf_error_set(GF_ERR_PARAM, "dump.dt = %g must be a finite number >= 0", dump_dt);
+    gf_loader L = {.dump_dt = dump_dt};
+    gf_status st = GF_OK;
+    const char *dir = NULL;
+    struct stat sb;
+    if (stat(path, &sb) != 0) return gf_error_set(GF_ERR_IO, "cannot open %s: %s", path, strerror(errno));
+    if (S_ISDIR(sb.st_mode)) {
+        char snaps[GF_SERIES_PATH];
+        if (snprintf(snaps, sizeof snaps, "%s/snapshots", path) >= (int)sizeof snaps)
+            return gf_error_set(GF_ERR_PARAM, "path too long: %s", path);
+        dir = path;
+        st = gf_list_dumps(&L, gf_is_dir(snaps) ? snaps : path);
+    } else {
+        st = gf_loader_add_file(&L, NULL, path);
+    }
+    for (L.cur = 0; st == GF_OK && L.cur < L.nfiles; L.cur++)
+        st = gf_packing_read_frames(L.files[L.cur], gf_loader_on_frame, &L);
+    if (st == GF_OK) st = gf_series_build(&L, dir, out);
+    gf_loader_free(&L);
+    if (st != GF_OK) gf_series_free(out);
+    return st;
+}

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+// gf_exits_read: the exits.csv a run writes (src/io/rundir.c), back into gf_exit records.
+#include "io/exits_read.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "io/textscan.h"
+
+/// Trims blanks (and a trailing \r) around a field in place.
+static char *gf_exits_trim(char *s)
+{
+    s = (char *)gf_textscan_skip_blank(s);
+    size_t n = strlen(s);
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r')) s[--n] = '\0';
+    return s;
+}
+
+/// Splits at commas in place; returns the number of fields (only the first max stored).
+static size_t gf_exits_split(char *s, char **tok, size_t max)
+{
+    size_t n = 0;
+    for (;;) {
+        char *comma = strchr(s, ',');
+        if (comma) *comma = '\0';
+        if (n < max) tok[n] = gf_exits_trim(s);
+        n++;
+        if (!comma) return n;
+        s = comma + 1;
+    }
+}
+
+static int gf_exits_cmp(const void *pa, const void *pb)
+{
+    const gf_exit *a = pa, *b = pb;
+    if (a->time != b->time) return a->time < b->time ? -1 : 1;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+static gf_status gf_exits_parse(gf_textscan *ts, gf_exit **arr, size_t *n, size_t *cap)
+{
+    static const char *const names[4] = {"id", "time", "x", "y"};
+    int have_header = 0;
+    for (;;) {
+        char *line, *tok[4];
+        size_t len;
+        gf_status st;
+        int r = gf_textscan_next(ts, &line, &len, &st);
+        if (r < 0) return st;
+        if (r == 0) break;
+        if (!*gf_textscan_skip_blank(line)) continue;
+        size_t nf = gf_exits_split(line, tok, 4);
+        if (!have_header) {
+            if (nf != 4 || strcasecmp(tok[0], "id") || strcasecmp(tok[1], "time") || strcasecmp(tok[2], "x") ||
+                strcasecmp(tok[3], "y"))
+                return gf_error_set(GF_ERR_FORMAT, "%s:%ld: expected the header 'id,time,x,y'", ts->path, ts->line);
+            have_header = 1;
+            continue;
+        }
+        if (nf != 4)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: %zu fields, expected 4 (id,time,x,y)%s", ts->path, ts->line,
+                                nf, ts->partial && nf < 4 ? " (truncated file?)" : "");
+        gf_exit e;
+        long long id;
+        if (gf_textscan_int(tok[0], &id) != 0 || id <= 0)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'id': '%.64s' is not a positive integer", ts->path,
+                                ts->line, tok[0]);
+        e.id = (int64_t)id;
+        double *v[3] = {&e.time, &e.x, &e.y};
+        for (int k = 0; k < 3; k++)
+            if (gf_textscan_double(tok[k + 1], v[k]) != 0)
+                return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column '%s': '%.64s' is not a finite number", ts->path,
+                                    ts->line, names[k + 1], tok[k + 1]);
+        if (*n == *cap) {
+            size_t nc = *cap ? 2 * *cap : 1024;
+            gf_exit *a = gf_realloc(*arr, sizeof(gf_exit) * *cap, sizeof(gf_exit) * nc);
+            if (!a) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory at line %ld", ts->path, ts->line);
+            *arr = a;
+            *cap = nc;
+        }
+        (*arr)[(*n)++] = e;
+    }
+    if (!have_header) return gf_error_set(GF_ERR_FORMAT, "%s: empty file, expected the header 'id,time,x,y'", ts->path);
+    return GF_OK;
+}
+
+gf_status gf_exits_read(const char *path, gf_exit **out, size_t *n)
+{
+    *out = NULL;
+    *n = 0;
+    gf_textscan ts;
+    gf_exit *arr = NULL;
+    size_t cnt = 0, cap = 0;
+    gf_status st = gf_textscan_open(&ts, path);
+    if (st == GF_OK) st = gf_exits_parse(&ts, &arr, &cnt, &cap);
+    gf_textscan_close(&ts);
+    if (st == GF_OK && cnt > 0 && cnt < cap) { // the caller frees exactly cnt elements
+        gf_exit *a = gf_realloc(arr, sizeof(gf_exit) * cap, sizeof(gf_exit) * cnt);
+        if (!a) st = gf_error_set(GF_ERR_NOMEM, "%s: out of memory", path);
+        else {
+            arr = a;
+            cap = cnt;
+        }
+    }
+    if (st != GF_OK) {
+        if (arr) gf_free(arr, sizeof(gf_exit) * cap);
+        return st;
+    }
+    if (cnt > 1) qsort(arr, cnt, sizeof *arr, gf_exits_cmp);
+    *out = arr;
+    *n = cnt;
+    return GF_OK;
+}

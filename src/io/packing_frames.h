@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+// Internal: every frame of a LAMMPS text dump with its time, box and `type` column.
+#ifndef GF_IO_PACKING_FRAMES_H
+#define GF_IO_PACKING_FRAMES_H
+
+#include "granflow/core.h"
+#include "granflow/packing.h"
+
+/// What the header of one frame said.
+typedef struct gf_packing_frame {
+    long long timestep;  ///< ITEM: TIMESTEP (always present)
+    int have_time;       ///< the frame has ITEM: TIME
+    double time;         ///< its value, tau (0 without it)
+    int have_box;        ///< the frame has ITEM: BOX BOUNDS
+    double lo[3], hi[3]; ///< the box, d
+    int have_type;       ///< the ATOMS have a `type` column, read into pk->layer (else layer = 0)
+    long line;           ///< line of the frame's first ITEM
+} gf_packing_frame;
+
+/// Called once per frame, in file order. `pk` holds the frame's particles; the
+/// callback may keep them by moving the struct out and zeroing *pk. A status
+/// other than GF_OK stops the reading and is returned.
+typedef gf_status (*gf_packing_frame_fn)(void *ctx, const gf_packing_frame *f, gf_packing *pk);
+
+/// Reads every frame of a LAMMPS text dump in one pass, with the same checks
+/// and messages as gf_packing_read (truncated frames, bad columns, duplicate
+/// ids, all naming the file and line). Unlike gf_packing_read, a frame may
+/// have 0 atoms (a drained silo), ITEM: TIME is converted (a malformed value
+/// is an error) and the `type` column becomes the layer tag.
+gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx);
+
+#endif

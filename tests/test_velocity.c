@@ -1,0 +1,355 @@
+// SPDX-License-Identifier: MIT
+// Velocity, diffusion and correlation measurements (thesis Sec. 3.3, 2009
+// paper Fig. 8) on synthetic series built in memory with known answers.
+#include "support.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/rng.h"
+#include "granflow/analysis.h"
+
+static double normal(gf_rng *r)
+{
+    return sqrt(-2.0 * log(gf_rng_uniform_pos(r))) * cos(6.283185307179586 * gf_rng_uniform(r));
+}
+
+/// A series of n empty frames at the given times, default config (50 x 8 silo).
+static gf_series make_series(size_t n, const double *times)
+{
+    gf_series s = {0};
+    s.nframes = n;
+    s.frames = GF_NEW(gf_frame, n);
+    assert_non_null(s.frames);
+    for (size_t k = 0; k < n; k++) s.frames[k].time = times[k];
+    s.cfg = gf_config_default();
+    return s;
+}
+
+static void push(gf_frame *f, int64_t id, double x, double y, double z)
+{
+    assert_int_equal(gf_packing_push(&f->pk, id, 1, x, y, z, 0.5), GF_OK);
+}
+
+static const gf_table *table(const gf_measure_out *o, const char *name)
+{
+    for (size_t k = 0; k < o->ntables; k++)
+        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
+    fail_msg("no table %s", name);
+    return NULL;
+}
+
+static double value(const gf_measure_out *o, const char *key)
+{
+    for (size_t k = 0; k < o->nvalues; k++)
+        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
+    fail_msg("no value %s", key);
+    return NAN;
+}
+
+static double cell(const gf_table *t, size_t row, size_t col) { return t->v[row * t->ncol + col]; }
+
+// ---------------------------------------------------------------------------
+// Velocity: v_z(x, z) = -A exp(-x^2 / (2 (2 z + 1))), so Var(z) = 2 z + 1.
+
+#define VEL_A 0.5
+
+static double vz_model(double x, double z) { return -VEL_A * exp(-x * x / (2.0 * (2.0 * z + 1.0))); }
+
+static void velocity_recovers_variance_line(void **state)
+{
+    (void)state;
+    // Frames at t = 0, 2, 4; the default window (a quarter in, to the end) is
+    // [1, 4], so only the pair (2, 4) counts and frame 0 holds decoys whose
+    // velocity from frame 0 would spoil every profile. Particles sit on a grid
+    // of midpoints (x = k + 1/2: one per 1 d bin; integer z; y = -2, 0, 2) and
+    // move from z - v dt/2 to z + v dt/2, so each measured velocity is exactly
+    // v_z at its bin. Every 7th particle has left by t = 4; frame 4 also holds
+    // particles absent at t = 2, and is stored in reverse order.
+    const double times[3] = {0.0, 2.0, 4.0}, dt = 2.0;
+    gf_series s = make_series(3, times);
+    int64_t id = 0;
+    size_t pairs = 0;
+    gf_packing late = {0}; // frame 2 before it is reversed
+    for (int zi = 5; zi <= 65; zi++)
+        for (int xi = -25; xi < 25; xi++)
+            for (int yi = -1; yi <= 1; yi++) {
+                double x = xi + 0.5, y = 2.0 * yi, z = zi, v = vz_model(x, z);
+                id++;
+                push(&s.frames[0], id, x, y, 30.0 + 0.37 * (double)(id % 11)); // decoy start
+                push(&s.frames[1], id, x, y, z - 0.5 * v * dt);
+                if (id % 7 == 0) continue; // gone by t = 4
+                assert_int_equal(gf_packing_push(&late, id, 1, x, y, z + 0.5 * v * dt, 0.5), GF_OK);
+                pairs++;
+            }
+    for (size_t i = late.n; i-- > 0;) push(&s.frames[2], late.id[i], late.x[i], late.y[i], late.z[i]);
+    for (int k = 1; k <= 100; k++) push(&s.frames[2], id + k, 0.0, 0.0, 30.0 + 0.1 * k); // newcomers
+    gf_packing_free(&late);
+    s.n_initial = s.frames[0].pk.n;
+
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
+
+    // Every height 10 .. 60 is an exact Gaussian: amplitude A, centre 0,
+    // variance 2 h + 1, recovered to the fit's convergence (1e-8).
+    const gf_table *tv = table(&out, "velocity_variance");
+    assert_int_equal(tv->nrow, 6);
+    for (size_t r = 0; r < 6; r++) {
+        double h = 10.0 * (double)(r + 1);
+        gf_assert_near(cell(tv, r, 0), h, 0.0);
+        gf_assert_near(cell(tv, r, 1), 2.0 * h + 1.0, 1e-8 * (2.0 * h + 1.0));
+        gf_assert_near(cell(tv, r, 2), VEL_A, 1e-8);
+        gf_assert_near(cell(tv, r, 3), 0.0, 1e-8);
+    }
+    gf_assert_near(value(&out, "velocity_variance_slope"), 2.0, 1e-8);
+    gf_assert_near(value(&out, "velocity_variance_intercept"), 1.0, 1e-6);
+
+    // Profiles: 50 bins per height, data and fit both equal to v_z.
+    const gf_table *tp = table(&out, "velocity_profiles");
+    assert_int_equal(tp->nrow, 6 * 50);
+    for (size_t r = 0; r < tp->nrow; r++) {
+        double v = vz_model(cell(tp, r, 1), cell(tp, r, 0));
+        gf_assert_near(cell(tp, r, 2), v, 1e-12);
+        gf_assert_near(cell(tp, r, 3), v, 1e-8);
+    }
+
+    // The field: one bin per grid row/column, 3 samples (y) less the exits,
+    // and its total equals the number of particles present at both times.
+    const gf_table *tf = table(&out, "velocity_field");
+    assert_int_equal(tf->nrow, 61 * 50);
+    double total = 0.0;
+    for (size_t r = 0; r < tf->nrow; r++) {
+        double x = cell(tf, r, 0), z = cell(tf, r, 1) - 0.5; // bin [z, z + 1) holds the grid row z
+        gf_assert_near(cell(tf, r, 2), 0.0, 0.0);
+        gf_assert_near(cell(tf, r, 3), vz_model(x, z), 1e-12);
+        total += cell(tf, r, 4);
+    }
+    gf_assert_near(total, (double)pairs, 0.0);
+    assert_non_null(out.gnuplot);
+    assert_non_null(strstr(out.gnuplot, "Var (d^2)"));
+    assert_non_null(strstr(out.gnuplot, "2.28*x+1.60"));
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
+static void velocity_depth_profile(void **state)
+{
+    (void)state;
+    // v_z = -(1 + 0.1 y) in the test region |x| < 10, 50 < z < 70, particles at
+    // the centres of the 32 depth bins of 0.25 d (x in {-5, 0, 5}, z in {55,
+    // 60, 65}: 9 per bin). Particles just outside the region (|x| = 10.5, z =
+    // 49.5 or 70.5) move at -5 and must not count. Window set to [0, 1].
+    const double times[2] = {0.0, 1.0};
+    gf_series s = make_series(2, times);
+    int64_t id = 0;
+    for (int j = 0; j < 32; j++) {
+        double y = -4.0 + 0.25 * (j + 0.5);
+        for (int a = -1; a <= 1; a++)
+            for (int b = -1; b <= 1; b++) {
+                double x = 5.0 * a, z = 60.0 + 5.0 * b, v = -(1.0 + 0.1 * y);
+                id++;
+                push(&s.frames[0], id, x, y, z - 0.5 * v);
+                push(&s.frames[1], id, x, y, z + 0.5 * v);
+            }
+        const double out_xz[3][2] = {{10.5, 60.0}, {0.0, 49.5}, {-3.0, 70.5}};
+        for (int k = 0; k < 3; k++) {
+            id++;
+            push(&s.frames[0], id, out_xz[k][0], y, out_xz[k][1] + 2.5);
+            push(&s.frames[1], id, out_xz[k][0], y, out_xz[k][1] - 2.5);
+        }
+    }
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    o.t0 = 0.0;
+    o.t1 = 1.0;
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
+    const gf_table *td = table(&out, "velocity_depth");
+    assert_int_equal(td->nrow, 32);
+    for (size_t r = 0; r < 32; r++) {
+        double y = -4.0 + 0.25 * ((double)r + 0.5);
+        gf_assert_near(cell(td, r, 0), y, 1e-12);
+        gf_assert_near(cell(td, r, 1), -(1.0 + 0.1 * y), 1e-12);
+        gf_assert_near(cell(td, r, 2), 9.0, 0.0);
+    }
+    // One height band (z = 60) has uniform flow: no peak, so its fit is NaN,
+    // and the others have no particles: too few heights for the line.
+    assert_true(isnan(value(&out, "velocity_variance_slope")));
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
+// ---------------------------------------------------------------------------
+// Diffusion: a random walk dx ~ N(0, 2 b |dz|) on top of a converging drift.
+
+static void diffusion_recovers_random_walk(void **state)
+{
+    (void)state;
+    // Frames every 2 tau from 0 to 24; the auto window is [6, 24], so particles
+    // are selected at t = 6 (frames 0-4 put them elsewhere). N = 16000 start in
+    // |x| < 5, 60 < z < 100 and drop 2 d per frame (v_z = -1), with a
+    // converging drift dx = -0.004 x0 |dz| and a walk of variance 2 b per d
+    // dropped, b = 3e-3. 2000 more start outside the region with a walk 10x
+    // wider; 1% of the tracked particles leave at each frame.
+    //
+    // Tolerance: at each frame Var(dx) about the drift is estimated from n ~
+    // 16000 particles with relative sd sqrt(2 / n) = 1.1%; the slope through the
+    // origin is a weighted mean of Var_k / |dz|_k, whose sd is at most that
+    // (frames fully correlated). 5 sd: 5.6% of b. The drift alone would add
+    // 0.004^2 Var(x0) dz^2 = 1.3e-4 dz^2, 40% of 2 b dz at dz = 18: caught.
+    enum { NF = 13, N = 16000, NOUT = 2000 };
+    const double b = 3e-3, c = 0.004;
+    double times[NF];
+    for (int k = 0; k < NF; k++) times[k] = 2.0 * k;
+    gf_series s = make_series(NF, times);
+    gf_rng rng;
+    gf_rng_seed(&rng, 2024, 3);
+    double *x0 = malloc(sizeof(double) * (N + NOUT)), *z0 = malloc(sizeof(double) * (N + NOUT));
+    double *dx = malloc(sizeof(double) * (N + NOUT));
+    bool *gone = calloc(N + NOUT, sizeof(bool));
+    assert_true(x0 && z0 && dx && gone);
+    for (int i = 0; i < N + NOUT; i++) {
+        if (i < N) {
+            x0[i] = -5.0 + 10.0 * gf_rng_uniform(&rng);
+            z0[i] = 60.0 + 40.0 * gf_rng_uniform(&rng) + 1e-9;
+        } else {
+            x0[i] = i % 2 ? 7.0 + 10.0 * gf_rng_uniform(&rng) : -5.0 + 10.0 * gf_rng_uniform(&rng);
+            z0[i] = i % 2 ? 80.0 : 59.0 - 30.0 * gf_rng_uniform(&rng);
+        }
+        dx[i] = 0.0;
+    }
+    for (int k = 0; k < NF; k++) {
+        int j = k - 3; // frames after the start frame (k = 3, t = 6)
+        for (int i = 0; i < N + NOUT; i++) {
+            if (j < 0) {
+                push(&s.frames[k], i + 1, 20.0 * gf_rng_uniform(&rng) - 10.0, 0.0, 200.0 * gf_rng_uniform(&rng));
+                continue;
+            }
+            if (j > 0) {
+                if (i < N && gf_rng_uniform(&rng) < 0.01) gone[i] = true;
+                double wide = i < N ? 1.0 : 10.0;
+                dx[i] += -c * x0[i] * 2.0 + wide * sqrt(2.0 * b * 2.0) * normal(&rng);
+            }
+            if (!gone[i]) push(&s.frames[k], i + 1, x0[i] + dx[i], 0.3, z0[i] - 2.0 * j);
+        }
+    }
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
+    gf_assert_near(value(&out, "diffusion_particles"), N, 0.0);
+    gf_assert_near(value(&out, "diffusion_length"), b, 5.0 * sqrt(2.0 / N) * b);
+    const gf_table *t = table(&out, "diffusion");
+    assert_int_equal(t->nrow, 9);
+    for (size_t r = 0; r < t->nrow; r++) {
+        double dz = 2.0 * (double)(r + 1);
+        gf_assert_near(cell(t, r, 0), 8.0 + 2.0 * (double)r, 1e-12);
+        gf_assert_near(cell(t, r, 1), dz, 1e-9);
+        assert_true(cell(t, r, 3) < N && cell(t, r, 3) > 0.85 * N);
+        // Each frame's variance within 5 sd of 2 b dz; the raw one holds the drift.
+        gf_assert_near(cell(t, r, 2), 2.0 * b * dz, 5.0 * sqrt(2.0 / cell(t, r, 3)) * 2.0 * b * dz);
+        double drift = c * c * dz * dz * 100.0 / 12.0; // c^2 dz^2 Var(x0), Var(x0) = 10^2 / 12
+        gf_assert_near(cell(t, r, 4), 2.0 * b * dz + drift, 5.0 * sqrt(2.0 / cell(t, r, 3)) * (2.0 * b * dz + drift));
+    }
+    gf_measure_free(&out);
+    gf_series_free(&s);
+    free(x0);
+    free(z0);
+    free(dx);
+    free(gone);
+}
+
+// ---------------------------------------------------------------------------
+// Correlation: fluctuations along lines of particles as an AR(1) process.
+
+static void correlation_recovers_length(void **state)
+{
+    (void)state;
+    // A 32 x 32 d region (correlation.size = 32, r still up to 8 d) holding four
+    // lines of 124 particles along x (|x| < 16, spacing s = 0.25807) at z =
+    // 49, 58, 65, 74, 7 d or more apart (beyond r = 8 with their 3.5 d offsets
+    // in y: no pairs between lines). In each of K frame pairs the y velocity
+    // along a line is a stationary AR(1) sequence u_{i+1} = rho u_i + sqrt(1 -
+    // rho^2) sigma xi, rho = exp(-s / beta), whose correlation is exactly
+    // rho^(r/s) = exp(-r / beta). On top there is a mean flow with a boundary
+    // layer: v_z = -0.3 at y = 0.1, -0.18 in the wall layers (y = +-3.6). With
+    // velocity.bin = 16 a centre and a wall line share each (x, z) bin of the
+    // mean field, which holds their average; only its depth profile makes
+    // their du exact (without it du_z = -+0.06, 60 sigma, swamps C). Each frame
+    // pair uses its own ids, so positions never drift. Decoys at x = +-20
+    // (outside the region) move at random. The spacing keeps every lattice
+    // distance m s at least 0.003 d from a bin edge (0.1 d), so each bin holds
+    // one distance; the midpoints' y offsets (u dt / 2 < 5 sigma = 0.005) move
+    // r by < 1e-4 d.
+    //
+    // Tolerance: the maximum-likelihood estimate of rho from n = 496 K points
+    // has sd sqrt((1 - rho^2) / n), i.e. beta to sd(rho) / (rho |ln rho|) =
+    // 0.6% for K = 1000; the unweighted fit of binned C(r) over 1 < r < 8 is
+    // less efficient: over 30 seeds its sd was 2.1% for beta and 1.5% for the
+    // amplitude, so 5 sd: 10.5% and 7.5%.
+    enum { K = 1000, NL = 4, NP = 124 };
+    const double beta = 2.0, sp = 0.25807, sigma = 0.001, rho = exp(-sp / beta);
+    double times[K + 1];
+    for (int k = 0; k <= K; k++) times[k] = (double)k;
+    gf_series s = make_series(K + 1, times);
+    gf_rng rng;
+    gf_rng_seed(&rng, 99, 4);
+    const double zl[NL] = {49.0, 58.0, 65.0, 74.0}, yl[NL] = {0.1, 3.6, -3.6, 0.1}, wl[NL] = {-0.3, -0.18, -0.18, -0.3};
+    for (int k = 0; k < K; k++) {
+        for (int l = 0; l < NL; l++) {
+            double u = sigma * normal(&rng);
+            for (int i = 0; i < NP; i++) {
+                if (i > 0) u = rho * u + sqrt(1.0 - rho * rho) * sigma * normal(&rng);
+                int64_t id = 1 + (int64_t)k * 1000 + l * NP + i;
+                double x = -16.0 + sp * (i + 0.5);
+                push(&s.frames[k], id, x, yl[l], zl[l] - 0.5 * wl[l]);
+                push(&s.frames[k + 1], id, x, yl[l] + u, zl[l] + 0.5 * wl[l]);
+            }
+        }
+        for (int d = 0; d < 2; d++) {
+            int64_t id = 1 + (int64_t)k * 1000 + 500 + d;
+            push(&s.frames[k], id, d ? 20.0 : -20.0, 0.0, 60.0);
+            push(&s.frames[k + 1], id, d ? 20.0 : -20.0, normal(&rng), 60.0 + normal(&rng));
+        }
+    }
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    o.t0 = 0.0;
+    o.corr_size = 32.0;
+    o.vel_bin = 16.0;
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_correlation(&s, &o, &out), GF_OK);
+    gf_assert_near(value(&out, "correlation_length"), beta, 0.105 * beta);
+    gf_assert_near(value(&out, "correlation_amplitude"), 1.0, 0.075);
+    // Steady flow: the flow amplitude is the same in every frame pair (only
+    // the y fluctuations enter it, through <v_y> ~ sigma / sqrt(K NP) ~ 1e-5).
+    gf_assert_near(value(&out, "correlation_unsteadiness"), 0.0, 1e-6);
+    // Pairs lie at r = m s: each bin's r is one of them, holding all NL K (NP - m)
+    // such pairs, and C(r) = exp(-r / beta) within 5 sd: the sd of a bin's C is
+    // at most that of the AR(1) sample autocovariance over NL K lines of NP
+    // points, ~ sqrt((1 + rho^2) / (1 - rho^2) / (NL K NP)) = 0.4%, so 0.02.
+    const gf_table *t = table(&out, "correlation");
+    assert_int_equal(t->nrow, 30); // m = 1 .. 30 (31 s = 8.0002 is beyond r = 8)
+    for (size_t r = 0; r < t->nrow; r++) {
+        double rr = cell(t, r, 0), m = rr / sp;
+        gf_assert_near(m, round(m), 1e-3);
+        gf_assert_near(cell(t, r, 2), (double)NL * K * (NP - round(m)), 0.0);
+        gf_assert_near(cell(t, r, 1), exp(-rr / beta), 0.02);
+    }
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(velocity_recovers_variance_line),
+    cmocka_unit_test(velocity_depth_profile),
+    cmocka_unit_test(diffusion_recovers_random_walk),
+    cmocka_unit_test(correlation_recovers_length),
+};
+
+GF_TEST_MAIN("velocity", tests)
