@@ -8,7 +8,7 @@ RUN_TAU    ?= 40
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps build build-san run test test-fast test-san bench clean
+.PHONY: all deps build build-san run test test-fast test-san bench reproduce clean
 
 all: build
 
@@ -45,6 +45,14 @@ test-san: build-san
 
 bench: build
 	./$(BUILD)/granflow bench
+
+# Every variant of the 2009 paper (examples/fig*.ini), shortened to fit a
+# 2-core machine in well under an hour (two runs at a time), measured, drawn
+# and compared with the paper in reproduce/REPORT.md; runs in reproduce/runs.
+# Resumable; `REPRO_SCALE=0.05 make reproduce` is a smoke test of a couple of
+# minutes (see scripts/reproduce-2009.sh). Not part of `make test`.
+reproduce: build
+	GRANFLOW=./$(BUILD)/granflow bash scripts/reproduce-2009.sh
 
 clean:
 	rm -rf $(BUILD) $(BUILD_SAN)

@@ -6,6 +6,7 @@
 #include <stdbool.h>
 
 #include "granflow/granflow.h"
+#include "granflow/dem.h"
 
 /// Exit codes of every subcommand (listed in `granflow help` and the README).
 enum {
@@ -44,5 +45,26 @@ int gf_cmd_config(int argc, char **argv);
 int gf_cmd_bench(int argc, char **argv);
 int gf_cmd_analyze(int argc, char **argv);
 int gf_cmd_render(int argc, char **argv);
+int gf_cmd_lga(int argc, char **argv);
+/// Options shared by calibrate and compare: the DEM source and analysis options.
+typedef struct gf_demargs {
+    const char *pos[4];
+    int npos;
+    const char *out, *config;
+    const char *sets[64];
+    size_t nsets;
+    gf_analysis_opts opts;
+    bool quiet, plots;
+} gf_demargs;
+
+/// Parses the options of calibrate and compare (positionals, -o, --timestep,
+/// --config, --set: config keys go to `sets`, the others to `opts`).
+int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a);
+/// Loads a run with gf_dem_series_load (`dem`: with --config/--set) and reports it.
+gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path, bool dem, gf_series *s);
+
+int gf_cmd_dem(int argc, char **argv);
+int gf_cmd_calibrate(int argc, char **argv);
+int gf_cmd_compare(int argc, char **argv);
 
 #endif

@@ -3,9 +3,11 @@
 // as CSV files, plots and headline numbers in DIR/analysis/.
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "granflow/analysis.h"
+#include "granflow/dem.h"
 
 static void gf_analyze_list(FILE *f)
 {
@@ -18,12 +20,23 @@ static void gf_analyze_list(FILE *f)
 static int gf_analyze_usage(const char *msg, const char *arg)
 {
     fprintf(stderr, "granflow analyze: error: %s%s%s\n", msg, arg ? " " : "", arg ? arg : "");
-    fprintf(stderr, "usage: granflow analyze [NAME] DIR [--set key=value]... [-o OUTDIR] [--no-plots] [--list]\n");
+    fprintf(stderr, "usage: granflow analyze [NAME] DIR [--set key=value]... [--timestep DT] [--config INI] [-o OUTDIR] [--no-plots] [--list]\n");
     return GF_EXIT_USAGE;
+}
+
+/// A `section.key` of the run's configuration (a DEM run's container, its
+/// atom types), rather than an analysis option.
+static bool gf_analyze_is_config_key(const char *kv)
+{
+    gf_config c = gf_config_default();
+    return gf_config_set(&c, kv, "--set") == GF_OK;
 }
 
 int gf_cmd_analyze(int argc, char **argv)
 {
+    const char *sets[64];
+    size_t nsets = 0;
+    const char *config = NULL;
     gf_analysis_opts opts;
     gf_analysis_opts_default(&opts);
     const char *pos[2] = {NULL, NULL};
@@ -35,11 +48,25 @@ int gf_cmd_analyze(int argc, char **argv)
         if (!strcmp(a, "--list")) {
             gf_analyze_list(stdout);
             return GF_EXIT_OK;
-        } else if (!strcmp(a, "--set") || !strcmp(a, "-s")) {
-            if (i + 1 >= argc) return gf_analyze_usage("--set needs key=value", NULL);
-            if (gf_analysis_opts_set(&opts, argv[++i]) != GF_OK) return gf_cli_fail("analyze", GF_ERR_PARAM);
-        } else if (!strncmp(a, "--set=", 6)) {
-            if (gf_analysis_opts_set(&opts, a + 6) != GF_OK) return gf_cli_fail("analyze", GF_ERR_PARAM);
+        } else if (!strcmp(a, "--set") || !strcmp(a, "-s") || !strncmp(a, "--set=", 6)) {
+            const char *kv = a[5] == '=' ? a + 6 : i + 1 < argc ? argv[++i] : NULL;
+            if (!kv) return gf_analyze_usage("--set needs key=value", NULL);
+            if (gf_analyze_is_config_key(kv)) { // container.width=..., packing.types=...: the run's config
+                if (nsets == sizeof sets / sizeof sets[0]) return gf_analyze_usage("too many --set", NULL);
+                sets[nsets++] = kv;
+            } else if (gf_analysis_opts_set(&opts, kv) != GF_OK) {
+                return gf_cli_fail("analyze", GF_ERR_PARAM);
+            }
+        } else if (!strcmp(a, "--timestep") || !strcmp(a, "--config")) {
+            if (i + 1 >= argc) return gf_analyze_usage(a, "needs a value");
+            const char *v = argv[++i];
+            if (a[2] == 'c') {
+                config = v;
+            } else {
+                char dt[128];
+                snprintf(dt, sizeof dt, "dump.dt=%s", v);
+                if (gf_analysis_opts_set(&opts, dt) != GF_OK) return gf_cli_fail("analyze", GF_ERR_PARAM);
+            }
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             if (i + 1 >= argc) return gf_analyze_usage("-o needs a directory", NULL);
             outdir = argv[++i];
@@ -71,12 +98,23 @@ int gf_cmd_analyze(int argc, char **argv)
     }
     char outbuf[4096];
     if (!outdir) {
-        snprintf(outbuf, sizeof outbuf, "%s/analysis", dir);
+        // A run directory gets DIR/analysis; a single dump, analysis/ beside it.
+        struct stat sb;
+        if (stat(dir, &sb) == 0 && !S_ISDIR(sb.st_mode)) {
+            const char *slash = strrchr(dir, '/');
+            if (slash) snprintf(outbuf, sizeof outbuf, "%.*s/analysis", (int)(slash - dir), dir);
+            else snprintf(outbuf, sizeof outbuf, "analysis");
+        } else {
+            snprintf(outbuf, sizeof outbuf, "%s/analysis", dir);
+        }
         outdir = outbuf;
     }
     gf_series s = {0};
     if (!quiet) fprintf(stderr, "granflow analyze: reading %s...\n", dir);
-    gf_status st = gf_series_load(dir, opts.dump_dt, &s);
+    // Like gf_series_load, plus the container from --config/--set, packing.types,
+    // and DEM particles below the base counted as exited (granflow dem, docs/dem.md).
+    gf_dem_source src = {.dump_dt = opts.dump_dt, .config = config, .sets = sets, .nsets = nsets};
+    gf_status st = gf_dem_series_load(dir, &src, &s, NULL);
     if (st != GF_OK) return gf_cli_fail("analyze", st);
     if (!quiet) {
         double t0, t1;

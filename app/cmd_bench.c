@@ -55,8 +55,8 @@ int gf_cmd_bench(int argc, char **argv)
 
     double moves = (double)(b.spot_moves - a.spot_moves);
     double step_us = moves > 0 ? 1e6 * wall / moves : 0;
-    double spot_us = c.spot_moves > b.spot_moves ? 1e6 * c.spot_seconds / (double)(c.spot_moves - b.spot_moves) : 0;
-    double relax_us = c.relax_calls > b.relax_calls ? 1e6 * c.relax_seconds / (double)(c.relax_calls - b.relax_calls) : 0;
+    double spot_us = c.spot_moves > b.spot_moves ? 1e6 * (c.spot_seconds - b.spot_seconds) / (double)(c.spot_moves - b.spot_moves) : 0;
+    double relax_us = c.relax_calls > b.relax_calls ? 1e6 * (c.relax_seconds - b.relax_seconds) / (double)(c.relax_calls - b.relax_calls) : 0;
     double sps = wall > 0 ? moves / wall : 0;
     double flow = (double)(b.particles_exited - a.particles_exited) / window;
     if (cli.json) {

@@ -20,8 +20,11 @@ int gf_cmd_pack(int argc, char **argv)
     gf_packing pk = {0};
     gf_status st;
     if (cfg.packing_file[0]) {
-        st = gf_packing_read(cfg.packing_file, GF_FORMAT_AUTO, &pk);
-        if (st == GF_OK) gf_packing_tag_layers(&pk, cfg.packing_layer_thickness);
+        gf_packing_import_report rep;
+        st = gf_packing_import(&cfg, &pk, &rep);
+        if (st == GF_OK && !cli.quiet && (rep.below_base || rep.other_types))
+            fprintf(stderr, "granflow pack: kept %zu of %zu particles (%zu below the base, %zu of other atom types)\n",
+                    pk.n, rep.read, rep.below_base, rep.other_types);
     } else {
         if (!cli.quiet) fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
         st = gf_packing_generate(&cfg, &pk);

@@ -35,6 +35,10 @@ static void gf_show_progress(void *ctx, const gf_run_progress *p)
         fprintf(stderr, "granflow run: %s the initial packing...\n", p->phase[0] == 'p' ? "building" : "reading");
         return;
     }
+    if (!strcmp(p->phase, "imported")) {
+        fprintf(stderr, "granflow run: imported %s\n", p->note ? p->note : "the packing");
+        return;
+    }
     if (!strcmp(p->phase, "done")) {
         if (pc->tty) fputs("\r\033[K", stderr);
         return;

@@ -19,8 +19,16 @@ static const char gf_usage[] =
     "                                        time spot(), relax() and whole steps\n"
     "  analyze [NAME] DIR [--set key=value]... [-o OUTDIR] [--no-plots] [--list]\n"
     "                                        the papers' statistics of a run: CSV, plots, summary.json\n"
-    "  render DIR [--colour layer|phi] [--sheet] [--times T1,T2|--all] [--format png|svg|pdf]\n"
+    "  render DIR [--colour layer|phi|phi-raw] [--sheet] [--times T1,T2|--all] [--format png|svg|pdf]\n"
     "       [--scale PX] [-o OUTDIR]          pictures of a run's central slice (cairo)\n"
+    "  dem [CONFIG] [--set k=v]... -o DIR [--run] [--drain-only]\n"
+    "                                        LAMMPS inputs for a DEM run of the same silo (and run them)\n"
+    "  calibrate DEM_DIR [--timestep DT] [--set k=v]... -o PARAMS.ini\n"
+    "                                        fit the five spot parameters to a DEM run (thesis Sec. 3.3)\n"
+    "  compare DEM_DIR SPOT_DIR [--timestep DT] [-o OUTDIR]\n"
+    "                                        the two runs side by side: CSV, plots, pictures, summary.md\n"
+    "  lga [CONFIG] [--set lga.k=v]... [-o DIR] [--force]\n"
+    "                                        the 2D lattice-gas automaton: pile, channel or silo (maps, CSV)\n"
     "  help                                  this text\n"
     "\n"
     "options:\n"
@@ -40,8 +48,12 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "pack")) return gf_cmd_pack(argc - 2, argv + 2);
     if (!strcmp(cmd, "config")) return gf_cmd_config(argc - 2, argv + 2);
     if (!strcmp(cmd, "bench")) return gf_cmd_bench(argc - 2, argv + 2);
+    if (!strcmp(cmd, "lga")) return gf_cmd_lga(argc - 2, argv + 2);
     if (!strcmp(cmd, "analyze") || !strcmp(cmd, "analyse")) return gf_cmd_analyze(argc - 2, argv + 2);
     if (!strcmp(cmd, "render")) return gf_cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "dem")) return gf_cmd_dem(argc - 2, argv + 2);
+    if (!strcmp(cmd, "calibrate")) return gf_cmd_calibrate(argc - 2, argv + 2);
+    if (!strcmp(cmd, "compare")) return gf_cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
         printf("granflow %s\n", gf_version());
         return GF_EXIT_OK;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "support.h"
 
+#include "granflow/granflow.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,4 +106,34 @@ int gf_test_run(int argc, char **argv, const char *suite, const struct CMUnitTes
     int rc = _cmocka_run_group_tests(suite, sel, k, NULL, NULL);
     free(sel);
     return rc;
+}
+
+bool gf_test_same_file(const char *a, const char *b)
+{
+    size_t na, nb;
+    char *x = gf_test_read_file(a, &na), *y = gf_test_read_file(b, &nb);
+    bool same = x && y && na == nb && memcmp(x, y, na) == 0;
+    free(x);
+    free(y);
+    return same;
+}
+
+gf_sim *gf_test_generated_sim(const gf_config *c)
+{
+    gf_packing pk = {0};
+    assert_int_equal(gf_packing_generate(c, &pk), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create(c, &pk, &sim), GF_OK);
+    gf_packing_free(&pk);
+    return sim;
+}
+
+gf_config gf_test_silo_config(double width, int64_t particles, uint64_t seed)
+{
+    gf_config c = gf_config_default();
+    c.container_width = width;
+    c.packing_particles = particles;
+    c.run_seed = seed;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    return c;
 }

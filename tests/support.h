@@ -6,6 +6,7 @@
 
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
@@ -29,6 +30,17 @@ const char *gf_test_write_file(const char *dir, const char *name, const char *te
 
 /// Reads a whole file into a malloc'd NUL-terminated buffer (NULL on failure).
 char *gf_test_read_file(const char *path, size_t *len);
+
+/// True when both files exist and hold the same bytes.
+bool gf_test_same_file(const char *a, const char *b);
+
+struct gf_sim;
+struct gf_config;
+/// The papers' silo config with another width, particle count and seed (validated).
+struct gf_config gf_test_silo_config(double width, int64_t particles, uint64_t seed);
+
+/// A simulation of the packing gf_packing_generate builds for `c` (asserts success).
+struct gf_sim *gf_test_generated_sim(const struct gf_config *c);
 
 /// Asserts |a - b| <= tol with a message showing both values and the tolerance.
 #define gf_assert_near(a, b, tol) gf_assert_near_((a), (b), (tol), #a, #b, __FILE__, __LINE__)

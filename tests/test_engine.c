@@ -11,25 +11,7 @@
 #include "granflow/granflow.h"
 #include "spot/sim_internal.h"
 
-static gf_config silo(double width, int64_t particles, uint64_t seed)
-{
-    gf_config c = gf_config_default();
-    c.container_width = width;
-    c.packing_particles = particles;
-    c.run_seed = seed;
-    assert_int_equal(gf_config_validate(&c), GF_OK);
-    return c;
-}
 
-static gf_sim *make_sim(const gf_config *c)
-{
-    gf_packing pk = {0};
-    assert_int_equal(gf_packing_generate(c, &pk), GF_OK);
-    gf_sim *sim = NULL;
-    assert_int_equal(gf_sim_create(c, &pk, &sim), GF_OK);
-    gf_packing_free(&pk);
-    return sim;
-}
 
 // ---- invariants over a drainage --------------------------------------------
 
@@ -67,9 +49,9 @@ static gf_status check_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
 static void drain_keeps_invariants(void **state)
 {
     (void)state;
-    gf_config c = silo(16, 2500, 3);
+    gf_config c = gf_test_silo_config(16, 2500, 3);
     c.output_snapshot_interval = 1.0;
-    gf_sim *sim = make_sim(&c);
+    gf_sim *sim = gf_test_generated_sim(&c);
     inv_ctx ic = {.worst_wall = INFINITY, .worst_pair = INFINITY};
     gf_run_hooks hooks = {.ctx = &ic, .snapshot = check_snapshot};
     // Spots reach the top (z ~ 17) after ~6 tau: 12 tau is well into steady flow.
@@ -109,7 +91,8 @@ static drift measure_drift(gf_sim *sim, size_t trials, double z0)
         }
         bool deleted;
         long ball;
-        assert_int_equal(gf_spot_step(sim, s, &deleted, &ball), GF_OK);
+        uint32_t count = 0;
+        assert_int_equal(gf_spot_step(sim, s, &count, &deleted, &ball), GF_OK);
         assert_false(deleted);
         assert_true(ball > 30);
         double d[3] = {0};
@@ -138,8 +121,8 @@ static drift measure_drift(gf_sim *sim, size_t trials, double z0)
 static void spot_move_drift_is_minus_step_over_w(void **state)
 {
     (void)state;
-    gf_config c = silo(16, 3000, 5);
-    gf_sim *sim = make_sim(&c);
+    gf_config c = gf_test_silo_config(16, 3000, 5);
+    gf_sim *sim = gf_test_generated_sim(&c);
     // spot() alone, through the random walk: E[v] = (0, 0, dz), so the ball's
     // particles drift by (0, 0, -dz / w) on average; horizontally each move
     // is +-dx / w with probability 1/4 each, so SE = dx / (w sqrt(2 n)).
@@ -198,9 +181,9 @@ static gf_status sample_ball(void *ctx, const gf_sim *sim, uint64_t index, doubl
 static void outflow_matches_mass_balance(void **state)
 {
     (void)state;
-    gf_config c = silo(16, 4000, 7);
+    gf_config c = gf_test_silo_config(16, 4000, 7);
     c.output_snapshot_interval = 1.0;
-    gf_sim *sim = make_sim(&c);
+    gf_sim *sim = gf_test_generated_sim(&c);
     // Spots reach the top (z ~ 27) after ~10 tau; measure from 11 to 21 tau.
     mb_ctx m = {.t0 = 11.0};
     gf_run_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
@@ -234,7 +217,7 @@ static void outflow_matches_mass_balance(void **state)
 
 static gf_config tiny(uint64_t seed)
 {
-    gf_config c = silo(12, 1200, seed);
+    gf_config c = gf_test_silo_config(12, 1200, seed);
     c.run_duration = 3.0;
     c.output_snapshot_interval = 0.5;
     c.run_reorder_interval = 20000; // several full re-sorts within the run, and across each resume
@@ -248,22 +231,13 @@ static void run_into(const gf_config *c, const char *dir, int resume, volatile s
     assert_int_equal(gf_run_dir(c, &o, NULL), expect);
 }
 
-static bool same_file(const char *a, const char *b)
-{
-    size_t na, nb;
-    char *x = gf_test_read_file(a, &na), *y = gf_test_read_file(b, &nb);
-    bool same = x && y && na == nb && memcmp(x, y, na) == 0;
-    free(x);
-    free(y);
-    return same;
-}
 
 static bool same_run_file(const char *d1, const char *d2, const char *name)
 {
     char a[1024], b[1024];
     snprintf(a, sizeof a, "%s/%s", d1, name);
     snprintf(b, sizeof b, "%s/%s", d2, name);
-    return same_file(a, b);
+    return gf_test_same_file(a, b);
 }
 
 static void same_seed_same_bytes(void **state)

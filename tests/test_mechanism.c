@@ -19,9 +19,9 @@ static gf_config small_box(void)
     return c;
 }
 
-static gf_sim *make_sim(const double (*pos)[3], size_t n)
+static gf_sim *make_sim_cfg(const gf_config *cfg, const double (*pos)[3], size_t n)
 {
-    gf_config c = small_box();
+    gf_config c = *cfg;
     gf_packing pk = {0};
     for (size_t i = 0; i < n; i++)
         assert_int_equal(gf_packing_push(&pk, (int64_t)i + 1, 1, pos[i][0], pos[i][1], pos[i][2], 0.5), GF_OK);
@@ -29,6 +29,12 @@ static gf_sim *make_sim(const double (*pos)[3], size_t n)
     assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
     gf_packing_free(&pk);
     return sim;
+}
+
+static gf_sim *make_sim(const double (*pos)[3], size_t n)
+{
+    gf_config c = small_box();
+    return make_sim_cfg(&c, pos, n);
 }
 
 // Position of the particle with id (index order changes when lists are built).
@@ -183,6 +189,92 @@ static void create_rejects_particle_outside(void **state)
     gf_packing_free(&pk);
 }
 
+// Sec. 3 influence weighting: a ball of 3 particles above z_min moves them by
+// u * p_bulk / max(3, 20) = u * 81.7 / 20; below z_min by u.
+static void weighting_scales_by_population(void **state)
+{
+    (void)state;
+    gf_config c = small_box();
+    c.spot_weighting = 1;
+    c.spot_weighting_zmin = 30;
+    const double pos[][3] = {{0, 0, 40}, {1, 0, 40}, {0, 1, 40}, {0, 0, 10}, {1, 0, 10}};
+    gf_sim *sim = make_sim_cfg(&c, pos, 5);
+    const double hi[3] = {0, 0, 40}, lo[3] = {0, 0, 10}, u[3] = {1e-3, -2e-3, -2.5e-4};
+    assert_int_equal(gf_spot_apply(sim, hi, u), 3);
+    gf_spot_unmark(sim);
+    assert_int_equal(gf_spot_apply(sim, lo, u), 2);
+    gf_spot_unmark(sim);
+    const double f = 81.7 / 20.0;
+    for (int id = 1; id <= 5; id++) {
+        const gf_pos *q = by_id(sim, id);
+        double k = id <= 3 ? f : 1.0;
+        gf_assert_near(q->x, pos[id - 1][0] + k * u[0], 1e-15);
+        gf_assert_near(q->z, pos[id - 1][2] + k * u[2], 1e-15);
+    }
+    gf_sim_destroy(sim);
+}
+
+// Sec. 4 reflection: spot at y = 3 beside the wall y = 4 (mirror at y = 5),
+// r_s = 2.6. A particle at y = 3.5 is within r_s of both: S = 2. One at
+// y = 1 is 4 from the mirror: S = 1. One at y = 0.3, x = 0 is 2.7 from the
+// spot: S = 0 (outside the ball, whatever the mirror).
+static void reflection_doubles_the_wall_side(void **state)
+{
+    (void)state;
+    gf_config c = small_box();
+    c.spot_walls = GF_WALLS_REFLECT;
+    const double pos[][3] = {{0, 3.4, 20}, {0, 1, 20}, {0, 0.3, 20}, {2.0, 3.4, 21}};
+    gf_sim *sim = make_sim_cfg(&c, pos, 4);
+    const double ctr[3] = {0, 3, 20}, u[3] = {0, 0, -1e-3};
+    assert_int_equal(gf_spot_apply(sim, ctr, u), 3);
+    gf_spot_unmark(sim);
+    // id 4: |(2, 0.4, 1)| = 2.27 < r_s from the spot, |(2, -1.6, 1)| = 2.75 > r_s from the mirror: S = 1.
+    const double S[4] = {2, 1, 0, 1};
+    for (int id = 1; id <= 4; id++) gf_assert_near(by_id(sim, id)->z, pos[id - 1][2] + S[id - 1] * u[2], 1e-15);
+    gf_sim_destroy(sim);
+}
+
+// Sec. 5 method 3: the whole packing relaxed at once. Two pairs far apart,
+// each overlapping by 0.1 along one axis, both move apart by alpha 0.1 / 2.
+static void global_relaxation_pushes_every_pair(void **state)
+{
+    (void)state;
+    const double pos[][3] = {{-5, 0, 10}, {-4.1, 0, 10}, {5, 0, 30}, {5, 0, 30.9}, {0, 0, 50}};
+    gf_sim *sim = make_sim(pos, 5);
+    assert_int_equal(gf_relax_global(sim), GF_OK);
+    const double h = 0.5 * 0.8 * 0.1;
+    gf_assert_near(by_id(sim, 1)->x, -5 - h, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, -4.1 + h, 1e-12);
+    gf_assert_near(by_id(sim, 3)->z, 30 - h, 1e-12);
+    gf_assert_near(by_id(sim, 4)->z, 30.9 + h, 1e-12);
+    gf_assert_near(by_id(sim, 5)->z, 50, 0);
+    assert_int_equal(gf_sim_get_stats(sim).global_relaxations, 1);
+    gf_sim_destroy(sim);
+}
+
+// Sec. 5 method 2: a spot relaxes on every k-th of its own moves.
+static void counter_method_relaxes_every_kth_move(void **state)
+{
+    (void)state;
+    gf_config c = small_box();
+    c.relax_method = GF_RELAX_COUNTER;
+    c.relax_k = 4;
+    // A 10 x 8 x 4 block of touching particles: every column under the walk is full.
+    double pos[320][3];
+    for (int i = 0; i < 320; i++) pos[i][0] = -4.5 + (i % 10), pos[i][1] = -3.5 + (i / 10 % 8), pos[i][2] = 10 + i / 80;
+    gf_sim *sim = make_sim_cfg(&c, (const double (*)[3])pos, 320);
+    double s[3] = {0, 0, 10};
+    uint32_t count = 0;
+    for (int k = 1; k <= 12; k++) {
+        bool deleted;
+        long ball;
+        assert_int_equal(gf_spot_step(sim, s, &count, &deleted, &ball), GF_OK);
+        assert_false(deleted);
+        assert_int_equal(gf_sim_get_stats(sim).relax_calls, (uint64_t)(k / 4));
+    }
+    gf_sim_destroy(sim);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(spot_moves_exactly_the_ball),
     cmocka_unit_test(relax_pair_both_inside),
@@ -193,6 +285,10 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(relax_displacements_applied_together),
     cmocka_unit_test(spot_exit_through_orifice),
     cmocka_unit_test(create_rejects_particle_outside),
+    cmocka_unit_test(weighting_scales_by_population),
+    cmocka_unit_test(reflection_doubles_the_wall_side),
+    cmocka_unit_test(global_relaxation_pushes_every_pair),
+    cmocka_unit_test(counter_method_relaxes_every_kth_move),
 };
 
 GF_TEST_MAIN("mechanism", tests)

@@ -191,11 +191,13 @@ GF_API gf_status gf_voronoi_fraction(const gf_packing *pk, double width, double 
 /// cells, the `phi_avg` column of gf_measure_voronoi (same cells, same bulk).
 /// Cells are cut as in gf_voronoi_fraction, the top at `ztop` (NaN: the
 /// highest centre with z >= 0, plus 1 d, as gf_measure_voronoi does). Bulk
-/// particles: those with a cell that neither reaches the top nor lies within
-/// 1.5 d of the local free surface. NaN for a particle outside the box or with
+/// particles: those whose centre lies more than 1.5 d below the local free
+/// surface (the highest centre within ~2 d horizontally) and whose cell does
+/// not reach the top. NaN for a particle outside the box or with
 /// no bulk particle within `radius` (a surface particle gets the value of the
-/// bulk near it). `phi_avg` has pk->n entries. GF_ERR_PARAM for a box without
-/// volume or a radius that is negative or not finite.
+/// bulk near it). `phi_avg` has pk->n entries. GF_ERR_PARAM when width, depth
+/// or ztop (unless NaN) is not a finite positive number, or radius is not a
+/// finite number >= 0.
 GF_API gf_status gf_voronoi_field(const gf_packing *pk, double width, double depth, double ztop,
                                   double radius, double *phi_avg);
 /// Volume of every Voronoi cell (same walls), for tests; NaN outside.

@@ -25,6 +25,52 @@ typedef enum gf_ball_centre {
     GF_BALL_END = 1,      ///< s + v (Ito)
 } gf_ball_centre;
 
+/// How time advances (2009 paper Sec. 2.1; SPEC 1.4).
+typedef enum gf_run_mode {
+    GF_MODE_EVENT = 0, ///< Gillespie events: one spot move or insertion at a time (the default)
+    GF_MODE_FIXED = 1, ///< steps of dt = 1/mu: Poisson(lambda/mu) insertions, then every spot moves once
+} gf_run_mode;
+
+/// Order of the spot moves within a fixed step.
+typedef enum gf_run_order {
+    GF_ORDER_RANDOM = 0, ///< a fresh random permutation every step (method a)
+    GF_ORDER_NEWEST = 1, ///< newest spots first (method b)
+} gf_run_order;
+
+/// What a spot does at a side wall (2009 paper Sec. 4).
+typedef enum gf_spot_walls {
+    GF_WALLS_TRUNCATE = 0, ///< the walk is truncated spot.wall_distance from the wall
+    GF_WALLS_REFLECT = 1,  ///< d_w = 0 and the ball's part beyond a wall is reflected back
+} gf_spot_walls;
+
+/// How often relax() runs (2009 paper Sec. 5; SPEC 1.5).
+typedef enum gf_relax_method {
+    GF_RELAX_FULL = 0,    ///< after every spot move
+    GF_RELAX_NONE = 1,    ///< never
+    GF_RELAX_RANDOM = 2,  ///< method 1: after a move with probability 1/k
+    GF_RELAX_COUNTER = 3, ///< method 2: each spot relaxes on every k-th of its own moves
+    GF_RELAX_GLOBAL = 4,  ///< method 3: the whole packing every k/mu
+} gf_relax_method;
+
+/// Which of the LGA paper's three problems `granflow lga` sets up (Sec. 3).
+typedef enum gf_lga_scenario {
+    GF_LGA_PILE = 0,    ///< a heap on a floor from particles added at the top (Sec. 3.1)
+    GF_LGA_CHANNEL = 1, ///< a vertical channel, periodic top and bottom (Sec. 3.2)
+    GF_LGA_SILO = 2,    ///< a parallel silo over a converging hopper, run until empty (Sec. 3.3)
+} gf_lga_scenario;
+
+/// The LGA silo's flow type: picks the default hopper angle.
+typedef enum gf_lga_flow {
+    GF_LGA_MASS = 0,   ///< steep hopper: the whole fill moves (Fig. 7a)
+    GF_LGA_FUNNEL = 1, ///< shallow hopper: a central channel, stagnant zones at the walls (Fig. 7b)
+} gf_lga_flow;
+
+/// How `granflow dem` fills the container before the drainage (SPEC 1.8).
+typedef enum gf_dem_fill {
+    GF_DEM_POUR = 0,     ///< LAMMPS fix pour: particles rain in from above the fill height (the thesis' way)
+    GF_DEM_GENERATE = 1, ///< granflow's packing (packing.file, else the generator), settled under gravity by LAMMPS
+} gf_dem_fill;
+
 #define GF_PATH_MAX 1024
 
 /// The whole configuration. Make it with gf_config_default(), then change
@@ -43,6 +89,7 @@ typedef struct gf_config {
     double packing_fill_height;        ///< if > 0: generate enough to fill to this height instead, d
     char packing_file[GF_PATH_MAX];    ///< import this packing instead of generating (LAMMPS dump, .xyz, .csv)
     double packing_layer_thickness;    ///< thickness of the colour bands tagging initial layers, d; default 10
+    char packing_types[GF_PATH_MAX];   ///< atom types to import from a LAMMPS dump, "1,3" (empty: all)
 
     // [spot] the five fitted parameters and the walk (2009 paper Fig. 2)
     double spot_radius;                ///< r_s, d; default 2.6
@@ -54,19 +101,60 @@ typedef struct gf_config {
     double spot_wall_distance;         ///< d_w: closest approach of a spot centre to a side wall, d; default 1
     gf_ball_centre spot_ball_centre;   ///< midpoint (default) or end
     double spot_insertion_margin;      ///< spots are born at least this far inside the orifice edge; default r_s
+    double spot_bias_exponent;         ///< beta of the biased walk (Sec. 3); 0 = unbiased (default)
+    int spot_weighting;                ///< influence weighting on/off (Sec. 3); default off
+    double spot_weighting_min_count;   ///< p below this counts as this many; default 20
+    double spot_weighting_zmin;        ///< no weighting for balls centred below this height, d; default 30
+    double spot_weighting_bulk_count;  ///< p_bulk, the bulk population of a ball; default 81.7
+    gf_spot_walls spot_walls;          ///< truncate (default) or reflect
 
     // [relax] elastic relaxation (SPEC 1.3)
     double relax_alpha;                ///< fraction of an overlap removed per relaxation; default 0.8
     double relax_radius;               ///< r_e, d; default r_s + 1
+    gf_relax_method relax_method;      ///< full (default), none, random, counter, global
+    double relax_k;                    ///< the reduction factor k of the infrequent methods; default 10
 
     // [run]
     double run_duration;               ///< simulated time to reach, tau; default 60
     uint64_t run_seed;                 ///< seed of every random stream; default 1
     double run_checkpoint_interval;    ///< checkpoint every this many tau (0: only on stop/end); default 0
     int64_t run_reorder_interval;      ///< events between full re-sorts of particle memory; default 1000000
+    gf_run_mode run_mode;              ///< event (default) or fixed
+    gf_run_order run_order;            ///< fixed mode: random (default) or newest first
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
+
+    // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:
+    // nearest-neighbour distance 1 (one particle diameter), time in iterations.
+    gf_lga_scenario lga_scenario;      ///< pile, channel or silo (default)
+    gf_lga_flow lga_silo_flow;         ///< silo: mass (default, steep hopper) or funnel (shallow hopper)
+    double lga_p;                      ///< collision parameter p (particles brought to rest); default 0.2
+    double lga_q;                      ///< collision parameter q (particles sent in random directions); default 0.2
+    double lga_g;                      ///< gravity g: probability of adding v4 (down) per collision; default 0.2
+    double lga_h;                      ///< gravity h: probability a resting particle drops to an empty site below; default 0.05
+    double lga_k;                      ///< friction k: probability the outgoing momentum is made horizontal; default 0.05
+    double lga_b;                      ///< wall roughness b: probability a particle hitting a wall stops; default 0.05
+    int64_t lga_iterations;            ///< iterations to run; 0 (default): the scenario's own end
+    int64_t lga_width;                 ///< lattice columns (silo: of the parallel part); 0 (default): the scenario's
+    int64_t lga_height;                ///< lattice rows (silo: of the parallel part); 0 (default): the scenario's
+    int64_t lga_particles;             ///< particles (pile: to add; channel: initial; silo: fill); 0 (default): the scenario's
+    double lga_feed_rate;              ///< pile: particles added per iteration at the top; default 8
+    double lga_hopper_angle;           ///< silo: hopper wall angle from the vertical, degrees; NaN = auto (by silo_flow)
+    double lga_outlet_width;           ///< silo: outlet width, d; default 16
+    int64_t lga_snapshot_interval;     ///< density map every this many iterations; default 60
+
+    // [dem] the LAMMPS run of `granflow dem` (SPEC 1.8): units lj, d = m = g = 1
+    double dem_friction;               ///< Coulomb friction of particle-particle and particle-wall contacts; default 0.5
+    double dem_kn;                     ///< Hertzian normal stiffness k_n, m g / d; default 2e5
+    double dem_kt;                     ///< tangential stiffness k_t, m g / d; NaN = auto (2/7 k_n)
+    double dem_gamman;                 ///< normal damping gamma_n, 1/tau; default 50
+    double dem_gammat;                 ///< tangential damping gamma_t, 1/tau; NaN = auto (gamma_n / 2)
+    double dem_timestep;               ///< integration step, tau; default 1e-4
+    gf_dem_fill dem_fill_method;       ///< pour (default) or generate
+    double dem_settle_time;            ///< longest settling after the fill, tau; default 20
+    double dem_settle_ke;              ///< settling ends when the kinetic energy per particle falls below this, m g d; default 1e-6
+    int64_t dem_mpi_ranks;             ///< MPI ranks for --run (mpirun -np N); 0 (default): one per core
 
     uint32_t cookie_; ///< private: marks a config made by gf_config_default()
 } gf_config;

@@ -4,6 +4,8 @@
 #define GRANFLOW_H
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/dem.h"
+#include "granflow/lga.h"
 #include "granflow/packing.h"
 #include "granflow/render.h"
 #include "granflow/run.h"

@@ -54,6 +54,32 @@ GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
 /// positive); files without ids get 1..N in file order. Missing radii = 0.5.
 GF_API gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out);
 
+/// Most atom types `packing.types` may list.
+#define GF_PACKING_MAXTYPES 16
+
+/// Parses a `packing.types` list: integers >= 1 separated by commas and/or
+/// spaces, e.g. "1" or "1, 3". Empty text (or only spaces) means every type:
+/// *n = 0. GF_ERR_PARAM naming the bad item, or when more than `max` are given.
+GF_API gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t max, size_t *n);
+
+/// What gf_packing_import read and dropped.
+typedef struct gf_packing_import_report {
+    size_t read;        ///< particles in the frame read
+    size_t other_types; ///< dropped: atom type not in packing.types
+    size_t below_base;  ///< dropped: centre below container.exit_z (already exited, e.g. a DEM
+                        ///< packing's particles falling through the orifice)
+} gf_packing_import_report;
+
+/// Imports `packing.file` as the initial packing of a run (SPEC 1.2, 1.8):
+/// reads it (the last frame of a multi-frame LAMMPS dump), keeps only the atom
+/// types of `packing.types` (a LAMMPS dump with a `type` column; empty: all;
+/// a DEM floor of frozen particles is typically another type), drops every
+/// particle whose centre lies below `container.exit_z` (counted as already
+/// exited), and tags the layers by height. `rep` (may be NULL) gets the counts.
+/// GF_ERR_PARAM when packing.types is set and the file has no type column,
+/// or when no particle is left.
+GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
+
 /// Writes a packing (LAMMPS dump with `id type x y z radius`, XYZ or CSV) atomically.
 GF_API gf_status gf_packing_write(const gf_packing *p, const char *path, gf_packing_format format,
                                   const gf_config *cfg);

@@ -16,12 +16,13 @@ extern "C" {
 
 /// What a progress callback sees.
 typedef struct gf_run_progress {
-    const char *phase;      ///< "packing" (building), "reading" (importing), "running" or "done"
+    const char *phase;      ///< "packing" (building), "reading" (importing), "imported", "running" or "done"
     double time, until;     ///< simulated time and the run's end, tau
     double start;           ///< simulated time when this invocation started (0, or where a resume began)
     size_t initial, remaining; ///< particles at t = 0 and now
     double steps_per_second;   ///< spot moves per wall second, this invocation
     double wall_seconds;       ///< wall time of this invocation so far
+    const char *note;          ///< phase "imported": what the import of packing.file kept and dropped
 } gf_run_progress;
 
 /// Options of gf_run_dir.

@@ -29,11 +29,12 @@ typedef struct gf_sim_stats {
     uint64_t spots_inserted;     ///< spots born at the orifice
     uint64_t spots_deleted;      ///< spots removed at the top of the packing
     uint64_t spot_moves;         ///< spot() calls (moves that displaced particles)
-    uint64_t relax_calls;        ///< relax() calls
-    uint64_t events;             ///< Gillespie events (insertions + moves + deletions)
+    uint64_t relax_calls;        ///< relax() calls (local ones)
+    uint64_t global_relaxations; ///< relaxations of the whole packing (relax.method = global)
+    uint64_t events;             ///< Gillespie events (insertions + moves), or fixed steps
     uint64_t nlist_builds;       ///< neighbour-list rebuilds
     double spot_seconds;         ///< wall time inside spot(), when timing is on
-    double relax_seconds;        ///< wall time inside relax(), when timing is on
+    double relax_seconds;        ///< wall time inside relax(), local and global: t_relax (always measured)
     double spot_dz;              ///< sum of the z displacements spot() gave particles, d
     double relax_dz;             ///< sum of the z displacements relax() gave particles, d
 } gf_sim_stats;
@@ -51,7 +52,7 @@ typedef struct gf_run_hooks {
     gf_status (*snapshot)(void *ctx, const gf_sim *sim, uint64_t index, double time);
     /// Every run.checkpoint_interval tau (when > 0).
     gf_status (*checkpoint)(void *ctx, const gf_sim *sim);
-    /// Every `progress_every` events.
+    /// Every `progress_every` events (fixed mode: spot moves).
     void (*progress)(void *ctx, const gf_sim *sim);
     uint64_t progress_every;
     /// When *stop becomes non-zero the run returns GF_ERR_INTERRUPTED at the

@@ -103,6 +103,12 @@ gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
         const gf_opt_key *d = &gf_opt_keys[k];
         if (strlen(d->key) != klen || strncmp(d->key, assignment, klen) != 0) continue;
         char *field = (char *)o + d->off;
+        // The window ends may go back to their automatic values.
+        if (d->kind == GF_OPT_REAL && (d->off == offsetof(gf_analysis_opts, t0) || d->off == offsetof(gf_analysis_opts, t1)) &&
+            !strcmp(val, "auto")) {
+            *(double *)(void *)field = NAN;
+            return GF_OK;
+        }
         if (d->kind == GF_OPT_REAL) return gf_opt_number(d->key, val, d->lo, d->hi, (double *)(void *)field);
         if (d->kind == GF_OPT_COUNT) {
             double x;

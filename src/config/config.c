@@ -2,6 +2,7 @@
 // gf_config: defaults from the key table, INI loading (libinih), `section.key=value`
 // overrides, cross-key validation, and writing the effective values back out.
 #include "granflow/config.h"
+#include "granflow/packing.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -284,6 +285,8 @@ gf_status gf_config_validate(gf_config *cfg)
     }
     if (isnan(cfg->spot_insertion_margin)) cfg->spot_insertion_margin = cfg->spot_radius;
     if (isnan(cfg->relax_radius)) cfg->relax_radius = cfg->spot_radius + 1.0;
+    if (isnan(cfg->dem_kt)) cfg->dem_kt = 2.0 / 7.0 * cfg->dem_kn;
+    if (isnan(cfg->dem_gammat)) cfg->dem_gammat = 0.5 * cfg->dem_gamman;
 
     char a[32], b[32];
     if (!(cfg->orifice_diameter < cfg->container_width)) {
@@ -307,6 +310,23 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_keys_format_double(cfg->spot_radius, b, sizeof b);
         return gf_error_set(GF_ERR_PARAM, "relax.radius = %s must be at least spot.radius = %s", a,
                             b);
+    }
+    size_t ntypes;
+    int32_t types[GF_PACKING_MAXTYPES];
+    if (gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes) != GF_OK) {
+        char why[256];
+        snprintf(why, sizeof why, "%s", gf_last_error());
+        return gf_error_set(GF_ERR_PARAM, "packing.types = %s: %s", cfg->packing_types, why);
+    }
+    // A Hooke contact of stiffness k_n between two unit masses lasts pi / sqrt(2 k_n)
+    // tau; a Hertzian one is softer, so a fifth of that bounds the step safely.
+    double dt_max = 0.2 * 3.14159265358979323846 / sqrt(2.0 * cfg->dem_kn);
+    if (!(cfg->dem_timestep <= dt_max)) {
+        gf_keys_format_double(cfg->dem_timestep, a, sizeof a);
+        snprintf(b, sizeof b, "%.3g", dt_max);
+        return gf_error_set(GF_ERR_PARAM,
+                            "dem.timestep = %s is too long for dem.kn: at most 0.2 pi / sqrt(2 kn) = %s tau",
+                            a, b);
     }
     return GF_OK;
 }

@@ -11,9 +11,23 @@
 
 _Static_assert(sizeof(gf_orifice_shape) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_ball_centre) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_lga_scenario) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_lga_flow) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_dem_fill) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == sizeof(int) &&
+                   sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int),
+               "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
 static const char *const gf_keys_ball_names[] = {"midpoint", "end", NULL};
+static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
+static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
+static const char *const gf_keys_lga_flow_names[] = {"mass", "funnel", NULL};
+static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
+static const char *const gf_keys_order_names[] = {"random", "newest", NULL};
+static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
+static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
+static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
 #define GF_OFF(field) offsetof(gf_config, field)
 // Ranges: (0, inf), [0, inf), (-inf, inf).
@@ -44,6 +58,8 @@ const gf_key gf_keys[] = {
      .doc = "packing to import (LAMMPS dump, .xyz, .csv) instead of generating (empty: generate)"},
     {"packing", "layer_thickness", GF_KEY_DOUBLE, GF_OFF(packing_layer_thickness), GF_POSITIVE,
      .def = "10", .unit = "d", .doc = "thickness of the colour bands tagging initial layers"},
+    {"packing", "types", GF_KEY_PATH, GF_OFF(packing_types), .def = "", .unit = "",
+     .doc = "atom types to keep when importing a LAMMPS dump, e.g. 1 or 1,3 (empty: all)"},
 
     {"spot", "radius", GF_KEY_DOUBLE, GF_OFF(spot_radius), .min = 0, .max = 20, .min_open = true,
      .def = "2.6", .unit = "d", .doc = "spot radius r_s"},
@@ -65,11 +81,27 @@ const gf_key gf_keys[] = {
     {"spot", "insertion_margin", GF_KEY_AUTO, GF_OFF(spot_insertion_margin), GF_NONNEG,
      .def = "auto", .unit = "d",
      .doc = "spots are born at least this far inside the orifice edge (auto: spot.radius)"},
+    {"spot", "bias_exponent", GF_KEY_DOUBLE, GF_OFF(spot_bias_exponent), .min = 0, .max = 20, .def = "0",
+     .unit = "", .doc = "beta: the walk picks candidate i with probability p_i^beta / sum p_j^beta (0: unbiased)"},
+    {"spot", "weighting", GF_KEY_ENUM, GF_OFF(spot_weighting), .names = gf_keys_onoff_names, .def = "off",
+     .unit = "", .doc = "influence weighting: displacement scaled by bulk_count / max(p, min_count)"},
+    {"spot", "weighting_min_count", GF_KEY_DOUBLE, GF_OFF(spot_weighting_min_count), GF_POSITIVE,
+     .def = "20", .unit = "particles", .doc = "influence weighting: smaller ball populations count as this"},
+    {"spot", "weighting_zmin", GF_KEY_DOUBLE, GF_OFF(spot_weighting_zmin), GF_ANYREAL, .def = "30",
+     .unit = "d", .doc = "influence weighting is off for balls centred below this height"},
+    {"spot", "weighting_bulk_count", GF_KEY_DOUBLE, GF_OFF(spot_weighting_bulk_count), GF_POSITIVE,
+     .def = "81.7", .unit = "particles", .doc = "influence weighting: p_bulk, the population of a ball in the bulk"},
+    {"spot", "walls", GF_KEY_ENUM, GF_OFF(spot_walls), .names = gf_keys_walls_names, .def = "truncate",
+     .unit = "", .doc = "truncate the walk at wall_distance, or reflect (d_w = 0, ball reflected at the walls)"},
 
     {"relax", "alpha", GF_KEY_DOUBLE, GF_OFF(relax_alpha), .min = 0, .max = 1, .min_open = true,
      .def = "0.8", .unit = "", .doc = "fraction of an overlap removed per relaxation"},
     {"relax", "radius", GF_KEY_AUTO, GF_OFF(relax_radius), GF_POSITIVE, .def = "auto", .unit = "d",
      .doc = "elastic relaxation radius r_e, must be >= spot.radius (auto: spot.radius + 1)"},
+    {"relax", "method", GF_KEY_ENUM, GF_OFF(relax_method), .names = gf_keys_relax_names, .def = "full",
+     .unit = "", .doc = "full, none, random (probability 1/k), counter (every k-th move of a spot), global (all every k/mu)"},
+    {"relax", "k", GF_KEY_DOUBLE, GF_OFF(relax_k), .min = 1, .max = 1e9, .def = "10", .unit = "",
+     .doc = "reduction factor k of the random, counter and global methods"},
 
     {"run", "duration", GF_KEY_DOUBLE, GF_OFF(run_duration), GF_POSITIVE, .def = "60",
      .unit = "tau", .doc = "simulated time to reach"},
@@ -81,9 +113,74 @@ const gf_key gf_keys[] = {
     {"run", "reorder_interval", GF_KEY_INT64, GF_OFF(run_reorder_interval), .min = 1, .max = 1e12,
      .def = "1000000", .unit = "events",
      .doc = "events between full re-sorts of particles in memory (speed only; changes the last bits)"},
+    {"run", "mode", GF_KEY_ENUM, GF_OFF(run_mode), .names = gf_keys_mode_names, .def = "event", .unit = "",
+     .doc = "event (Gillespie) or fixed (steps of 1/mu: Poisson(lambda/mu) insertions, every spot moves once)"},
+    {"run", "order", GF_KEY_ENUM, GF_OFF(run_order), .names = gf_keys_order_names, .def = "random",
+     .unit = "", .doc = "fixed mode: order of the moves in a step, random or newest first"},
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long"},
+
+    {"lga", "scenario", GF_KEY_ENUM, GF_OFF(lga_scenario), .names = gf_keys_lga_scenario_names,
+     .def = "silo", .unit = "",
+     .doc = "LGA problem: pile (heap from particles added at the top), channel (vertical, periodic), "
+            "silo (parallel part over a hopper, run until empty)"},
+    {"lga", "silo_flow", GF_KEY_ENUM, GF_OFF(lga_silo_flow), .names = gf_keys_lga_flow_names,
+     .def = "mass", .unit = "",
+     .doc = "silo type: mass (steep hopper) or funnel (shallow hopper); sets the auto hopper_angle"},
+    {"lga", "p", GF_KEY_DOUBLE, GF_OFF(lga_p), .min = 0, .max = 1, .def = "0.2", .unit = "",
+     .doc = "collision parameter p: n particles come to rest with probability p^n (1 - p)"},
+    {"lga", "q", GF_KEY_DOUBLE, GF_OFF(lga_q), .min = 0, .max = 1, .def = "0.2", .unit = "",
+     .doc = "collision parameter q: l particles leave in random directions with probability q^l (1 - q)"},
+    {"lga", "g", GF_KEY_DOUBLE, GF_OFF(lga_g), .min = 0, .max = 1, .def = "0.2", .unit = "",
+     .doc = "gravity g: probability that the downward velocity v4 is added at a collision"},
+    {"lga", "h", GF_KEY_DOUBLE, GF_OFF(lga_h), .min = 0, .max = 1, .def = "0.05", .unit = "",
+     .doc = "gravity h: probability per iteration that a resting particle drops to an empty site below"},
+    {"lga", "k", GF_KEY_DOUBLE, GF_OFF(lga_k), .min = 0, .max = 1, .def = "0.05", .unit = "",
+     .doc = "friction k: probability that the outgoing momentum is replaced by random horizontal-ish velocities"},
+    {"lga", "b", GF_KEY_DOUBLE, GF_OFF(lga_b), .min = 0, .max = 1, .def = "0.05", .unit = "",
+     .doc = "wall roughness b: probability that a particle hitting a wall stops"},
+    {"lga", "iterations", GF_KEY_INT64, GF_OFF(lga_iterations), .min = 0, .max = 1e9, .def = "0",
+     .unit = "iterations",
+     .doc = "iterations to run (0: the scenario's end: pile settled, channel 2160, silo empty or stalled)"},
+    {"lga", "width", GF_KEY_INT64, GF_OFF(lga_width), .min = 0, .max = 100000, .def = "0",
+     .unit = "sites", .doc = "lattice columns; silo: of the parallel part (0: the scenario's default)"},
+    {"lga", "height", GF_KEY_INT64, GF_OFF(lga_height), .min = 0, .max = 100000, .def = "0",
+     .unit = "sites", .doc = "lattice rows; silo: of the parallel part (0: the scenario's default)"},
+    {"lga", "particles", GF_KEY_INT64, GF_OFF(lga_particles), .min = 0, .max = 1e9, .def = "0",
+     .unit = "",
+     .doc = "pile: particles to add; channel: initial particles; silo: fill from the bottom (0: the scenario's default)"},
+    {"lga", "feed_rate", GF_KEY_DOUBLE, GF_OFF(lga_feed_rate), .min = 0, .max = 1000, .min_open = true,
+     .def = "8", .unit = "1/iteration", .doc = "pile: particles added at the top per iteration"},
+    {"lga", "hopper_angle", GF_KEY_AUTO, GF_OFF(lga_hopper_angle), .min = 0, .max = 80,
+     .min_open = true, .def = "auto", .unit = "degrees",
+     .doc = "silo: hopper wall angle from the vertical (auto: by silo_flow)"},
+    {"lga", "outlet_width", GF_KEY_DOUBLE, GF_OFF(lga_outlet_width), .min = 1, .max = INFINITY,
+     .def = "16", .unit = "d", .doc = "silo: width of the outlet at the bottom of the hopper"},
+    {"lga", "snapshot_interval", GF_KEY_INT64, GF_OFF(lga_snapshot_interval), .min = 1, .max = 1e9,
+     .def = "60", .unit = "iterations", .doc = "draw a density map every this many iterations"},
+
+    {"dem", "friction", GF_KEY_DOUBLE, GF_OFF(dem_friction), .min = 0, .max = 10, .def = "0.5", .unit = "",
+     .doc = "Coulomb friction coefficient of every contact, particles and walls (the papers' 0.5)"},
+    {"dem", "kn", GF_KEY_DOUBLE, GF_OFF(dem_kn), GF_POSITIVE, .def = "200000", .unit = "m g/d",
+     .doc = "Hertzian normal stiffness k_n of pair_style gran/hertz/history"},
+    {"dem", "kt", GF_KEY_AUTO, GF_OFF(dem_kt), GF_NONNEG, .def = "auto", .unit = "m g/d",
+     .doc = "tangential stiffness k_t (auto: 2/7 k_n)"},
+    {"dem", "gamman", GF_KEY_DOUBLE, GF_OFF(dem_gamman), GF_NONNEG, .def = "50", .unit = "1/tau",
+     .doc = "normal damping gamma_n"},
+    {"dem", "gammat", GF_KEY_AUTO, GF_OFF(dem_gammat), GF_NONNEG, .def = "auto", .unit = "1/tau",
+     .doc = "tangential damping gamma_t (auto: gamma_n / 2)"},
+    {"dem", "timestep", GF_KEY_DOUBLE, GF_OFF(dem_timestep), .min = 0, .max = 0.01, .min_open = true,
+     .def = "0.0001", .unit = "tau", .doc = "LAMMPS integration step, at most a tenth of the contact time"},
+    {"dem", "fill_method", GF_KEY_ENUM, GF_OFF(dem_fill_method), .names = gf_keys_dem_fill_names,
+     .def = "pour", .unit = "",
+     .doc = "pour (fix pour from above the fill) or generate (granflow's packing settled under gravity)"},
+    {"dem", "settle_time", GF_KEY_DOUBLE, GF_OFF(dem_settle_time), GF_POSITIVE, .def = "20", .unit = "tau",
+     .doc = "longest settling after the fill before the orifice opens"},
+    {"dem", "settle_ke", GF_KEY_DOUBLE, GF_OFF(dem_settle_ke), GF_NONNEG, .def = "1e-06", .unit = "m g d",
+     .doc = "settling stops early once the kinetic energy per particle is below this (0: never)"},
+    {"dem", "mpi_ranks", GF_KEY_INT64, GF_OFF(dem_mpi_ranks), .min = 0, .max = 4096, .def = "0", .unit = "",
+     .doc = "MPI ranks of granflow dem --run (1: lmp without mpirun; 0: one per core)"},
 };
 
 const size_t gf_keys_count = sizeof gf_keys / sizeof gf_keys[0];

@@ -49,6 +49,14 @@ static inline uint32_t gf_grid_cell(const gf_grid *g, double x, double y, double
     return (uint32_t)((cz * g->ny + cy) * g->nx + cx);
 }
 
+/// The particles of cell (cx, cy, cz): *n of them from the returned slots.
+static inline const uint32_t *gf_grid_slots(const gf_grid *g, int cx, int cy, int cz, uint32_t *n)
+{
+    size_t cell = ((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx;
+    *n = g->count[cell];
+    return g->slot + cell * GF_CELL_CAP;
+}
+
 /// Puts particle i into cell c. GF_ERR_STATE when the cell is full.
 gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c);
 /// Takes particle i out of its cell (no-op when it is in none).

@@ -139,6 +139,7 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
             s.spots_inserted, s.spots_deleted, s.spots_active);
     fprintf(f, "  \"spot_moves\": %" PRIu64 ",\n  \"relax_calls\": %" PRIu64 ",\n  \"events\": %" PRIu64 ",\n",
             s.spot_moves, s.relax_calls, s.events);
+    fprintf(f, "  \"global_relaxations\": %" PRIu64 ",\n  \"t_relax\": %.3f,\n", s.global_relaxations, s.relax_seconds);
     fprintf(f, "  \"neighbour_list_builds\": %" PRIu64 ",\n", s.nlist_builds);
     fprintf(f, "  \"simulated_time\": %.9g,\n  \"wall_seconds\": %.3f,\n  \"steps_per_second\": %.1f\n}\n", s.time,
             wall, sps);
@@ -163,18 +164,24 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
     gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
-                         wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall};
+                         wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
 }
 
-static gf_status gf_make_packing(const gf_config *cfg, gf_packing *pk)
+static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
-    gf_status st;
-    if (cfg->packing_file[0]) {
-        st = gf_packing_read(cfg->packing_file, GF_FORMAT_AUTO, pk);
-        if (st == GF_OK) gf_packing_tag_layers(pk, cfg->packing_layer_thickness);
-    } else {
-        st = gf_packing_generate(cfg, pk);
+    if (!cfg->packing_file[0]) return gf_packing_generate(cfg, pk);
+    // A DEM packing may hold other atom types (a frozen floor) and particles
+    // already falling through the orifice: dropped, and said so.
+    gf_packing_import_report rep;
+    gf_status st = gf_packing_import(cfg, pk, &rep);
+    if (st == GF_OK && opts->progress) {
+        char note[GF_PATH_MAX + 256];
+        snprintf(note, sizeof note,
+                 "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types dropped)",
+                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types);
+        gf_run_progress p = {.phase = "imported", .until = cfg->run_duration, .initial = pk->n, .note = note};
+        opts->progress(opts->ctx, &p);
     }
     return st;
 }
@@ -205,11 +212,11 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                               cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0};
+            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0, NULL};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
-        st = gf_make_packing(&cfg, &pk);
+        st = gf_make_packing(&cfg, opts, &pk);
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }
@@ -246,7 +253,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_clock_now() - rd.wall0;
             gf_run_progress p = {"done", s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
-                                 wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall};
+                                 wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
             opts->progress(opts->ctx, &p);
         }
     }

@@ -15,7 +15,7 @@
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
-#define GF_CKPT_VERSION 1u
+#define GF_CKPT_VERSION 2u
 #define GF_CKPT_BOM 0x01020304u
 
 typedef struct gf_buf {
@@ -116,6 +116,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     GF_PUT(&b, sim->grid_ztop);
     GF_PUT(&b, sim->next_birth);
     GF_PUT(&b, sim->nl_built_at);
+    GF_PUT(&b, sim->fstep);
     gf_put(&b, sim->p, sizeof(gf_pos) * sim->n);
     gf_put(&b, sim->p0, sizeof(gf_pos) * sim->n);
     gf_put(&b, sim->id, sizeof(int64_t) * sim->n);
@@ -125,6 +126,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     gf_put(&b, sim->sy, sizeof(double) * sim->ns);
     gf_put(&b, sim->sz, sizeof(double) * sim->ns);
     gf_put(&b, sim->sbirth, sizeof(uint64_t) * sim->ns);
+    gf_put(&b, sim->scount, sizeof(uint32_t) * sim->ns);
     gf_put(&b, sim->exits, sizeof(gf_exit) * sim->nexit);
     uint64_t ncell = sim->grid.ncell;
     GF_PUT(&b, ncell);
@@ -292,6 +294,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     GF_GET(&r, sim->grid_ztop);
     GF_GET(&r, sim->next_birth);
     GF_GET(&r, sim->nl_built_at);
+    GF_GET(&r, sim->fstep);
     sim->pending = pending;
     uint64_t n = counts[0];
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
@@ -307,7 +310,8 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     sim->sy = GF_NEW(double, sim->ns_cap);
     sim->sz = GF_NEW(double, sim->ns_cap);
     sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
-    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth))
+    sim->scount = GF_NEW(uint32_t, sim->ns_cap);
+    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount))
         return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     gf_get(&r, sim->p, sizeof(gf_pos) * n);
     gf_get(&r, sim->p0, sizeof(gf_pos) * n);
@@ -318,6 +322,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     gf_get(&r, sim->sy, sizeof(double) * sim->ns);
     gf_get(&r, sim->sz, sizeof(double) * sim->ns);
     gf_get(&r, sim->sbirth, sizeof(uint64_t) * sim->ns);
+    gf_get(&r, sim->scount, sizeof(uint32_t) * sim->ns);
     gf_get(&r, sim->exits, sizeof(gf_exit) * sim->nexit);
     size_t live = 0;
     for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;

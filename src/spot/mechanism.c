@@ -3,6 +3,7 @@
 // Sec. 3.4; SPEC 1.3). These are the hot loops of the whole program.
 #include <math.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
 
@@ -84,25 +85,67 @@ gf_status gf_spot_unmark(gf_sim *sim)
     return gf_sim_track_moves(sim, sim->scratch_used, sim->in_ball);
 }
 
-long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3])
+// Mirror images of c in the side walls its ball crosses (2009 paper Sec. 4,
+// the reflection procedure). Returns their number (0 to 4).
+static int gf_wall_mirrors(const gf_sim *sim, const double c[3], double m[4][3])
+{
+    const gf_container *b = &sim->box;
+    const double rs = sim->rs;
+    int n = 0;
+    const double walls[4] = {b->xlo, b->xhi, b->ylo, b->yhi};
+    for (int w = 0; w < 4; w++) {
+        int axis = w / 2;
+        if (fabs(c[axis] - walls[w]) >= rs) continue;
+        m[n][0] = c[0];
+        m[n][1] = c[1];
+        m[n][2] = c[2];
+        m[n][axis] = 2.0 * walls[w] - c[axis];
+        n++;
+    }
+    return n;
+}
+
+long gf_spot_apply(gf_sim *sim, const double c[3], const double u0[3])
 {
     size_t m = gf_gather(sim, c);
     long moved = 0;
     gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
     uint32_t *restrict inside = sim->inside;
     uint8_t *restrict in_ball = sim->in_ball;
-    // SPEC 1.3 spot(c, u, r_s): every particle within r_s of c moves by u.
+    const gf_config *cfg = &sim->cfg;
+    double u[3] = {u0[0], u0[1], u0[2]};
+    // Sec. 3 influence weighting: the spot's free volume is shared by the p
+    // particles it reaches (at least min_count of them), off low in the silo.
+    if (cfg->spot_weighting && c[2] >= cfg->spot_weighting_zmin) {
+        size_t p_ball = 0;
+        for (size_t k = 0; k < m; k++) p_ball += in_ball[k];
+        double f = cfg->spot_weighting_bulk_count / fmax((double)p_ball, cfg->spot_weighting_min_count);
+        u[0] *= f;
+        u[1] *= f;
+        u[2] *= f;
+    }
+    double mir[4][3];
+    int nmir = cfg->spot_walls == GF_WALLS_REFLECT ? gf_wall_mirrors(sim, c, mir) : 0;
+    // SPEC 1.3 spot(c, u, r_s): every particle within r_s of c moves by u
+    // (times S(x) = 1 + the mirrored balls that also reach it, Sec. 4).
     // Particles that fall out leave the inside list, which relax() then uses
     // as it is; in_ball stays aligned with it (it marks the moved ones, whose
     // cells and lists are brought up to date after relax(): gf_sim_track_moves).
     size_t keep = 0;
+    double weight = 0.0;
     for (size_t k = 0; k < m; k++) {
         uint32_t i = inside[k];
         uint8_t b = in_ball[k];
         if (b) {
-            p[i].x += u[0];
-            p[i].y += u[1];
-            p[i].z += u[2];
+            double sx = 1.0;
+            for (int w = 0; w < nmir; w++) {
+                double dx = p[i].x - mir[w][0], dy = p[i].y - mir[w][1], dz = p[i].z - mir[w][2];
+                sx += dx * dx + dy * dy + dz * dz < sim->rs2;
+            }
+            p[i].x += sx * u[0];
+            p[i].y += sx * u[1];
+            p[i].z += sx * u[2];
+            weight += sx;
             moved++;
             if (gf_sim_exit_check(sim, i)) continue;
         }
@@ -111,8 +154,29 @@ long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3])
         keep++;
     }
     gf_mark_inside(sim, keep);
-    sim->st.spot_dz += (double)moved * u[2];
+    sim->st.spot_dz += weight * u[2];
     return moved;
+}
+
+size_t gf_ball_count(const gf_sim *sim, const double c[3], double r)
+{
+    const gf_grid *g = &sim->grid;
+    const gf_pos *restrict p = sim->p;
+    const double r2 = r * r;
+    int lo[3], hi[3];
+    gf_grid_range(g, c, r, lo, hi);
+    size_t n = 0;
+    for (int cz = lo[2]; cz <= hi[2]; cz++)
+        for (int cy = lo[1]; cy <= hi[1]; cy++)
+            for (int cx = lo[0]; cx <= hi[0]; cx++) {
+                uint32_t cnt;
+                const uint32_t *s = gf_grid_slots(g, cx, cy, cz, &cnt);
+                for (uint32_t k = 0; k < cnt; k++) {
+                    double dx = p[s[k]].x - c[0], dy = p[s[k]].y - c[1], dz = p[s[k]].z - c[2];
+                    n += dx * dx + dy * dy + dz * dz < r2;
+                }
+            }
+    return n;
 }
 
 gf_status gf_relax_apply(gf_sim *sim, const double c[3])
@@ -204,4 +268,67 @@ gf_status gf_relax_at(gf_sim *sim, const double c[3])
     for (size_t k = 0; k < m; k++) sim->in_ball[k] = 0; // nothing moved yet
     gf_mark_inside(sim, m);
     return gf_relax_apply(sim, c);
+}
+
+gf_status gf_relax_global(gf_sim *sim)
+{
+    // Method 3 of the 2009 paper Sec. 5: relax() with no shell, over every
+    // particle; each pair seen once (j > i), pushes alpha delta / 2 each.
+    const size_t n = sim->n;
+    double (*d)[3] = gf_alloc(sizeof(double[3]) * (n ? n : 1));
+    if (!d) return gf_error_set(GF_ERR_NOMEM, "out of memory for a global relaxation");
+    const gf_pos *p = sim->p;
+    const double alpha = sim->alpha, half = 0.5 * sim->alpha;
+    for (size_t i = 0; i < n; i++) {
+        if (!sim->alive[i]) continue;
+        const uint32_t *row = sim->nl + i * GF_NL_CAP;
+        for (uint32_t e = 1; e <= row[0]; e++) {
+            uint32_t j = row[e];
+            if (j <= i) continue;
+            double dx = p[i].x - p[j].x, dy = p[i].y - p[j].y, dz = p[i].z - p[j].z;
+            double s = p[i].r + p[j].r, r2 = dx * dx + dy * dy + dz * dz;
+            if (!(r2 < s * s) || !(r2 > 0.0)) continue;
+            double r = sqrt(r2), f = half * (s - r) / r;
+            d[i][0] += f * dx;
+            d[i][1] += f * dy;
+            d[i][2] += f * dz;
+            d[j][0] -= f * dx;
+            d[j][1] -= f * dy;
+            d[j][2] -= f * dz;
+        }
+        gf_container_push(&sim->box, p[i].x, p[i].y, p[i].z, p[i].r, alpha, &d[i][0], &d[i][1], &d[i][2]);
+    }
+    gf_status st = GF_OK;
+    double dz_sum = 0.0;
+    size_t nmoved = 0;
+    uint32_t *moved = GF_NEW(uint32_t, n ? n : 1);
+    if (!moved) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a global relaxation");
+    for (size_t i = 0; st == GF_OK && i < n; i++) {
+        if (!sim->alive[i] || (d[i][0] == 0.0 && d[i][1] == 0.0 && d[i][2] == 0.0)) continue;
+        sim->p[i].x += d[i][0];
+        sim->p[i].y += d[i][1];
+        sim->p[i].z += d[i][2];
+        dz_sum += d[i][2];
+        if (!gf_sim_exit_check(sim, (uint32_t)i)) moved[nmoved++] = (uint32_t)i;
+    }
+    sim->st.relax_dz += dz_sum;
+    // Cells first, then the lists of those past their skin (as gf_sim_track_moves).
+    for (size_t k = 0; st == GF_OK && k < nmoved; k++) {
+        uint32_t i = moved[k];
+        uint32_t c = gf_grid_cell(&sim->grid, p[i].x, p[i].y, p[i].z);
+        if (c != sim->grid.cell_of[i]) {
+            gf_grid_remove(&sim->grid, i);
+            st = gf_grid_insert(&sim->grid, i, c);
+        }
+    }
+    for (size_t k = 0; st == GF_OK && k < nmoved; k++) {
+        uint32_t i = moved[k];
+        const gf_pos *q = &p[i], *a = &sim->p0[i];
+        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
+        if (dx * dx + dy * dy + dz * dz > lim * lim) st = gf_nlist_refresh(sim, i);
+    }
+    if (moved) GF_DELETE(moved, n ? n : 1);
+    gf_free(d, sizeof(double[3]) * (n ? n : 1));
+    sim->st.global_relaxations++;
+    return st;
 }

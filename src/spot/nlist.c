@@ -113,9 +113,9 @@ static gf_status gf_nlist_find(gf_sim *sim, uint32_t i)
     for (int cz = lo[2]; cz <= hi[2]; cz++)
         for (int cy = lo[1]; cy <= hi[1]; cy++)
             for (int cx = lo[0]; cx <= hi[0]; cx++) {
-                size_t cell = ((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx;
-                const uint32_t *s = g->slot + cell * GF_CELL_CAP;
-                for (uint32_t k = 0; k < g->count[cell]; k++) {
+                uint32_t cnt;
+                const uint32_t *s = gf_grid_slots(g, cx, cy, cz, &cnt);
+                for (uint32_t k = 0; k < cnt; k++) {
                     uint32_t j = s[k];
                     if (j == i || !gf_nlist_listed(sim, i, j)) continue;
                     if (n == GF_NL_CAP - 1) {
@@ -203,7 +203,7 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
         if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
     }
     for (size_t i = 0; i < sim->n; i++) {
-        if (!sim->alive[i]) {
+        if (!sim->alive[i] || !sim->use_nlist) {
             sim->nl[i * GF_NL_CAP] = 0;
             continue;
         }

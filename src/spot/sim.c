@@ -25,6 +25,8 @@ void gf_sim_derive(gf_sim *sim)
     // SPEC 1.3 mass balance: a spot is born one radius below the exit, so its
     // ball sweeps its whole volume past the exit plane as it rises.
     sim->spot_birth_z = c->exit_z - c->spot_radius;
+    sim->no_relax = c->relax_method == GF_RELAX_NONE;
+    sim->use_nlist = c->relax_method != GF_RELAX_NONE;
 }
 
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
@@ -90,6 +92,7 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->sy, sim->ns_cap);
     GF_DELETE(sim->sz, sim->ns_cap);
     GF_DELETE(sim->sbirth, sim->ns_cap);
+    GF_DELETE(sim->scount, sim->ns_cap);
     GF_DELETE(sim->inside, sim->scratch_cap);
     GF_DELETE(sim->in_ball, sim->scratch_cap);
     GF_DELETE(sim->cross, sim->scratch_cap);
@@ -186,7 +189,7 @@ gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved)
             if (st != GF_OK) return st;
         }
     }
-    for (size_t k = 0; k < nc; k++) {
+    for (size_t k = 0; sim->use_nlist && k < nc; k++) {
         gf_status st = gf_nlist_refresh(sim, cross[k]);
         if (st != GF_OK) return st;
     }
@@ -205,7 +208,9 @@ static gf_status gf_spot_insert(gf_sim *sim)
         if (z) sim->sz = z;
         uint64_t *b = gf_realloc(sim->sbirth, old * sizeof(uint64_t), cap * sizeof(uint64_t));
         if (b) sim->sbirth = b;
-        if (!x || !y || !z || !b) return gf_error_set(GF_ERR_NOMEM, "out of memory for spots");
+        uint32_t *n = gf_realloc(sim->scount, old * sizeof(uint32_t), cap * sizeof(uint32_t));
+        if (n) sim->scount = n;
+        if (!x || !y || !z || !b || !n) return gf_error_set(GF_ERR_NOMEM, "out of memory for spots");
         sim->ns_cap = cap;
     }
     // SPEC 1.3 insertion: uniform on the orifice shrunk by the margin.
@@ -225,6 +230,7 @@ static gf_status gf_spot_insert(gf_sim *sim)
     sim->sy[k] = y;
     sim->sz[k] = sim->spot_birth_z;
     sim->sbirth[k] = sim->next_birth++;
+    sim->scount[k] = 0;
     sim->st.spots_inserted++;
     return GF_OK;
 }
@@ -236,31 +242,27 @@ static void gf_spot_delete(gf_sim *sim, size_t k)
     sim->sy[k] = sim->sy[last];
     sim->sz[k] = sim->sz[last];
     sim->sbirth[k] = sim->sbirth[last];
+    sim->scount[k] = sim->scount[last];
     sim->st.spots_deleted++;
 }
 
 static double gf_clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
-// One step of a spot at s (2009 paper Sec. 2 pseudocode; SPEC 1.3): the
-// walk, wall truncation, removal test, spot() and relax().
-gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
+// Candidate `dir` of a move from s: the BCC walk (+-dx, 0, dz), (0, +-dy, dz)
+// (2009 paper Sec. 2), truncated d_w from each side wall (0 with reflection,
+// Sec. 4) and, below the base plate, kept over the region spots are born in.
+static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir, double n[3])
 {
     const gf_config *c = &sim->cfg;
     const gf_container *b = &sim->box;
-    *deleted = false;
-    *ball = 0;
-    // The BCC walk: (+-dx, 0, dz) or (0, +-dy, dz), equal probability.
-    uint64_t dir = gf_rng_below(&sim->rng, 4);
     double h = c->spot_step_xy;
     double nx = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
     double ny = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
     double nz = s[2] + c->spot_step_z;
-    // Truncate so the centre stays d_w from each side wall.
-    double dw = c->spot_wall_distance;
+    double dw = c->spot_walls == GF_WALLS_REFLECT ? 0.0 : c->spot_wall_distance;
     nx = gf_clamp(nx, b->xlo + dw, b->xhi - dw);
     ny = gf_clamp(ny, b->ylo + dw, b->yhi - dw);
     if (nz < 0.0) {
-        // Below the base plate a spot stays over the region it was born in.
         if (b->shape == GF_ORIFICE_SLIT) {
             nx = gf_clamp(nx, -sim->spot_ins_r, sim->spot_ins_r);
         } else {
@@ -272,47 +274,118 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball)
             }
         }
     }
-    // SPEC 1.3 removal: above the highest particle of its column.
-    if (nz > gf_grid_column_top(&sim->grid, nx, ny, &sim->p[0].z, 4)) {
-        *deleted = true;
-        return GF_OK;
+    n[0] = nx;
+    n[1] = ny;
+    n[2] = nz;
+}
+
+// Sec. 3 biased walk: candidate i with probability p_i^beta / sum_j p_j^beta,
+// p_i the particles a step to i would move. Returns false when every p_i is
+// 0 above the base (the spot is to be removed).
+static bool gf_walk_biased(gf_sim *sim, const double s[3], double n[3])
+{
+    double cand[4][3], wgt[4], q = 0.0;
+    const double f = sim->ball_frac, beta = sim->cfg.spot_bias_exponent;
+    for (uint64_t d = 0; d < 4; d++) {
+        gf_walk_candidate(sim, s, d, cand[d]);
+        double c[3] = {s[0] + f * (cand[d][0] - s[0]), s[1] + f * (cand[d][1] - s[1]), s[2] + f * (cand[d][2] - s[2])};
+        double p = (double)gf_ball_count(sim, c, sim->rs);
+        wgt[d] = p > 0.0 ? pow(p, beta) : 0.0;
+        q += wgt[d];
     }
-    double v[3] = {nx - s[0], ny - s[1], nz - s[2]};
+    double u = gf_rng_uniform(&sim->rng);
+    uint64_t pick = 3;
+    if (q > 0.0) {
+        double acc = 0.0, target = u * q;
+        for (uint64_t d = 0; d < 4; d++) {
+            acc += wgt[d];
+            if (target < acc && wgt[d] > 0.0) {
+                pick = d;
+                break;
+            }
+        }
+        while (wgt[pick] == 0.0) pick--; // rounding at the top end: the last candidate with weight
+    } else if (cand[0][2] > 0.0) {
+        return false;
+    } else {
+        pick = (uint64_t)(u * 4.0); // below the base, on the way up: the plain walk
+        if (pick > 3) pick = 3;
+    }
+    n[0] = cand[pick][0];
+    n[1] = cand[pick][1];
+    n[2] = cand[pick][2];
+    return true;
+}
+
+// Whether this move relaxes (2009 paper Sec. 5).
+static bool gf_relax_due(gf_sim *sim, uint32_t *count)
+{
+    const gf_config *c = &sim->cfg;
+    if (sim->no_relax) return false;
+    switch (c->relax_method) {
+    case GF_RELAX_FULL: return true;
+    case GF_RELAX_RANDOM: return gf_rng_uniform(&sim->rng) * c->relax_k < 1.0; // method 1: probability 1/k
+    case GF_RELAX_COUNTER:                                                   // method 2: every k-th own move
+        if (++*count < (uint32_t)llround(c->relax_k)) return false;
+        *count = 0;
+        return true;
+    default: return false; // none; global relaxes the whole packing on its own schedule
+    }
+}
+
+// One step of a spot at s (2009 paper Sec. 2 pseudocode; SPEC 1.3): the
+// walk, wall truncation, removal test, spot() and relax().
+gf_status gf_spot_step(gf_sim *sim, double s[3], uint32_t *count, bool *deleted, long *ball)
+{
+    *deleted = false;
+    *ball = 0;
+    double n[3];
+    if (sim->cfg.spot_bias_exponent > 0.0) {
+        if (!gf_walk_biased(sim, s, n)) {
+            *deleted = true;
+            return GF_OK;
+        }
+    } else {
+        // The BCC walk, each candidate with probability 1/4.
+        gf_walk_candidate(sim, s, gf_rng_below(&sim->rng, 4), n);
+        // SPEC 1.3 removal: above the highest particle of its column.
+        if (n[2] > gf_grid_column_top(&sim->grid, n[0], n[1], &sim->p[0].z, 4)) {
+            *deleted = true;
+            return GF_OK;
+        }
+    }
+    double v[3] = {n[0] - s[0], n[1] - s[1], n[2] - s[2]};
     double f = sim->ball_frac;
     double centre[3] = {s[0] + f * v[0], s[1] + f * v[1], s[2] + f * v[2]};
     double u[3] = {-v[0] * sim->inv_w, -v[1] * sim->inv_w, -v[2] * sim->inv_w};
 
     double t0 = sim->timing ? gf_clock_now() : 0.0;
     long moved = gf_spot_apply(sim, centre, u);
-    double t1 = sim->timing ? gf_clock_now() : 0.0;
+    if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t0;
     if (moved < 0) return GF_ERR_STATE;
     sim->st.spot_moves++;
     *ball = moved;
+    gf_status st;
     if (moved == 0) {
-        gf_status st = gf_spot_unmark(sim);
-        if (st != GF_OK) return st;
+        if ((st = gf_spot_unmark(sim)) != GF_OK) return st;
         // SPEC 1.3 removal: no particle in reach; never keep moving in empty
         // space (below the base, on the way up from its birth, it may).
-        if (nz > 0.0) {
+        if (n[2] > 0.0) {
             *deleted = true;
             return GF_OK;
         }
-    } else if (sim->no_relax) {
-        gf_status st = gf_spot_unmark(sim);
-        if (st != GF_OK) return st;
+    } else if (!gf_relax_due(sim, count)) {
+        if ((st = gf_spot_unmark(sim)) != GF_OK) return st;
     } else {
-        gf_status st = gf_relax_apply(sim, centre);
+        double t1 = gf_clock_now(); // t_relax is always measured (the summary reports it)
+        st = gf_relax_apply(sim, centre);
+        sim->st.relax_seconds += gf_clock_now() - t1;
         if (st != GF_OK) return st;
         sim->st.relax_calls++;
     }
-    if (sim->timing) {
-        double t2 = gf_clock_now();
-        sim->st.spot_seconds += t1 - t0;
-        sim->st.relax_seconds += t2 - t1;
-    }
-    s[0] = nx;
-    s[1] = ny;
-    s[2] = nz;
+    s[0] = n[0];
+    s[1] = n[1];
+    s[2] = n[2];
     return GF_OK;
 }
 
@@ -321,7 +394,7 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
     double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
     bool deleted;
     long ball;
-    gf_status st = gf_spot_step(sim, s, &deleted, &ball);
+    gf_status st = gf_spot_step(sim, s, &sim->scount[k], &deleted, &ball);
     if (st != GF_OK) return st;
     if (deleted) {
         gf_spot_delete(sim, k);
@@ -333,13 +406,116 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
     return GF_OK;
 }
 
-// Applies the pending event (its time is sim->t_pending).
+static gf_status gf_sim_global(gf_sim *sim)
+{
+    double t0 = gf_clock_now();
+    gf_status st = gf_relax_global(sim);
+    sim->st.relax_seconds += gf_clock_now() - t0;
+    return st;
+}
+
+// Time of the next global relaxation (relax.method = global, event mode):
+// every k/mu, counted rather than summed so no rounding accumulates.
+static double gf_sim_global_time(const gf_sim *sim)
+{
+    return (double)(sim->st.global_relaxations + 1) * sim->cfg.relax_k / sim->cfg.spot_move_rate;
+}
+
+// The time of whatever happens next: the pending event, or a global
+// relaxation due before it.
+static double gf_sim_next_time(const gf_sim *sim)
+{
+    if (sim->cfg.relax_method == GF_RELAX_GLOBAL && sim->cfg.run_mode == GF_MODE_EVENT)
+        return fmin(sim->t_pending, gf_sim_global_time(sim));
+    return sim->t_pending;
+}
+
+// Fixed timestep (2009 paper Sec. 2.1; SPEC 1.4): at t = k / mu insert
+// Poisson(lambda / mu) spots, then move every spot once, in a fresh random
+// order or newest first. Spots removed during the step are compacted away
+// afterwards, keeping the array in birth order.
+static gf_status gf_sim_fixed_step(gf_sim *sim)
+{
+    const gf_config *c = &sim->cfg;
+    sim->t = sim->t_pending;
+    sim->pending = false;
+    sim->fstep++;
+    sim->st.events++;
+    gf_status st = GF_OK;
+    uint64_t nins = gf_rng_poisson(&sim->rng, c->spot_insertion_rate / c->spot_move_rate);
+    for (uint64_t k = 0; k < nins && st == GF_OK; k++) st = gf_spot_insert(sim);
+    if (st != GF_OK) return st;
+    size_t ns = sim->ns, cap = ns ? ns : 1;
+    uint32_t *order = GF_NEW(uint32_t, cap);
+    uint8_t *dead = GF_NEW(uint8_t, cap);
+    if (!order || !dead) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a fixed step");
+    for (size_t k = 0; st == GF_OK && k < ns; k++) order[k] = c->run_order == GF_ORDER_NEWEST ? (uint32_t)(ns - 1 - k) : (uint32_t)k;
+    if (st == GF_OK && c->run_order == GF_ORDER_RANDOM)
+        for (size_t k = ns; k > 1; k--) { // Fisher-Yates
+            size_t j = (size_t)gf_rng_below(&sim->rng, k);
+            uint32_t tmp = order[k - 1];
+            order[k - 1] = order[j];
+            order[j] = tmp;
+        }
+    for (size_t o = 0; st == GF_OK && o < ns; o++) {
+        size_t k = order[o];
+        double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
+        bool deleted;
+        long ball;
+        st = gf_spot_step(sim, s, &sim->scount[k], &deleted, &ball);
+        if (deleted) {
+            dead[k] = 1;
+            continue;
+        }
+        sim->sx[k] = s[0];
+        sim->sy[k] = s[1];
+        sim->sz[k] = s[2];
+    }
+    if (st == GF_OK) {
+        size_t w = 0;
+        for (size_t k = 0; k < ns; k++) {
+            if (dead[k]) continue;
+            sim->sx[w] = sim->sx[k];
+            sim->sy[w] = sim->sy[k];
+            sim->sz[w] = sim->sz[k];
+            sim->sbirth[w] = sim->sbirth[k];
+            sim->scount[w] = sim->scount[k];
+            w++;
+        }
+        sim->st.spots_deleted += ns - w;
+        sim->ns = w;
+    }
+    if (order) GF_DELETE(order, cap);
+    if (dead) GF_DELETE(dead, cap);
+    // Method 3: the whole packing every k steps (every k / mu).
+    if (st == GF_OK && c->relax_method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->relax_k) == 0)
+        st = gf_sim_global(sim);
+    return st;
+}
+
+// Work done, in the units of run.reorder_interval: events, or spot moves in
+// fixed mode (where one step is thousands of moves).
+static uint64_t gf_sim_work(const gf_sim *sim)
+{
+    return sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves : sim->st.events;
+}
+
+// Applies whatever comes next: a global relaxation due, or the pending event.
 static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
-    if (sim->st.events - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval &&
-        (st = gf_nlist_build(sim, true)) != GF_OK)
-        return st;
+    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
+        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+        sim->nl_built_at = gf_sim_work(sim);
+    }
+    if (sim->cfg.run_mode == GF_MODE_FIXED) return gf_sim_fixed_step(sim);
+    if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
+        double tg = gf_sim_global_time(sim);
+        if (tg <= sim->t_pending) {
+            sim->t = tg;
+            return gf_sim_global(sim);
+        }
+    }
     sim->t = sim->t_pending;
     sim->pending = false;
     sim->st.events++;
@@ -352,8 +528,12 @@ static gf_status gf_sim_event(gf_sim *sim)
 static void gf_sim_draw_pending(gf_sim *sim)
 {
     if (sim->pending) return;
-    double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;
-    sim->t_pending = sim->t + gf_rng_exp(&sim->rng, rate);
+    if (sim->cfg.run_mode == GF_MODE_FIXED) {
+        sim->t_pending = (double)(sim->fstep + 1) / sim->cfg.spot_move_rate;
+    } else {
+        double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;
+        sim->t_pending = sim->t + gf_rng_exp(&sim->rng, rate);
+    }
     sim->pending = true;
 }
 
@@ -377,26 +557,32 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
     for (;;) {
         if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
         gf_sim_draw_pending(sim);
-        for (double ts; (ts = (double)sim->next_snap * dsnap) <= sim->t_pending && ts <= last_snap;) {
+        const double tn = gf_sim_next_time(sim);
+        for (double ts; (ts = (double)sim->next_snap * dsnap) <= tn && ts <= last_snap;) {
             if (ts > sim->t_reached) sim->t_reached = ts;
             if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
                 return st;
             sim->next_snap++;
         }
-        while (dck > 0 && sim->next_ckpt <= sim->t_pending && sim->next_ckpt <= until) {
+        while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
             if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
             sim->next_ckpt += dck;
         }
-        if (sim->t_pending > until || sim->n_alive == 0) {
-            if (until > sim->t_reached && sim->t_pending > until) sim->t_reached = until;
+        if (tn > until || sim->n_alive == 0) {
+            if (until > sim->t_reached && tn > until) sim->t_reached = until;
             return GF_OK;
         }
+        uint64_t moves0 = sim->st.spot_moves;
         if ((st = gf_sim_event(sim)) != GF_OK) return st;
         sim->t_reached = sim->t;
-        if (--countdown == 0) {
+        // Progress counts events, or the moves of a fixed step (thousands each).
+        uint64_t done = sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves - moves0 + 1 : 1;
+        if (countdown <= done) {
             countdown = every;
             if (hooks->progress) hooks->progress(hooks->ctx, sim);
+        } else {
+            countdown -= done;
         }
     }
 }

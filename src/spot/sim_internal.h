@@ -50,7 +50,9 @@ struct gf_sim {
     size_t ns, ns_cap;
     double *sx, *sy, *sz;
     uint64_t *sbirth; ///< insertion serial number
+    uint32_t *scount; ///< moves since the spot's last relax() (relax.method = counter)
     uint64_t next_birth;
+    uint64_t fstep;     ///< fixed mode: steps done (time = fstep / mu)
 
     // Clock and randomness.
     double t;          ///< time of the last event, tau
@@ -84,7 +86,8 @@ struct gf_sim {
 
     gf_sim_stats st;
     bool timing;
-    bool no_relax; ///< skip relax() (tests; relax.method = none later)
+    bool no_relax; ///< skip relax() (tests, and relax.method = none)
+    bool use_nlist; ///< neighbour lists kept (not with relax.method = none: nothing reads them)
 };
 
 /// Gathers the particles within r_e of c into sim->inside and moves those
@@ -92,10 +95,19 @@ struct gf_sim {
 /// population), or -1 with an error set.
 long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3]);
 
-/// One step of a spot at s: walk, truncation, removal test, spot(), relax().
-/// Updates s, or sets *deleted when the spot is to be removed; *ball receives
-/// the number of particles it moved.
-gf_status gf_spot_step(gf_sim *sim, double s[3], bool *deleted, long *ball);
+/// One step of a spot at s: walk, truncation, removal test, spot(), relax()
+/// (as relax.method says; *count is the spot's move counter for the counter
+/// method). Updates s, or sets *deleted when the spot is to be removed; *ball
+/// receives the number of particles it moved.
+gf_status gf_spot_step(gf_sim *sim, double s[3], uint32_t *count, bool *deleted, long *ball);
+
+/// Number of particles within r of c (the biased walk's p_i, Sec. 3).
+size_t gf_ball_count(const gf_sim *sim, const double c[3], double r);
+
+/// Relaxes the whole packing at once (relax.method = global, 2009 paper
+/// Sec. 5 method 3): every overlapping pair, every wall, displacements summed
+/// then applied.
+gf_status gf_relax_global(gf_sim *sim);
 
 /// Ends a gather that is not followed by relax(): clears the inside marks
 /// and does the bookkeeping of the particles spot() moved (cells, lists).

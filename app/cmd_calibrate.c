@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+// `granflow calibrate DEM_DIR -o params.ini`: the five spot parameters fitted
+// to a DEM run as the thesis does (Sec. 3.3), printed with their
+// uncertainties and written as a config `granflow run` takes directly.
+#define _XOPEN_SOURCE 700
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "granflow/dem.h"
+
+
+static bool gf_demargs_is_config_key(const char *kv)
+{
+    gf_config c = gf_config_default();
+    return gf_config_set(&c, kv, "--set") == GF_OK;
+}
+
+/// Parses [positional]... -o OUT --timestep DT --config INI --set k=v -q --no-plots.
+int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
+{
+    memset(a, 0, sizeof *a);
+    a->plots = true;
+    gf_analysis_opts_default(&a->opts);
+    for (int i = 0; i < argc; i++) {
+        const char *s = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        bool takes = !strcmp(s, "-o") || !strcmp(s, "--output") || !strcmp(s, "--timestep") || !strcmp(s, "--config") ||
+                     !strcmp(s, "--set") || !strcmp(s, "-s");
+        if (takes && !val) {
+            fprintf(stderr, "granflow %s: error: %s needs a value\n", cmd, s);
+            return GF_EXIT_USAGE;
+        }
+        if (takes) i++;
+        if (!strcmp(s, "-o") || !strcmp(s, "--output")) {
+            a->out = val;
+        } else if (!strcmp(s, "--config")) {
+            a->config = val;
+        } else if (!strcmp(s, "--timestep")) {
+            char kv[128];
+            snprintf(kv, sizeof kv, "dump.dt=%s", val);
+            if (gf_analysis_opts_set(&a->opts, kv) != GF_OK) return gf_cli_fail(cmd, GF_ERR_PARAM);
+        } else if (!strcmp(s, "--set") || !strcmp(s, "-s") || !strncmp(s, "--set=", 6)) {
+            const char *kv = s[5] == '=' ? s + 6 : val;
+            if (gf_demargs_is_config_key(kv)) {
+                if (a->nsets == 64) {
+                    fprintf(stderr, "granflow %s: error: too many --set\n", cmd);
+                    return GF_EXIT_USAGE;
+                }
+                a->sets[a->nsets++] = kv;
+            } else if (gf_analysis_opts_set(&a->opts, kv) != GF_OK) {
+                return gf_cli_fail(cmd, GF_ERR_PARAM);
+            }
+        } else if (!strcmp(s, "-q") || !strcmp(s, "--quiet")) {
+            a->quiet = true;
+        } else if (!strcmp(s, "--no-plots")) {
+            a->plots = false;
+        } else if (s[0] == '-' && s[1]) {
+            fprintf(stderr, "granflow %s: error: unknown option '%s' (see granflow help)\n", cmd, s);
+            return GF_EXIT_USAGE;
+        } else if (a->npos < 4) {
+            a->pos[a->npos++] = s;
+        } else {
+            fprintf(stderr, "granflow %s: error: unexpected argument '%s'\n", cmd, s);
+            return GF_EXIT_USAGE;
+        }
+    }
+    return GF_EXIT_OK;
+}
+
+gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path, bool dem, gf_series *s)
+{
+    gf_dem_source src = {.dump_dt = a->opts.dump_dt, .config = dem ? a->config : NULL,
+                         .sets = dem ? a->sets : NULL, .nsets = dem ? a->nsets : 0};
+    gf_dem_load_report rep;
+    if (!a->quiet) fprintf(stderr, "granflow %s: reading %s...\n", cmd, path);
+    gf_status st = gf_dem_series_load(path, &src, s, &rep);
+    if (st == GF_OK && !a->quiet)
+        fprintf(stderr,
+                "granflow %s: %zu snapshots, t = %g..%g tau, %zu particles at first (%zu particle-frames below the "
+                "base counted as exited, %zu of other atom types dropped); container %g x %g, orifice %g\n",
+                cmd, s->nframes, s->nframes ? s->frames[0].time : 0.0, s->nframes ? s->frames[s->nframes - 1].time : 0.0,
+                s->n_initial, rep.below_base, rep.other_types, s->cfg.container_width, s->cfg.container_depth,
+                s->cfg.orifice_diameter);
+    return st;
+}
+
+int gf_cmd_calibrate(int argc, char **argv)
+{
+    gf_demargs a;
+    int rc = gf_demargs_parse("calibrate", argc, argv, &a);
+    if (rc != GF_EXIT_OK) return rc;
+    if (a.npos != 1 || !a.out) {
+        fprintf(stderr, "granflow calibrate: error: give one DEM run and -o PARAMS.ini\n"
+                        "usage: granflow calibrate DEM_DIR [--timestep DT] [--config INI] [--set key=value]... -o PARAMS.ini\n");
+        return GF_EXIT_USAGE;
+    }
+    gf_series s;
+    gf_status st = gf_demargs_load("calibrate", &a, a.pos[0], true, &s);
+    if (st != GF_OK) return gf_cli_fail("calibrate", st);
+    gf_analysis_opts o;
+    gf_dem_calibration_opts(&s, &a.opts, &o);
+    if (!a.quiet) {
+        fprintf(stderr, "granflow calibrate: regions: velocity heights %g..%g, correlation %g x %g at z = %g, slice "
+                        "%g < z < %g\n",
+                o.vel_heights[0], o.vel_heights[o.vel_nheights - 1], o.corr_size, o.corr_size, o.corr_zc, o.dens_z0,
+                o.dens_z1);
+    }
+    gf_dem_calibration c;
+    st = gf_dem_calibrate(&s, &o, &s.cfg, &c);
+    if (st == GF_OK || isfinite(c.flow_rate.value)) gf_dem_calibration_print(&c, stdout);
+    gf_config cfg = s.cfg;
+    if (st == GF_OK) st = gf_dem_calibration_apply(&c, &cfg);
+    // The spot run starts from the DEM's first snapshot, for as long as the DEM ran.
+    char pk[4096];
+    snprintf(pk, sizeof pk, "%s.packing.dump", a.out);
+    if (st == GF_OK) st = gf_packing_write(&s.frames[0].pk, pk, GF_FORMAT_LAMMPS, &cfg);
+    if (st == GF_OK) {
+        char abs[PATH_MAX];
+        const char *use = realpath(pk, abs) ? abs : pk;
+        char kv[PATH_MAX + 32];
+        snprintf(kv, sizeof kv, "packing.file=%s", use);
+        st = gf_config_set(&cfg, kv, "calibrate");
+        if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
+        double span = s.frames[s.nframes - 1].time - s.frames[0].time;
+        if (span > 0) cfg.run_duration = span;
+        if (s.nframes > 1) cfg.output_snapshot_interval = s.frames[1].time - s.frames[0].time;
+    }
+    if (st == GF_OK) st = gf_config_save(&cfg, a.out);
+    gf_series_free(&s);
+    if (st != GF_OK) return gf_cli_fail("calibrate", st);
+    if (!a.quiet)
+        fprintf(stderr, "granflow calibrate: wrote %s (and its initial packing %s); run it with granflow run %s -o DIR\n",
+                a.out, pk, a.out);
+    return GF_EXIT_OK;
+}

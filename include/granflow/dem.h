@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: MIT
+// DEM side by side (SPEC 1.7-1.8): LAMMPS inputs for the same container, the
+// LAMMPS run, DEM dumps as a series, calibration of the five spot parameters
+// from a DEM run (thesis Sec. 3.3) and the comparison of two runs (Sec. 3.5).
+#ifndef GRANFLOW_DEM_H
+#define GRANFLOW_DEM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "granflow/analysis.h"
+#include "granflow/config.h"
+#include "granflow/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+// ---------------------------------------------------------------------------
+// LAMMPS inputs (units lj: d = 1, particle mass 1, g = 1, so times are in tau).
+
+/// Atom type of the flowing particles in the LAMMPS run.
+#define GF_DEM_TYPE_FLOW 1
+/// Atom type of the frozen beads (diameter 0.05 d) that model the sharp edge
+/// of the orifice; they are never dumped.
+#define GF_DEM_TYPE_RIM 2
+
+/// What gf_dem_write_inputs planned.
+typedef struct gf_dem_plan {
+    int64_t particles;      ///< flowing particles
+    double fill_height;     ///< expected top of the settled fill, d (phi = 0.6)
+    double box_zlo, box_zhi; ///< the LAMMPS box in z, d (x and y are the container)
+    double delete_z;        ///< particles are deleted below this height, d
+    size_t rim_beads;       ///< frozen beads along the orifice edge
+    int64_t snapshot_steps; ///< steps between drain dumps
+    int64_t drain_steps;    ///< steps of the drainage (run.duration / dem.timestep)
+    double pour_time;       ///< fill_method pour: longest pour, tau (0 for generate)
+} gf_dem_plan;
+
+/// Writes the LAMMPS inputs of a DEM run of the container of `cfg` into `dir`
+/// (created as needed): `in.fill` (fill by fix pour or from granflow's packing
+/// in `fill.data`, settle under gravity on a closed base, write `packing.dump`
+/// and `settled.restart`), `in.drain` (open the orifice, drain for
+/// run.duration, dump `snapshots/snap_NNNNNNNNN.dump` every
+/// output.snapshot_interval with ITEM: TIME), and `config.ini` (the effective
+/// configuration, which `calibrate`, `compare` and `analyze` read back).
+/// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
+/// law on the flat side walls and the base. `plan` may be NULL.
+GF_API gf_status gf_dem_write_inputs(const gf_config *cfg, const char *dir, gf_dem_plan *plan);
+
+/// One progress report of a LAMMPS run.
+typedef struct gf_dem_progress {
+    const char *phase;  ///< "fill", "settle", "drain" or "done"
+    double time;        ///< LAMMPS time of the phase, tau
+    double until;       ///< planned end of the phase, tau (0: unknown)
+    int64_t particles;  ///< flowing particles now
+    int64_t target;     ///< particles to pour (fill), else the particles at the start of the drain
+    double ke;          ///< kinetic energy per particle, m g d
+    double wall_seconds; ///< since gf_dem_run started
+} gf_dem_progress;
+
+/// Options of gf_dem_run.
+typedef struct gf_dem_run_opts {
+    int ranks;           ///< MPI ranks: 1 runs lmp directly; > 1 uses mpirun -np (when found)
+    const char *lmp;     ///< the LAMMPS binary (NULL: $GF_LMP, else `lmp` on PATH)
+    bool drain_only;     ///< skip in.fill (settled.restart must exist)
+    void (*progress)(void *ctx, const gf_dem_progress *p); ///< may be NULL
+    void *ctx;
+} gf_dem_run_opts;
+
+/// Runs `in.fill` then `in.drain` of `dir` with LAMMPS (working directory
+/// `dir`, logs in log.fill and log.drain), reporting the thermo output as
+/// progress. GF_ERR_IO when lmp cannot be found or started, GF_ERR_PARAM
+/// with LAMMPS' own ERROR line when it fails.
+GF_API gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *opts);
+
+/// The number of processors (online CPUs), at least 1.
+GF_API int gf_dem_cores(void);
+
+// ---------------------------------------------------------------------------
+// A DEM run as a series.
+
+/// Where a DEM run comes from and how to read it.
+typedef struct gf_dem_source {
+    double dump_dt;           ///< tau per TIMESTEP for dumps without ITEM: TIME (0: TIME is required)
+    const char *config;       ///< INI file with the container (NULL: DIR/config.ini, else the dump's box)
+    const char *const *sets;  ///< `section.key=value` overrides of that config (e.g. container.width=50)
+    size_t nsets;
+} gf_dem_source;
+
+/// What gf_dem_series_load dropped, over all frames.
+typedef struct gf_dem_load_report {
+    bool have_type;          ///< the first dump has a `type` column
+    size_t other_types;      ///< particle-frames of atom types not in packing.types
+    size_t below_base;       ///< particle-frames whose centre was below container.exit_z (exited)
+} gf_dem_load_report;
+
+/// Loads a DEM run (or any run) like gf_series_load, then applies the config
+/// (src->config, src->sets: the container, packing.types, exit_z), keeps only
+/// the atom types of packing.types (re-tagging the layers by the first
+/// frame's heights), and removes from every frame the particles below
+/// container.exit_z: DEM keeps them until they fall to its deletion height,
+/// granflow counts them as exited. `rep` may be NULL.
+GF_API gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_series *out,
+                                    gf_dem_load_report *rep);
+
+// ---------------------------------------------------------------------------
+// Calibration (thesis Sec. 3.3).
+
+/// A measured or fitted number with its standard uncertainty (NaN: unknown).
+typedef struct gf_dem_value {
+    double value, err;
+} gf_dem_value;
+
+/// Everything gf_dem_calibrate measures and infers.
+typedef struct gf_dem_calibration {
+    double t0, t1;              ///< the window, tau
+    size_t nparts;              ///< sub-windows behind the uncertainties
+    // measured
+    gf_dem_value flow_rate;     ///< Q, particles per tau
+    gf_dem_value corr_length;   ///< beta of C(r) = a exp(-r / beta), d
+    gf_dem_value var_slope;     ///< d Var / dz of the Gaussian v_z(x) profiles, d
+    size_t var_heights;         ///< heights used in that regression
+    gf_dem_value diff_length;   ///< b_p, d
+    gf_dem_value ball_count;    ///< p: particles in a spot ball placed where spots go (walls cut it)
+    double ball_count_bulk;     ///< phi V_ball / V_p with the slice's phi (the thesis' 81.7)
+    gf_dem_value slice_initial; ///< particles in the density slice at the first frame
+    gf_dem_value slice_steady;  ///< ... averaged over the window
+    double slice_z0, slice_z1;  ///< the slice, d
+    // the five spot parameters
+    gf_dem_value spot_radius;   ///< r_s = beta / 0.72, d
+    gf_dem_value b_s;           ///< spot diffusion length = slope / 2, d
+    gf_dem_value step_xy;       ///< dx = sqrt(4 b_s dz) for the config's spot.step_z, d
+    gf_dem_value w;             ///< b_s / b_p
+    gf_dem_value insertion_rate; ///< lambda = Q w / p, 1/tau
+    gf_dem_value move_rate;     ///< mu = Q h / (dz dN), 1/tau
+} gf_dem_calibration;
+
+/// The thesis' ratio beta / r_s of the exponential fitted to the spot model's
+/// velocity correlation (Sec. 3.3).
+#define GF_DEM_BETA_PER_RS 0.72
+
+/// Sets the measurement regions of `o` for the container and fill of `s`
+/// (the papers' regions scaled to the packing height; see docs/dem.md).
+/// Options already changed from their defaults by the caller are kept when
+/// `keep` is given (the gf_analysis_opts the caller started from).
+GF_API void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, gf_analysis_opts *o);
+
+/// Measures the series over the window of `o` and infers the five spot
+/// parameters; uncertainties from the scatter over sub-windows. `cfg` gives
+/// spot.step_z and spot.wall_distance (where spots may go).
+GF_API gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const gf_config *cfg,
+                                  gf_dem_calibration *c);
+
+/// Copies the five calibrated values into `cfg` (spot.radius, spot.step_xy,
+/// spot.w, spot.insertion_rate, spot.move_rate) and validates it.
+GF_API gf_status gf_dem_calibration_apply(const gf_dem_calibration *c, gf_config *cfg);
+
+/// Writes a human-readable table of the calibration (one line per value with
+/// its uncertainty and the thesis' DEM value).
+GF_API void gf_dem_calibration_print(const gf_dem_calibration *c, FILE *out);
+
+// ---------------------------------------------------------------------------
+// Comparison (thesis Sec. 3.5).
+
+/// Measures both runs the same way and writes into `outdir`: one CSV per
+/// compared quantity with a column per run, gnuplot plots overlaying them
+/// (when `plots`), central-slice pictures of both at the same times, and
+/// `summary.md` with the headline numbers and their differences.
+GF_API gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_analysis_opts *o,
+                                const char *outdir, bool plots);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: MIT
+// A DEM run (LAMMPS dumps) as a series: the container from a config or
+// --set, the atom types of packing.types, and the particles below the base
+// counted as exited (SPEC 1.8).
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "analysis/motion.h"
+#include "core/alloc.h"
+#include "core/error.h"
+#include "granflow/dem.h"
+
+static int gf_dem_is_dump(const char *name)
+{
+    size_t n = strlen(name);
+    if (name[0] == '.') return 0;
+    const char *suf[] = {".dump", ".lammpstrj", ".txt"};
+    for (size_t k = 0; k < 3; k++) {
+        size_t m = strlen(suf[k]);
+        if (n > m && strcmp(name + n - m, suf[k]) == 0) return 1;
+    }
+    return strncmp(name, "dump.", 5) == 0 && name[5] != '\0';
+}
+
+/// The first dump gf_series_load reads from `path` (same rules), into `out`.
+static int gf_dem_first_dump(const char *path, char *out, size_t n)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0) return 0;
+    if (!S_ISDIR(sb.st_mode)) return snprintf(out, n, "%s", path) < (int)n;
+    char dir[GF_PATH_MAX + 16];
+    snprintf(dir, sizeof dir, "%s/snapshots", path);
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) snprintf(dir, sizeof dir, "%s", path);
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    char best[256] = "";
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        if (gf_dem_is_dump(e->d_name) && (!best[0] || strcmp(e->d_name, best) < 0))
+            snprintf(best, sizeof best, "%s", e->d_name);
+    closedir(d);
+    return best[0] && snprintf(out, n, "%s/%s", dir, best) < (int)n;
+}
+
+/// Whether the first ITEM: ATOMS line of `file` names a `type` column.
+static bool gf_dem_has_type(const char *file)
+{
+    FILE *f = fopen(file, "r");
+    if (!f) return false;
+    char line[4096];
+    bool found = false;
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, "ITEM: ATOMS", 11) == 0) {
+            for (char *t = strtok(line + 11, " \t\r\n"); t; t = strtok(NULL, " \t\r\n"))
+                if (strcmp(t, "type") == 0) found = true;
+            break;
+        }
+    fclose(f);
+    return found;
+}
+
+/// Keeps the particles of `p` for which keep[i] is set, in order.
+static void gf_dem_compact(gf_packing *p, const unsigned char *keep)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        if (!keep[i]) continue;
+        p->id[m] = p->id[i];
+        p->layer[m] = p->layer[i];
+        p->x[m] = p->x[i];
+        p->y[m] = p->y[i];
+        p->z[m] = p->z[i];
+        p->r[m] = p->r[i];
+        m++;
+    }
+    p->n = m;
+}
+
+/// Layer tags from the first frame's heights, carried to later frames by id.
+static gf_status gf_dem_retag(gf_series *s)
+{
+    if (s->nframes == 0) return GF_OK;
+    double thick = s->cfg.packing_layer_thickness;
+    gf_packing *p0 = &s->frames[0].pk;
+    gf_packing_tag_layers(p0, thick);
+    gf_idmap m;
+    gf_status st = gf_idmap_build(p0, &m);
+    if (st != GF_OK) return st;
+    for (size_t k = 1; k < s->nframes; k++) {
+        gf_packing *p = &s->frames[k].pk;
+        for (size_t i = 0; i < p->n; i++) {
+            size_t j = gf_idmap_find(&m, p->id[i]);
+            p->layer[i] = j == SIZE_MAX ? 1 + (int32_t)floor(p->z[i] / thick) : p0->layer[j];
+        }
+    }
+    gf_idmap_free(&m);
+    return GF_OK;
+}
+
+gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_series *out, gf_dem_load_report *rep)
+{
+    gf_dem_source none = {0};
+    if (!src) src = &none;
+    gf_dem_load_report r = {0};
+    if (rep) *rep = r;
+    gf_status st = gf_series_load(path, src->dump_dt, out);
+    if (st != GF_OK) return st;
+    gf_config cfg = out->cfg;
+    if (src->config) {
+        cfg = gf_config_default();
+        st = gf_config_load(&cfg, src->config);
+    }
+    for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&cfg, src->sets[k], "--set");
+    if (st == GF_OK) st = gf_config_validate(&cfg);
+    if (st != GF_OK) goto fail;
+    out->cfg = cfg;
+
+    char first[GF_PATH_MAX + 300];
+    r.have_type = gf_dem_first_dump(path, first, sizeof first) && gf_dem_has_type(first);
+    int32_t types[GF_PACKING_MAXTYPES];
+    size_t ntypes = 0;
+    if ((st = gf_packing_types_parse(cfg.packing_types, types, GF_PACKING_MAXTYPES, &ntypes)) != GF_OK) goto fail;
+    if (ntypes && !r.have_type) {
+        st = gf_error_set(GF_ERR_PARAM, "packing.types = %s: the dumps of %s have no `type` column", cfg.packing_types,
+                          path);
+        goto fail;
+    }
+    for (size_t k = 0; k < out->nframes; k++) {
+        gf_packing *p = &out->frames[k].pk;
+        size_t n0 = p->n;
+        unsigned char *keep = n0 ? GF_NEW(unsigned char, n0) : NULL;
+        if (p->n && !keep) {
+            st = gf_error_set(GF_ERR_NOMEM, "out of memory filtering %zu particles", p->n);
+            goto fail;
+        }
+        for (size_t i = 0; i < p->n; i++) {
+            bool ok = ntypes == 0;
+            for (size_t t = 0; t < ntypes && !ok; t++) ok = p->layer[i] == types[t];
+            if (!ok) r.other_types++;
+            else if (p->z[i] < cfg.exit_z) r.below_base++, ok = false;
+            keep[i] = ok;
+        }
+        gf_dem_compact(p, keep);
+        if (keep) GF_DELETE(keep, n0);
+    }
+    // A `type` column was read into the layer tags: tag them by height again.
+    if (r.have_type && (st = gf_dem_retag(out)) != GF_OK) goto fail;
+    out->n_initial = out->nframes ? out->frames[0].pk.n : 0;
+    if (rep) *rep = r;
+    return GF_OK;
+fail:
+    gf_series_free(out);
+    return st;
+}

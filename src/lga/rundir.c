@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: MIT
+// `granflow lga`: one scenario run into a directory (maps, sheet, CSV, summary).
+#include <dirent.h>
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "core/alloc.h"
+#include "core/atomic_file.h"
+#include "core/clock.h"
+#include "core/error.h"
+#include "lga/image.h"
+#include "lga/scenario.h"
+
+#define GF_LGA_MAP_PX 2.0          // pixels per lattice spacing of the single maps
+#define GF_LGA_SHEET_FRAMES 12     // panels of the contact sheet (the paper's Fig. 6 has 12)
+#define GF_LGA_KEEP_FRAMES 256     // frames kept in memory for the sheet (thinned beyond)
+#define GF_LGA_QUIET 20            // pile: iterations without motion that end an auto run
+#define GF_LGA_PILE_SETTLE_MAX 20000 // pile: at most this long after the feed ends (auto)
+#define GF_LGA_SILO_MAX 1000000    // silo: at most this many iterations (auto)
+#define GF_LGA_WAVE_WINDOW 8       // rows of the running mean in the wave variance
+#define GF_LGA_WAVE_EVERY 10       // channel: wave variance every this many iterations
+
+static gf_status gf_lga_mkdir(const char *path)
+{
+    char buf[GF_PATH_MAX];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) return gf_error_set(GF_ERR_PARAM, "path too long: %s", path);
+    for (char *s = buf + 1;; s++) {
+        if (*s != '/' && *s) continue;
+        char c = *s;
+        *s = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+            return gf_error_set(GF_ERR_IO, "%s: cannot create directory: %s", buf, strerror(errno));
+        struct stat sb;
+        if (stat(buf, &sb) != 0 || !S_ISDIR(sb.st_mode))
+            return gf_error_set(GF_ERR_IO, "%s: exists and is not a directory", buf);
+        *s = c;
+        if (!c) break;
+    }
+    return GF_OK;
+}
+
+// Whether dir exists and holds anything.
+static bool gf_lga_dir_busy(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return false;
+    bool busy = false;
+    for (struct dirent *e; !busy && (e = readdir(d)) != NULL;)
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) busy = true;
+    closedir(d);
+    return busy;
+}
+
+// A fresh run over an old directory must not leave the old maps behind.
+static gf_status gf_lga_clear_maps(const char *maps)
+{
+    DIR *d = opendir(maps);
+    if (!d) return GF_OK;
+    gf_status st = GF_OK;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        size_t n = strlen(e->d_name);
+        if (strncmp(e->d_name, "map_", 4) != 0 || n < 5 || strcmp(e->d_name + n - 4, ".png") != 0) continue;
+        char path[GF_PATH_MAX + 300];
+        snprintf(path, sizeof path, "%s/%s", maps, e->d_name);
+        if (remove(path) != 0) st = gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
+    }
+    closedir(d);
+    return st;
+}
+
+static void gf_lga_json_num(FILE *f, const char *key, double v, bool last)
+{
+    if (isfinite(v)) fprintf(f, "  \"%s\": %.6g%s\n", key, v, last ? "" : ",");
+    else fprintf(f, "  \"%s\": null%s\n", key, last ? "" : ",");
+}
+
+static const char *gf_lga_scenario_name(gf_lga_scenario s)
+{
+    return s == GF_LGA_PILE ? "pile" : s == GF_LGA_CHANNEL ? "channel" : "silo";
+}
+
+typedef struct gf_lga_out {
+    char dir[GF_PATH_MAX];
+    gf_lga_frame *frames;
+    size_t nframes, keep_every, seen; // every keep_every-th captured frame is kept
+    FILE *outflow, *waves;
+    char outflow_tmp[GF_PATH_MAX + 64], waves_tmp[GF_PATH_MAX + 64];
+    char outflow_path[GF_PATH_MAX + 64], waves_path[GF_PATH_MAX + 64];
+} gf_lga_out;
+
+static gf_status gf_lga_snapshot(gf_lga_out *o, const gf_lga *l, const char *title)
+{
+    gf_lga_frame f;
+    gf_status st = gf_lga_frame_capture(l, &f);
+    if (st != GF_OK) return st;
+    char path[GF_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/maps/map_%06lld.png", o->dir, (long long)f.iteration);
+    st = gf_lga_frame_draw(&f, GF_LGA_MAP_PX, title, path);
+    if (st != GF_OK || (o->seen++ % o->keep_every) != 0) {
+        gf_lga_frame_free(&f);
+        return st;
+    }
+    if (o->nframes == GF_LGA_KEEP_FRAMES) {
+        // thin out: keep every other frame, and from now on every other capture
+        size_t k = 0;
+        for (size_t i = 0; i < o->nframes; i++) {
+            if (i % 2 == 0) o->frames[k++] = o->frames[i];
+            else gf_lga_frame_free(&o->frames[i]);
+        }
+        o->nframes = k;
+        o->keep_every *= 2;
+    }
+    o->frames[o->nframes++] = f;
+    return GF_OK;
+}
+
+static gf_status gf_lga_write_sheet(gf_lga_out *o, const gf_lga_frame *last, const char *title)
+{
+    gf_lga_frame pick[GF_LGA_SHEET_FRAMES];
+    size_t n = 0, total = o->nframes + (last ? 1 : 0);
+    size_t want = total < GF_LGA_SHEET_FRAMES ? total : GF_LGA_SHEET_FRAMES;
+    for (size_t k = 0; k < want; k++) {
+        size_t i = want == 1 ? 0 : (size_t)floor((double)k * (double)(total - 1) / (double)(want - 1) + 0.5);
+        pick[n++] = i < o->nframes ? o->frames[i] : *last;
+    }
+    char path[GF_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/sheet.png", o->dir);
+    return gf_lga_sheet_draw(pick, n, title, path);
+}
+
+static gf_status gf_lga_write_profile(const gf_lga_out *o, const gf_lga *l, double *angle, double *left, double *right)
+{
+    int w = gf_lga_width(l);
+    double *p = GF_NEW(double, w);
+    if (!p) return gf_error_set(GF_ERR_NOMEM, "out of memory (heap profile)");
+    gf_lga_profile(l, p);
+    *angle = gf_lga_slope_angle(p, w, GF_LGA_SLOPE_LO, GF_LGA_SLOPE_HI, left, right);
+    char path[GF_PATH_MAX + 64], tmp[GF_PATH_MAX + 80];
+    snprintf(path, sizeof path, "%s/profile.csv", o->dir);
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st == GF_OK) {
+        fprintf(f, "x,height\n");
+        for (int i = 0; i < w; i++) {
+            if (!isfinite(p[i])) continue;
+            double x, y;
+            gf_lga_site_position(i, 0, &x, &y);
+            fprintf(f, "%.4f,%.4f\n", x, p[i]);
+        }
+        st = gf_atomic_commit(f, tmp, path);
+    }
+    GF_DELETE(p, w);
+    return st;
+}
+
+static gf_status gf_lga_write_summary(const gf_lga_out *o, const gf_lga *l, const gf_lga_summary *s, const char *status)
+{
+    char path[GF_PATH_MAX + 64], tmp[GF_PATH_MAX + 80];
+    snprintf(path, sizeof path, "%s/summary.json", o->dir);
+    FILE *f;
+    gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+    if (st != GF_OK) return st;
+    const gf_config *c = &l->cfg;
+    gf_lga_stats t = gf_lga_get_stats(l);
+    fprintf(f, "{\n  \"granflow_version\": \"%s\",\n  \"status\": \"%s\",\n", gf_version(), status);
+    fprintf(f, "  \"scenario\": \"%s\",\n", gf_lga_scenario_name(s->scenario));
+    if (s->scenario == GF_LGA_SILO)
+        fprintf(f, "  \"silo_flow\": \"%s\",\n  \"hopper_angle\": %.6g,\n  \"outlet_width\": %.6g,\n",
+                c->lga_silo_flow == GF_LGA_FUNNEL ? "funnel" : "mass", gf_lga_hopper_angle(c), c->lga_outlet_width);
+    fprintf(f, "  \"seed\": %" PRIu64 ",\n", c->run_seed);
+    fprintf(f, "  \"p\": %.6g,\n  \"q\": %.6g,\n  \"g\": %.6g,\n  \"h\": %.6g,\n  \"k\": %.6g,\n  \"b\": %.6g,\n", c->lga_p,
+            c->lga_q, c->lga_g, c->lga_h, c->lga_k, c->lga_b);
+    fprintf(f, "  \"lattice_width\": %d,\n  \"lattice_height\": %d,\n  \"fluid_sites\": %lld,\n", t.width, t.height,
+            (long long)t.fluid_sites);
+    fprintf(f, "  \"iterations\": %lld,\n", (long long)s->iterations);
+    fprintf(f, "  \"particles_initial\": %lld,\n  \"particles_added\": %lld,\n", (long long)s->particles_initial,
+            (long long)s->particles_added);
+    fprintf(f, "  \"particles_removed\": %lld,\n  \"particles_final\": %lld,\n", (long long)s->particles_removed,
+            (long long)s->particles_final);
+    if (s->iterations_to_empty >= 0) fprintf(f, "  \"iterations_to_empty\": %lld,\n", (long long)s->iterations_to_empty);
+    else fprintf(f, "  \"iterations_to_empty\": null,\n");
+    gf_lga_json_num(f, "mean_outflow_rate", s->iterations > 0 ? (double)s->particles_removed / (double)(s->iterations_to_empty >= 0 ? s->iterations_to_empty : s->iterations) : NAN, false);
+    gf_lga_json_num(f, "slope_angle", s->slope_angle, false);
+    gf_lga_json_num(f, "slope_left", s->slope_left, false);
+    gf_lga_json_num(f, "slope_right", s->slope_right, false);
+    gf_lga_json_num(f, "wave_variance_initial", s->wave_variance_initial, false);
+    gf_lga_json_num(f, "wave_variance_final", s->wave_variance_final, false);
+    gf_lga_json_num(f, "wave_variance_ratio", s->wave_variance_final / s->wave_variance_initial, false);
+    gf_lga_json_num(f, "wall_seconds", s->wall_seconds, false);
+    gf_lga_json_num(f, "site_updates_per_second", s->site_updates_per_second, true);
+    fprintf(f, "}\n");
+    return gf_atomic_commit(f, tmp, path);
+}
+
+static void gf_lga_out_close(gf_lga_out *o)
+{
+    if (o->outflow) gf_atomic_abort(o->outflow, o->outflow_tmp);
+    if (o->waves) gf_atomic_abort(o->waves, o->waves_tmp);
+    o->outflow = o->waves = NULL;
+    for (size_t i = 0; i < o->nframes; i++) gf_lga_frame_free(&o->frames[i]);
+    if (o->frames) GF_DELETE(o->frames, GF_LGA_KEEP_FRAMES);
+    o->frames = NULL;
+}
+
+// Whether the run is over (auto ends; an explicit lga.iterations is handled by the caller).
+static bool gf_lga_auto_done(const gf_lga *l, int64_t *quiet, int64_t *last_out, int64_t *fed_at)
+{
+    gf_lga_stats s = gf_lga_get_stats(l);
+    switch (l->scenario) {
+    case GF_LGA_CHANNEL: return s.iteration >= GF_LGA_CHANNEL_ITERATIONS;
+    case GF_LGA_SILO:
+        if (s.last_outflow > 0) *last_out = s.iteration;
+        return s.particles == 0 || s.iteration - *last_out >= GF_LGA_STALL_ITERATIONS || s.iteration >= GF_LGA_SILO_MAX;
+    case GF_LGA_PILE:
+        if (s.to_add > 0) return false;
+        if (*fed_at < 0) *fed_at = s.iteration;
+        if (s.iteration % 10 == 0) *quiet = gf_lga_moving(l) == 0 ? *quiet + 10 : 0;
+        return *quiet >= GF_LGA_QUIET || s.iteration - *fed_at >= GF_LGA_PILE_SETTLE_MAX;
+    }
+    return true;
+}
+
+gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_lga_summary *summary)
+{
+    if (!cfg || !opts || !opts->dir || !opts->dir[0]) return gf_error_set(GF_ERR_PARAM, "gf_lga_run_dir: no config or directory");
+    gf_lga_out o = {.keep_every = 1};
+    if (snprintf(o.dir, sizeof o.dir, "%s", opts->dir) >= (int)sizeof o.dir)
+        return gf_error_set(GF_ERR_PARAM, "output directory path too long");
+    if (!opts->force && gf_lga_dir_busy(o.dir))
+        return gf_error_set(GF_ERR_PARAM, "%s is not empty: choose another -o, or overwrite it with --force", o.dir);
+    // Everything that can fail on bad input happens before the directory is touched.
+    gf_lga *l = NULL;
+    gf_status st = gf_lga_create(cfg, &l);
+    if (st != GF_OK) return st;
+    char maps[GF_PATH_MAX + 16], path[GF_PATH_MAX + 32];
+    snprintf(maps, sizeof maps, "%s/maps", o.dir);
+    if ((st = gf_lga_mkdir(maps)) == GF_OK) st = gf_lga_clear_maps(maps);
+    snprintf(path, sizeof path, "%s/config.ini", o.dir);
+    if (st == GF_OK) st = gf_config_save(&l->cfg, path);
+    o.frames = GF_NEW(gf_lga_frame, GF_LGA_KEEP_FRAMES);
+    if (st == GF_OK && !o.frames) st = gf_error_set(GF_ERR_NOMEM, "out of memory (LGA frames)");
+    snprintf(o.outflow_path, sizeof o.outflow_path, "%s/outflow.csv", o.dir);
+    if (st == GF_OK) st = gf_atomic_open(o.outflow_path, o.outflow_tmp, sizeof o.outflow_tmp, &o.outflow);
+    if (st == GF_OK && l->scenario == GF_LGA_CHANNEL) {
+        snprintf(o.waves_path, sizeof o.waves_path, "%s/waves.csv", o.dir);
+        st = gf_atomic_open(o.waves_path, o.waves_tmp, sizeof o.waves_tmp, &o.waves);
+    }
+
+    gf_lga_summary s = {.scenario = l->scenario, .iterations_to_empty = -1, .slope_angle = NAN, .slope_left = NAN,
+                        .slope_right = NAN, .wave_variance_initial = NAN, .wave_variance_final = NAN};
+    char title[96];
+    snprintf(title, sizeof title, "LGA %s", gf_lga_scenario_name(l->scenario));
+    const int64_t until = l->cfg.lga_iterations; // 0: the scenario's own end
+    const int64_t every = l->cfg.lga_snapshot_interval;
+    double wave_sum = 0;
+    int64_t wave_n = 0, quiet = 0, last_out = 0, fed_at = -1;
+    bool interrupted = false;
+    if (st == GF_OK) {
+        fprintf(o.outflow, "iteration,outflow,particles,added\n0,0,%lld,0\n", (long long)l->particles);
+        if (o.waves) {
+            s.wave_variance_initial = gf_lga_wave_variance(l, GF_LGA_WAVE_WINDOW);
+            fprintf(o.waves, "iteration,variance\n0,%.8g\n", s.wave_variance_initial);
+        }
+        st = gf_lga_snapshot(&o, l, title);
+    }
+    s.particles_initial = l->particles;
+    double wall0 = gf_clock_now();
+    while (st == GF_OK) {
+        if (until > 0 ? l->iteration >= until : gf_lga_auto_done(l, &quiet, &last_out, &fed_at)) break;
+        if (l->scenario == GF_LGA_SILO && l->particles == 0) break;
+        if (opts->stop && *opts->stop) {
+            interrupted = true;
+            break;
+        }
+        gf_lga_step(l);
+        fprintf(o.outflow, "%lld,%lld,%lld,%lld\n", (long long)l->iteration, (long long)l->last_outflow,
+                (long long)l->particles, (long long)l->added);
+        if (l->scenario == GF_LGA_SILO && l->particles == 0 && s.iterations_to_empty < 0)
+            s.iterations_to_empty = l->iteration;
+        if (o.waves && l->iteration % GF_LGA_WAVE_EVERY == 0) {
+            double v = gf_lga_wave_variance(l, GF_LGA_WAVE_WINDOW);
+            fprintf(o.waves, "%lld,%.8g\n", (long long)l->iteration, v);
+            int64_t horizon = until > 0 ? until : GF_LGA_CHANNEL_ITERATIONS;
+            if (4 * l->iteration >= 3 * horizon) { // the last quarter of the run
+                wave_sum += v;
+                wave_n++;
+            }
+        }
+        if (l->iteration % every == 0) st = gf_lga_snapshot(&o, l, title);
+        if (opts->progress && l->iteration % 100 == 0) {
+            gf_lga_stats ps = gf_lga_get_stats(l);
+            opts->progress(opts->ctx, &ps, until);
+        }
+    }
+    s.wall_seconds = gf_clock_now() - wall0;
+    s.iterations = l->iteration;
+    s.particles_added = l->added;
+    s.particles_removed = l->removed;
+    s.particles_final = l->particles;
+    s.site_updates_per_second = s.wall_seconds > 0 ? (double)l->fluid_sites * (double)l->iteration / s.wall_seconds : 0;
+    if (o.waves) s.wave_variance_final = wave_n ? wave_sum / (double)wave_n : gf_lga_wave_variance(l, GF_LGA_WAVE_WINDOW);
+
+    gf_lga_frame last = {0};
+    bool have_last = false;
+    if (st == GF_OK && l->iteration % every != 0) {
+        // the final state: its own map, and the sheet's last panel
+        if ((st = gf_lga_frame_capture(l, &last)) == GF_OK) {
+            have_last = true;
+            snprintf(path, sizeof path, "%s/maps/map_%06lld.png", o.dir, (long long)last.iteration);
+            st = gf_lga_frame_draw(&last, GF_LGA_MAP_PX, title, path);
+        }
+    }
+    if (st == GF_OK) st = gf_lga_write_sheet(&o, have_last ? &last : NULL, title);
+    if (have_last) gf_lga_frame_free(&last);
+    if (st == GF_OK && l->scenario == GF_LGA_PILE) st = gf_lga_write_profile(&o, l, &s.slope_angle, &s.slope_left, &s.slope_right);
+    if (st == GF_OK) {
+        st = gf_atomic_commit(o.outflow, o.outflow_tmp, o.outflow_path);
+        o.outflow = NULL;
+    }
+    if (st == GF_OK && o.waves) {
+        st = gf_atomic_commit(o.waves, o.waves_tmp, o.waves_path);
+        o.waves = NULL;
+    }
+    if (st == GF_OK) st = gf_lga_write_summary(&o, l, &s, interrupted ? "interrupted" : "complete");
+    gf_lga_out_close(&o);
+    gf_lga_destroy(l);
+    if (summary) *summary = s;
+    if (st == GF_OK && interrupted) return gf_error_set(GF_ERR_INTERRUPTED, "interrupted at iteration %lld; the results so far are in %s", (long long)s.iterations, opts->dir);
+    return st;
+}

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# granflow dem / calibrate / compare on the command line: inputs written,
+# usage errors and their exit codes, --timestep understood by analyze.
+NAME=dem
+source "$(dirname "$0")/lib.bash" "$@"
+
+# expect_code CODE ARGS...: granflow ARGS must exit with CODE.
+expect_code() {
+    local want=$1
+    shift
+    gf "$@"
+    expect_rc "$want" "granflow $*"
+    ok "granflow $* -> $want"
+}
+
+expect_code 2 dem --set packing.particles=100            # no -o
+expect_code 2 dem --set dem.timestep=0.01 -o "$T/x"       # too long for kn
+expect_code 0 dem -q --set container.width=12 --set packing.particles=200 --set dem.fill_method=generate -o "$T/d"
+for f in in.fill in.drain config.ini fill.data; do [ -s "$T/d/$f" ] || fail "granflow dem did not write $f"; done
+ok "inputs written"
+grep -q 'wall/gran/region hertz/history' "$T/d/in.drain" || fail "in.drain has no base with a hole"
+grep -q 'dump_modify snap pad 9 sort id time yes' "$T/d/in.drain" || fail "in.drain dumps without ITEM: TIME"
+grep -q '^\[dem\]' "$T/d/config.ini" || fail "config.ini lacks [dem]"
+expect_code 2 calibrate "$T/d"                            # no -o
+expect_code 2 compare "$T/d"                              # one run only
+expect_code 2 calibrate "$T/d" -o "$T/p.ini" --bogus
+# A dump with TIMESTEP only: analyze needs --timestep (an alias of --set dump.dt=).
+cat > "$T/steps.dump" <<'DUMP'
+ITEM: TIMESTEP
+0
+ITEM: NUMBER OF ATOMS
+2
+ITEM: BOX BOUNDS ff ff ff
+-5 5
+-3 3
+0 10
+ITEM: ATOMS id x y z
+1 0 0 1
+2 1 0 2
+ITEM: TIMESTEP
+10000
+ITEM: NUMBER OF ATOMS
+1
+ITEM: BOX BOUNDS ff ff ff
+-5 5
+-3 3
+0 10
+ITEM: ATOMS id x y z
+2 1 0 1.5
+DUMP
+expect_code 2 analyze outflow "$T/steps.dump" -q --no-plots -o "$T/a"
+expect_code 0 analyze outflow "$T/steps.dump" -q --no-plots -o "$T/a" --timestep 1e-4 --set container.orifice_diameter=4
+grep -q '"particles_exited": 1' "$T/a/summary.json" || fail "outflow of the dump is not 1 particle"
+ok "analyze --timestep"
+echo "cli $NAME: $PASS passed, 0 failed"

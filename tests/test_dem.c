@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: MIT
+// DEM side by side (SPEC 1.8): the LAMMPS inputs run under Debian's lmp and
+// give dumps granflow reads; DEM dumps import (column orders, scaled
+// coordinates, several timesteps, truncated files, atom types, particles
+// below the base).
+#include "support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "granflow/dem.h"
+
+static const char *path_in(const char *sub)
+{
+    static char buf[800];
+    snprintf(buf, sizeof buf, "%s/%s", gf_test_tmpdir(), sub);
+    return buf;
+}
+
+// ---- the LAMMPS run -----------------------------------------------------------
+
+static void lammps_run_gives_readable_dumps(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.container_width = 10;
+    c.container_depth = 6;
+    c.orifice_diameter = 4;
+    c.packing_particles = 300;
+    c.dem_fill_method = GF_DEM_GENERATE; // granflow's packing: no pour to wait for
+    c.dem_settle_time = 0.3;
+    c.run_duration = 0.3;
+    c.output_snapshot_interval = 0.1;
+    char dir[900];
+    snprintf(dir, sizeof dir, "%s", path_in("dem"));
+    gf_dem_plan plan;
+    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(plan.particles, 300);
+    assert_int_equal(plan.snapshot_steps, 1000);
+    assert_int_equal(plan.drain_steps, 3000);
+    // 2 pi R / 0.1 beads on the orifice edge (R = 2), all inside the 10 x 6 walls.
+    assert_int_equal(plan.rim_beads, (size_t)ceil(2 * 3.14159265358979 * 2 / 0.1));
+    // The same law everywhere: pair style and walls carry the [dem] keys.
+    char in[1300];
+    snprintf(in, sizeof in, "%s/in.fill", dir);
+    char *text = gf_test_read_file(in, NULL);
+    assert_non_null(text);
+    assert_non_null(strstr(text, "pair_style gran/hertz/history 200000 57142.85714 50 25 0.5 1"));
+    assert_non_null(strstr(text, "xplane -5 5"));
+    free(text);
+
+    // CI installs lammps (scripts/deps.sh): a machine without it fails here, loudly.
+    gf_dem_run_opts ro = {.ranks = 1};
+    gf_status st = gf_dem_run(dir, &ro);
+    if (st != GF_OK) fail_msg("LAMMPS run failed: %s", gf_last_error());
+
+    gf_series s;
+    gf_dem_load_report rep;
+    assert_int_equal(gf_dem_series_load(dir, NULL, &s, &rep), GF_OK);
+    assert_int_equal(s.nframes, 4);
+    for (size_t k = 0; k < 4; k++) gf_assert_near(s.frames[k].time, 0.1 * (double)k, 1e-9); // ITEM: TIME, in tau
+    assert_false(rep.have_type);                                  // id x y z radius
+    assert_true(s.cfg.container_width == 10 && s.cfg.orifice_diameter == 4); // from DIR/config.ini
+    assert_int_equal(s.n_initial, 300);
+    for (size_t k = 0; k < s.nframes; k++) {
+        const gf_packing *p = &s.frames[k].pk;
+        assert_true(p->n <= 300 && (k == 0 || p->n <= s.frames[k - 1].pk.n));
+        for (size_t i = 0; i < p->n; i++) {
+            // Centres inside the walls (a Hertzian overlap is far below 0.01 d) and above the base.
+            assert_true(fabs(p->x[i]) <= 5 - 0.49 && fabs(p->y[i]) <= 3 - 0.49 && p->z[i] >= 0);
+            assert_true(p->id[i] >= 1 && p->id[i] <= 300);
+            gf_assert_near(p->r[i], 0.5, 1e-12);
+        }
+    }
+    gf_series_free(&s);
+
+    // The settled packing is a run's initial packing as it is.
+    gf_config r = gf_config_default();
+    snprintf(r.packing_file, sizeof r.packing_file, "%s/packing.dump", dir);
+    snprintf(r.packing_types, sizeof r.packing_types, "1");
+    gf_packing pk = {0};
+    gf_packing_import_report ir;
+    assert_int_equal(gf_packing_import(&r, &pk, &ir), GF_OK);
+    assert_int_equal(pk.n, 300);
+    assert_int_equal(ir.other_types + ir.below_base, 0);
+    gf_packing_free(&pk);
+}
+
+// ---- importing dumps ------------------------------------------------------------
+
+static const char *wdump(const char *name, const char *text)
+{
+    return gf_test_write_file(gf_test_tmpdir(), name, text);
+}
+
+#define BOX "ITEM: BOX BOUNDS ff ff ff\n-5 5\n-3 3\n-2 20\n"
+
+// Any column order; a DEM floor (type 2, below the base) and a particle
+// falling through the orifice (type 1, z < 0) are dropped and counted.
+static void import_types_and_below_base(void **state)
+{
+    (void)state;
+    char f[900];
+    snprintf(f, sizeof f, "%.800s", wdump("floor.dump", "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n6\n" BOX
+                                        "ITEM: ATOMS z type id y x\n"
+                                        "0.5 1 1 0 0\n"
+                                        "1.5 1 2 0.5 1\n"
+                                        "-0.5 2 3 0 2\n"
+                                        "-0.5 2 4 0 3\n"
+                                        "-1.0 1 5 0 0.2\n"
+                                        "2.5 1 6 1 -1\n"));
+    gf_config c = gf_config_default();
+    c.container_width = 10;
+    c.container_depth = 6;
+    c.orifice_diameter = 4;
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", f);
+    snprintf(c.packing_types, sizeof c.packing_types, "1");
+    gf_packing pk = {0};
+    gf_packing_import_report rep;
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_OK);
+    assert_int_equal(rep.read, 6);
+    assert_int_equal(rep.other_types, 2);
+    assert_int_equal(rep.below_base, 1);
+    assert_int_equal(pk.n, 3);
+    // Columns found by name: id 2 has x = 1, y = 0.5, z = 1.5; layers by height.
+    assert_int_equal(pk.id[1], 2);
+    assert_true(pk.x[1] == 1 && pk.y[1] == 0.5 && pk.z[1] == 1.5);
+    assert_int_equal(pk.layer[1], 1);
+    gf_packing_free(&pk);
+    // Without a type filter only the particles below the base go (the floor too).
+    c.packing_types[0] = '\0';
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_OK);
+    assert_int_equal(pk.n, 3);
+    assert_int_equal(rep.below_base, 3);
+    gf_packing_free(&pk);
+    // A type filter needs a type column.
+    const char *nt = wdump("notype.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\n" BOX "ITEM: ATOMS id x y z\n1 0 0 1\n");
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", nt);
+    snprintf(c.packing_types, sizeof c.packing_types, "1,2");
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "no `type` column"));
+    // Nothing left is an error naming the counts.
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", f);
+    snprintf(c.packing_types, sizeof c.packing_types, "7");
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_ERR_PARAM);
+    if (!strstr(gf_last_error(), "no particle left of 6")) fail_msg("%s", gf_last_error());
+}
+
+static void types_parse(void **state)
+{
+    (void)state;
+    int32_t t[GF_PACKING_MAXTYPES];
+    size_t n;
+    assert_int_equal(gf_packing_types_parse("", t, GF_PACKING_MAXTYPES, &n), GF_OK);
+    assert_int_equal(n, 0);
+    assert_int_equal(gf_packing_types_parse(" 1, 3 4", t, GF_PACKING_MAXTYPES, &n), GF_OK);
+    assert_int_equal(n, 3);
+    assert_true(t[0] == 1 && t[1] == 3 && t[2] == 4);
+    assert_int_equal(gf_packing_types_parse("1,x", t, GF_PACKING_MAXTYPES, &n), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "'x' is not an atom type"));
+    assert_int_equal(gf_packing_types_parse("0", t, GF_PACKING_MAXTYPES, &n), GF_ERR_PARAM);
+    assert_int_equal(gf_packing_types_parse("-1", t, GF_PACKING_MAXTYPES, &n), GF_ERR_PARAM);
+    assert_int_equal(gf_packing_types_parse("1 2 3", t, 2, &n), GF_ERR_PARAM);
+    // The config rejects a bad list, naming the key.
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "packing.types=1,2.5", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "packing.types"));
+    // dem.timestep is checked against the contact time of dem.kn.
+    c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "dem.timestep=0.005", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "dem.timestep"));
+    c = gf_config_default();
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_assert_near(c.dem_kt, 2.0 / 7.0 * 200000, 1e-9); // auto
+    gf_assert_near(c.dem_gammat, 25, 1e-12);
+}
+
+// A multi-frame dump with scaled coordinates and TIMESTEP only: --timestep
+// gives the times; the type filter and the particles below the base apply to
+// every frame; the layers are tagged by the first frame's heights.
+static void series_scaled_steps_types(void **state)
+{
+    (void)state;
+    // Box x -5..5, y -3..3, z -2..20: xs = (x + 5) / 10, zs = (z + 2) / 22.
+    const char *f = wdump("multi.dump",
+                          "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n3\n" BOX "ITEM: ATOMS id type xs ys zs\n"
+                          "1 1 0.5 0.5 0.5\n"     // (0, 0, 9)
+                          "2 1 0.6 0.5 0.95\n"    // (1, 0, 18.9)
+                          "3 2 0.7 0.5 0.0681818\n" // floor, z = -0.5
+                          "ITEM: TIMESTEP\n20000\nITEM: NUMBER OF ATOMS\n3\n" BOX "ITEM: ATOMS id type xs ys zs\n"
+                          "1 1 0.5 0.5 0.0454545\n" // z = -1: exited
+                          "2 1 0.6 0.5 0.5\n"
+                          "3 2 0.7 0.5 0.0681818\n");
+    gf_series s;
+    // Without a time step the frames cannot be placed in time.
+    assert_int_equal(gf_dem_series_load(f, NULL, &s, NULL), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "dump.dt"));
+    const char *sets[] = {"packing.types=1", "container.orifice_diameter=4"};
+    gf_dem_source src = {.dump_dt = 1e-4, .sets = sets, .nsets = 2};
+    gf_dem_load_report rep;
+    assert_int_equal(gf_dem_series_load(f, &src, &s, &rep), GF_OK);
+    assert_true(rep.have_type);
+    assert_int_equal(rep.other_types, 2);
+    assert_int_equal(rep.below_base, 1);
+    assert_int_equal(s.nframes, 2);
+    gf_assert_near(s.frames[1].time, 2.0, 1e-12); // 20000 steps of 1e-4 tau
+    assert_true(s.cfg.container_width == 10 && s.cfg.orifice_diameter == 4);
+    assert_int_equal(s.n_initial, 2);
+    assert_int_equal(s.frames[1].pk.n, 1);
+    gf_assert_near(s.frames[0].pk.z[1], 18.9, 1e-5);
+    // Layers: 1 + floor(z0 / 10) of the first frame, carried by id (not the type).
+    assert_int_equal(s.frames[0].pk.layer[0], 1);
+    assert_int_equal(s.frames[0].pk.layer[1], 2);
+    assert_int_equal(s.frames[1].pk.layer[0], 2);
+    gf_series_free(&s);
+    // ITEM: TIME wins over the step count when present.
+    const char *t = wdump("timed.dump", "ITEM: TIME\n0.5\nITEM: TIMESTEP\n5000\nITEM: NUMBER OF ATOMS\n1\n" BOX
+                                        "ITEM: ATOMS id x y z\n1 0 0 3\n");
+    assert_int_equal(gf_dem_series_load(t, &src, &s, NULL), GF_ERR_PARAM); // types need a type column
+    src.nsets = 1 + 0;
+    src.sets = sets + 1;
+    assert_int_equal(gf_dem_series_load(t, &src, &s, NULL), GF_OK);
+    gf_assert_near(s.frames[0].time, 0.5, 1e-12);
+    gf_series_free(&s);
+}
+
+static void truncated_dump_is_an_error(void **state)
+{
+    (void)state;
+    const char *f = wdump("cut.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n3\n" BOX "ITEM: ATOMS id x y z\n"
+                                      "1 0 0 1\n2 1 0 1\n");
+    gf_series s;
+    gf_dem_source src = {.dump_dt = 1e-4};
+    gf_status st = gf_dem_series_load(f, &src, &s, NULL);
+    assert_int_equal(st, GF_ERR_FORMAT);
+    assert_non_null(strstr(gf_last_error(), "cut.dump"));
+    gf_config c = gf_config_default();
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", f);
+    gf_packing pk = {0};
+    assert_int_equal(gf_packing_import(&c, &pk, NULL), GF_ERR_FORMAT);
+    assert_non_null(strstr(gf_last_error(), "cut.dump"));
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(lammps_run_gives_readable_dumps),
+    cmocka_unit_test(import_types_and_below_base),
+    cmocka_unit_test(types_parse),
+    cmocka_unit_test(series_scaled_steps_types),
+    cmocka_unit_test(truncated_dump_is_an_error),
+};
+
+GF_TEST_MAIN("dem", tests)
