@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // `granflow bench`: microseconds per spot() and relax() call and whole steps
-// on the papers' silo in flow (2009 paper Sec. 2: 7.15 us and 115 us).
+// on the papers' silo in flow (2009 paper Sec. 2: 7.15 us and 115 us), and
+// the lattice-gas automaton's site updates per second (--lga-only: just that).
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 #include "cli.h"
@@ -13,12 +15,71 @@ static double gf_clock(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+// The LGA (SPEC 2): site updates per second of the paper's channel (35,000
+// particles on 50 x 1000 sites, the lga.* parameters of cfg) in its density-wave
+// regime, timed over `iterations` after a warm-up of 200.
+typedef struct gf_bench_lga {
+    double site_updates_per_second, seconds;
+    int64_t sites, iterations, particles;
+} gf_bench_lga;
+
+static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, gf_bench_lga *out)
+{
+    gf_config cfg = *cfg_in;
+    cfg.lga_scenario = GF_LGA_CHANNEL;
+    gf_lga *l = NULL;
+    gf_status st = gf_lga_create(&cfg, &l);
+    if (st != GF_OK) return st;
+    gf_lga_run(l, 200, NULL);
+    double t0 = gf_clock();
+    gf_lga_run(l, iterations, NULL);
+    double dt = gf_clock() - t0;
+    gf_lga_stats s = gf_lga_get_stats(l);
+    gf_lga_destroy(l);
+    out->sites = s.fluid_sites;
+    out->iterations = iterations;
+    out->particles = s.particles;
+    out->seconds = dt;
+    out->site_updates_per_second = dt > 0 ? (double)s.fluid_sites * (double)iterations / dt : 0;
+    return GF_OK;
+}
+
+static void gf_bench_lga_print(const gf_bench_lga *b)
+{
+    printf("  lga     %8.1f M site updates/s (channel, %lld particles on %lld sites, %lld iterations in %.2f s)\n",
+           b->site_updates_per_second / 1e6, (long long)b->particles, (long long)b->sites, (long long)b->iterations,
+           b->seconds);
+}
+
 int gf_cmd_bench(int argc, char **argv)
 {
+    // --lga-only: time only the lattice-gas automaton (no packing, no spots).
+    bool lga_only = false;
+    char *args[256];
+    int nargs = 0;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--lga-only")) lga_only = true;
+        else if (nargs < (int)(sizeof args / sizeof args[0])) args[nargs++] = argv[i];
+    }
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "bench", &cli)) return GF_EXIT_USAGE;
+    if (!gf_cli_parse(nargs, args, "bench", &cli)) return GF_EXIT_USAGE;
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
+    gf_bench_lga lb;
+    if (lga_only) {
+        gf_status lst = gf_bench_lga_run(&cfg, 1000, &lb);
+        if (lst != GF_OK) return gf_cli_fail("bench", lst);
+        if (cli.json)
+            printf("{\"lga_site_updates_per_second\": %.0f, \"lga_sites\": %lld, \"lga_particles\": %lld, "
+                   "\"lga_iterations\": %lld, \"lga_seconds\": %.3f}\n",
+                   lb.site_updates_per_second, (long long)lb.sites, (long long)lb.particles, (long long)lb.iterations,
+                   lb.seconds);
+        else {
+            printf("granflow bench: the lattice-gas automaton only\n");
+            gf_bench_lga_print(&lb);
+        }
+        return GF_EXIT_OK;
+    }
     if (cli.bench_particles > 0) cfg.packing_particles = (int64_t)cli.bench_particles;
     double warmup = cli.bench_warmup > 0 ? cli.bench_warmup : 40.0; // spots reach the top of the 110 d packing
     double window = cli.bench_window > 0 ? cli.bench_window : 2.0;
@@ -52,6 +113,7 @@ int gf_cmd_bench(int argc, char **argv)
     gf_sim_stats c = gf_sim_get_stats(sim);
     gf_sim_destroy(sim);
     if (st != GF_OK) return gf_cli_fail("bench", st);
+    if ((st = gf_bench_lga_run(&cfg, 1000, &lb)) != GF_OK) return gf_cli_fail("bench", st);
 
     double moves = (double)(b.spot_moves - a.spot_moves);
     double step_us = moves > 0 ? 1e6 * wall / moves : 0;
@@ -62,9 +124,10 @@ int gf_cmd_bench(int argc, char **argv)
     if (cli.json) {
         printf("{\"particles\": %zu, \"threads\": 1, \"warmup_tau\": %g, \"window_tau\": %g, "
                "\"spot_us\": %.4f, \"relax_us\": %.4f, \"step_us\": %.4f, \"steps_per_second\": %.1f, "
-               "\"spots_active\": %zu, \"flow_rate\": %.2f, \"nlist_builds\": %llu, \"pack_seconds\": %.2f, \"warmup_seconds\": %.2f}\n",
+               "\"spots_active\": %zu, \"flow_rate\": %.2f, \"nlist_builds\": %llu, \"pack_seconds\": %.2f, \"warmup_seconds\": %.2f, "
+               "\"lga_site_updates_per_second\": %.0f, \"lga_sites\": %lld, \"lga_iterations\": %lld}\n",
                a.particles_initial, warmup, window, spot_us, relax_us, step_us, sps, b.spots_active, flow, (unsigned long long)(b.nlist_builds - a.nlist_builds), t_pack,
-               t_warm);
+               t_warm, lb.site_updates_per_second, (long long)lb.sites, (long long)lb.iterations);
     } else {
         printf("granflow bench: %zu particles, 1 thread, steady flow after %.3g tau (%zu spots active)\n",
                a.particles_initial, warmup, b.spots_active);
@@ -75,6 +138,7 @@ int gf_cmd_bench(int argc, char **argv)
         printf("  lists   %8llu neighbour-list rebuilds in the first window\n",
                (unsigned long long)(b.nlist_builds - a.nlist_builds));
         printf("  packing %.1f s, warm-up %.1f s\n", t_pack, t_warm);
+        gf_bench_lga_print(&lb);
     }
     return GF_EXIT_OK;
 }

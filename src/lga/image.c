@@ -180,10 +180,11 @@ gf_status gf_lga_frame_draw(const gf_lga_frame *f, double px, const char *title,
 gf_status gf_lga_sheet_draw(const gf_lga_frame *frames, size_t n, const char *title, const char *path)
 {
     if (n == 0) return gf_error_set(GF_ERR_PARAM, "LGA sheet %s: no frames", path);
-    // Columns so that the sheet is about as wide as tall, then the scale so
-    // that it is at most ~2400 pixels wide (and 2 pixels per spacing at least).
+    // Tall maps (channel, silo) side by side in one row, as in the paper's
+    // Figs. 6 and 7; wide ones (the pile) in a grid about as wide as tall.
+    // Then the scale: at most ~2400 pixels wide, at least 2 pixels per spacing.
     double aspect = (frames[0].h + 0.5) / (frames[0].w * 0.86602540378443864676); // height / width of a map
-    int cols = (int)fmax(1.0, fmin((double)n, floor(sqrt((double)n * aspect) + 0.5)));
+    int cols = aspect >= 1.5 ? (int)n : (int)fmax(1.0, fmin((double)n, floor(sqrt((double)n * aspect) + 0.5)));
     double px = fmax(2.0, fmin(8.0, 2400.0 / (cols * frames[0].w * 0.86602540378443864676)));
     return gf_lga_draw(frames, n, px, cols, title, path);
 }

@@ -36,8 +36,9 @@ void gf_lga_frame_cell(double px, int *cw, int *rh);
 gf_status gf_lga_frame_draw(const gf_lga_frame *f, double px, const char *title, const char *path);
 
 /// A contact sheet of the n frames in the given order, all at one scale
-/// (chosen so that the sheet is at most about 2400 pixels wide), in rows of
-/// about equal width and height; written atomically as a PNG.
+/// (chosen so that the sheet is at most about 2400 pixels wide, 2 pixels per
+/// spacing at least): tall maps in one row, wide ones in a grid about as wide
+/// as tall; written atomically as a PNG.
 gf_status gf_lga_sheet_draw(const gf_lga_frame *frames, size_t n, const char *title, const char *path);
 
 #endif

@@ -44,6 +44,9 @@ gf_status gf_lga_lattice_alloc(gf_lga *l, int w, int h, bool periodic)
 {
     if (w < 1 || h < 1 || (periodic && h < 2 * GF_LGA_HALO))
         return gf_error_set(GF_ERR_PARAM, "LGA lattice of %d x %d sites is too small", w, h);
+    if ((double)(w + 2 * GF_LGA_HALO) * (double)(h + 2 * GF_LGA_HALO) > GF_LGA_MAX_SITES)
+        return gf_error_set(GF_ERR_PARAM, "LGA lattice of %d x %d sites is too large (at most %.0f sites)", w, h,
+                            (double)GF_LGA_MAX_SITES);
     l->w = w;
     l->h = h;
     l->periodic = periodic;

@@ -35,6 +35,9 @@ typedef struct gf_lga_reflection {
 #define GF_LGA_SCATTER_RADIUS 12
 #define GF_LGA_SCATTER_QUEUE 1024
 
+/// Most sites a lattice may have (about 2 GB of state): beyond, surely a mistake.
+#define GF_LGA_MAX_SITES 1.0e8
+
 /// Halo of wall (or periodic ghost) sites around the interior: second-nearest moves reach 2 columns.
 #define GF_LGA_HALO 2
 
@@ -70,6 +73,7 @@ struct gf_lga {
     ptrdiff_t off[2][13];   ///< index offset of the neighbour in direction e, by column parity
     gf_lga_table *table;    ///< the collision table
     gf_rng rng;
+    int64_t settle_skip;    ///< resting particles the gravity-h draw passes over before its next success
 
     // probability thresholds against 32-bit uniforms (2^32 = always)
     uint64_t thr_p[14], thr_q[14]; ///< P(n >= k) = p^k, P(l >= k) = q^k, 32-bit fixed point

@@ -24,6 +24,7 @@ static gf_status gf_lga_begin(const gf_config *cfg, gf_lga **out, gf_lga **l)
     (*l)->cfg = c;
     (*l)->scenario = c.lga_scenario;
     gf_rng_seed(&(*l)->rng, c.run_seed, GF_LGA_RNG_STREAM);
+    (*l)->settle_skip = -1; // not drawn yet
     return GF_OK;
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The two propagation steps (LGA paper Sec. 2), the feed and the sinks.
+#include <math.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -120,6 +121,14 @@ void gf_lga_scatter(gf_lga *l)
     l->npersist = keep;
 }
 
+// Failures before the next success of Bernoulli(x) trials, 0 < x <= 1.
+static int64_t gf_lga_geometric_gap(gf_lga *l, double x)
+{
+    if (x >= 1.0) return 0;
+    double g = floor(log(gf_rng_uniform_pos(&l->rng)) / log1p(-x));
+    return g < 4e18 ? (int64_t)g : INT64_MAX;
+}
+
 void gf_lga_settle(gf_lga *l)
 {
     if (!l->thr_h) return;
@@ -131,8 +140,15 @@ void gf_lga_settle(gf_lga *l)
             size_t idx = row + (size_t)i;
             uint16_t s = st[idx];
             if ((s & (GF_LGA_REST | GF_LGA_MARK)) != GF_LGA_REST) continue;
+            // Bernoulli(h) per resting particle, drawn as geometric gaps between
+            // successes (the same law, one random number per success).
+            if (l->settle_skip < 0) l->settle_skip = gf_lga_geometric_gap(l, l->cfg.lga_h);
+            if (l->settle_skip > 0) {
+                l->settle_skip--;
+                continue;
+            }
+            l->settle_skip = gf_lga_geometric_gap(l, l->cfg.lga_h); // failures before the next success
             uint64_t r = gf_rng_next(&l->rng);
-            if ((r >> 32) >= l->thr_h) continue;
             size_t cand[5];
             int nc = 0;
             for (int k = 0; k < 5; k++) {

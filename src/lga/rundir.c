@@ -216,7 +216,9 @@ static bool gf_lga_auto_done(const gf_lga *l, int64_t *quiet, int64_t *last_out,
         if (s.last_outflow > 0) *last_out = s.iteration;
         return s.particles == 0 || s.iteration - *last_out >= GF_LGA_STALL_ITERATIONS || s.iteration >= GF_LGA_SILO_MAX;
     case GF_LGA_PILE:
-        if (s.to_add > 0) return false;
+        // a heap that buries the feed cannot take more: give up after ten times the feeding time
+        if (s.to_add > 0)
+            return (double)s.iteration >= 10.0 * (double)(s.added + s.to_add) / l->cfg.lga_feed_rate + 1000.0;
         if (*fed_at < 0) *fed_at = s.iteration;
         if (s.iteration % 10 == 0) *quiet = gf_lga_moving(l) == 0 ? *quiet + 10 : 0;
         return *quiet >= GF_LGA_QUIET || s.iteration - *fed_at >= GF_LGA_PILE_SETTLE_MAX;

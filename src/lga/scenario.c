@@ -149,7 +149,6 @@ static gf_status gf_lga_build_silo(gf_lga *l)
     double ytop = y1 + hp;
     int w = wp + 4;                            // two wall columns each side
     int h = (int)ceil(ytop) + 1;
-    if ((double)w * h > 2.0e8) return gf_error_set(GF_ERR_PARAM, "lga silo: lattice %d x %d is too large", w, h);
     gf_status st = gf_lga_lattice_alloc(l, w, h, false);
     if (st != GF_OK) return st;
     double xc = 0.5 * (w - 1) * GF_LGA_SQRT3_2;

@@ -19,8 +19,8 @@
 #define GF_LGA_MASS_ANGLE 20.0      ///< hopper wall from the vertical, degrees: mass flow
 #define GF_LGA_FUNNEL_ANGLE 60.0    ///< funnel flow (the wall at the angle of repose)
 #define GF_LGA_STALL_ITERATIONS 5000 ///< silo auto end: nothing left for this long
-#define GF_LGA_SLOPE_LO 0.2         ///< the heap slope is fitted where the profile is between
-#define GF_LGA_SLOPE_HI 0.8         ///< these fractions of its peak (apex and tail left out)
+#define GF_LGA_SLOPE_LO 0.3         ///< the heap slope is fitted where the profile is between
+#define GF_LGA_SLOPE_HI 0.9         ///< these fractions of its peak (tail and apex left out)
 
 /// Builds the lattice of l->cfg's scenario (l->cfg set, everything else zero).
 gf_status gf_lga_scenario_build(gf_lga *l);
