@@ -215,9 +215,9 @@ done
 for n in surf-beta0 surf-beta1 surf-beta1w surf-beta3w; do analyze "$n" an-fig7 "$W7" surface voronoi; done
 
 # ---- pictures -----------------------------------------------------------------
-render() { # NAME COLOUR TIME OUTFILE
+render() { # NAME COLOUR TIME OUTFILE [PX per d: 4 for the tall silo, 6 for the shallow one]
   local got
-  got=$("$GF" render "$RUNS/$1" --colour "$2" --times "$(s "$3")" --scale 6 -o "$RUNS/$1/render-repro" 2>>"$RUNS/render.log") ||
+  got=$("$GF" render "$RUNS/$1" --colour "$2" --times "$(s "$3")" --scale "${5:-4}" -o "$RUNS/$1/render-repro" 2>>"$RUNS/render.log") ||
     die "granflow render $RUNS/$1 failed, see $RUNS/render.log"
   cp "$(printf '%s\n' "$got" | tail -1)" "$OUT/$4"
 }
@@ -227,8 +227,8 @@ for n in base fixed-random fixed-newest; do
   for t in $PIC4; do render "$n" phi "$t" "fig4-$n-t$t.png"; done
 done
 for n in surf-beta0 surf-beta1 surf-beta1w surf-beta3w; do
-  render "$n" layer "$PIC5" "fig5-$n.png"
-  render "$n" phi-raw "$PIC5" "fig6-$n.png"
+  render "$n" layer "$PIC5" "fig5-$n.png" 6
+  render "$n" phi-raw "$PIC5" "fig6-$n.png" 6
 done
 for n in base random-k100 random-k1000 none; do render "$n" layer "$PIC10" "fig10-$n.png"; done
 

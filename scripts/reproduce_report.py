@@ -371,6 +371,17 @@ if not any(math.isnan(x) for x in last.values()):
           if last["surf-beta1w"] > last["surf-beta1"] else
           "As in the paper, the weighting does not steepen the simple-biasing slope.")))
     w("")
+bpf = {n: num(an(n, "fig7"), "bulk_packing_fraction") for n, _ in runs7}
+if not any(math.isnan(x) for x in bpf.values()):
+    w("The packing fraction of the bulk particles in -15 < x < 15 d, 15 < z < 45 d "
+      "(which in this silo reaches up to the free surface) over %s-%s tau is %s for "
+      "beta = 0, 1, 1 + weighting, 3 + weighting: %s" %
+      (tau(W7[0]), tau(W7[1]), ", ".join(f(bpf[n], "{:.3f}") for n, _ in runs7),
+       "the weighting keeps the top dense, as the paper's Fig. 6(c, d) shows, while "
+       "the unweighted walks leave it loose." if min(bpf["surf-beta1w"], bpf["surf-beta3w"])
+       > max(bpf["surf-beta0"], bpf["surf-beta1"]) else
+       "not the clear densification by the weighting of the paper's Fig. 6."))
+    w("")
 w("Snapshots at t = %s tau, central slice, coloured by initial 10 d layer (Fig. 5), "
   "and by each particle's own Voronoi packing fraction (Fig. 6, `--colour phi-raw`):"
   % tau(float(PIC5) * SCALE))
@@ -580,7 +591,7 @@ set output 'fig12-badness.png'
 set title 'Badness against relaxation time, both relative to full relaxation (Fig. 12)'
 set xlabel 't_{relax} / t_{relax}(full)'; set ylabel 'B / B(full)'
 set logscale xy; set key outside right; set grid
-set format x "10^{%L}"; set format y "10^{%L}"
+set format x "10^{%%L}"; set format y "10^{%%L}"
 set xrange [1e-4:2]; set yrange [0.5:*]
 plot %s
 """ % ", ".join(lines))
@@ -591,7 +602,7 @@ lines = []
 for i, (n, meth, k, *_rest) in enumerate(runs9):
     rows = [r for r in ancsv(n, "fig9", "gr") if r["r_d"] < 1.5]
     dat = tmp_data("fig11-%s.dat" % n, "r_d g", [(r["r_d"], r["g"]) for r in rows if r["g"] > 0])
-    lines.append("'%s' u 1:2 w l lw 2 t '%s%s'" % (dat, meth, "" if k in ("1", "-") and
+    lines.append("'%s' u 1:2 w l lw 2 lc %d dt %d t '%s%s'" % (dat, i % 5 + 1, i // 5 + 1, meth, "" if k in ("1", "-") and
                                                        not meth.startswith("Method") else " k = " + k))
 png = gnuplot("fig11-gr", """set terminal pngcairo size 800,560
 set output 'fig11-gr.png'
