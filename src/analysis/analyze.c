@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "core/atomic_file.h"
+#include "analysis/gnuplot.h"
 #include "core/error.h"
 #include "granflow/analysis.h"
 
@@ -136,10 +137,9 @@ static gf_status gf_mkdir_p(const char *dir)
     return GF_OK;
 }
 
-// Runs `gnuplot NAME.gp` in dir. 0 when the plot was drawn, 1 when gnuplot
-// is missing (-1 when it failed).
-static int gf_gnuplot(const char *dir, const char *script)
+int gf_gnuplot_run(const char *dir, const char *script)
 {
+    fflush(NULL); // the child must not repeat our buffered output
     pid_t pid = fork();
     if (pid < 0) return -1;
     if (pid == 0) {
@@ -148,10 +148,8 @@ static int gf_gnuplot(const char *dir, const char *script)
         _exit(127);
     }
     int status;
-    if (waitpid(pid, &status, 0) < 0) return -1;
-    if (!WIFEXITED(status)) return -1;
-    if (WEXITSTATUS(status) == 127) return 1;
-    return WEXITSTATUS(status) == 0 ? 0 : -1;
+    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
+    return WEXITSTATUS(status) == 127 ? 1 : WEXITSTATUS(status) == 0 ? 0 : -1;
 }
 
 static gf_status gf_write_plot(const char *outdir, const char *name, const gf_measure_out *out, int *gnuplot_state)
@@ -172,7 +170,7 @@ static gf_status gf_write_plot(const char *outdir, const char *name, const gf_me
     fputs("\nunset output\n", f);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
     if (*gnuplot_state == 1) return GF_OK; // known missing: said once
-    int r = gf_gnuplot(outdir, gp);
+    int r = gf_gnuplot_run(outdir, gp);
     if (r == 1) {
         fprintf(stderr, "granflow analyze: warning: gnuplot not found, plots not drawn (scripts/deps.sh installs it; "
                         "the .gp scripts are in %s)\n", outdir);

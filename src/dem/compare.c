@@ -7,9 +7,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
+#include "analysis/gnuplot.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "dem/dem_internal.h"
@@ -70,21 +69,6 @@ static double gf_cmp_l2(const gf_table *a, const gf_table *b)
     return sqrt(s);
 }
 
-static int gf_cmp_gnuplot(const char *dir, const char *script)
-{
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid < 0) return -1;
-    if (pid == 0) {
-        if (chdir(dir) != 0) _exit(126);
-        execlp("gnuplot", "gnuplot", script, (char *)NULL);
-        _exit(127);
-    }
-    int status;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
-    return WEXITSTATUS(status) == 127 ? 1 : WEXITSTATUS(status) == 0 ? 0 : -1;
-}
-
 static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bool plots)
 {
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 48];
@@ -126,7 +110,7 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bo
             o->vel_heights[0], o->vel_heights[o->vel_nheights ? o->vel_nheights - 1 : 0], o->dens_z0, o->dens_z1);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
     if (!plots) return GF_OK;
-    int r = gf_cmp_gnuplot(outdir, "compare.gp");
+    int r = gf_gnuplot_run(outdir, "compare.gp");
     if (r < 0) return gf_error_set(GF_ERR_IO, "gnuplot failed on %s", path);
     return GF_OK; // r == 1: no gnuplot; the script is there
 }
