@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "support.h"
 
+#include <math.h>
+
+#include "core/alloc.h"
+#include "granflow/analysis.h"
 #include "granflow/granflow.h"
 
 #include <stdio.h>
@@ -136,4 +140,34 @@ gf_config gf_test_silo_config(double width, int64_t particles, uint64_t seed)
     c.run_seed = seed;
     assert_int_equal(gf_config_validate(&c), GF_OK);
     return c;
+}
+
+const gf_table *gf_test_table(const gf_measure_out *o, const char *name)
+{
+    for (size_t k = 0; k < o->ntables; k++)
+        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
+    fail_msg("no table %s", name);
+    return NULL;
+}
+
+double gf_test_value(const gf_measure_out *o, const char *key)
+{
+    for (size_t k = 0; k < o->nvalues; k++)
+        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
+    fail_msg("no value %s", key);
+    return NAN;
+}
+
+gf_series gf_test_series(size_t nframes, double W, double D)
+{
+    gf_series s;
+    memset(&s, 0, sizeof s);
+    s.cfg = gf_config_default();
+    s.cfg.container_width = W;
+    s.cfg.container_depth = D;
+    s.nframes = nframes;
+    s.frames = GF_NEW(gf_frame, nframes);
+    assert_non_null(s.frames);
+    for (size_t k = 0; k < nframes; k++) s.frames[k].time = (double)k;
+    return s;
 }

@@ -42,6 +42,18 @@ struct gf_config gf_test_silo_config(double width, int64_t particles, uint64_t s
 /// A simulation of the packing gf_packing_generate builds for `c` (asserts success).
 struct gf_sim *gf_test_generated_sim(const struct gf_config *c);
 
+struct gf_series;
+/// A series of nframes empty frames at times 0, 1, 2, ... in a W x D container
+/// (the papers' silo config otherwise); release with gf_series_free.
+struct gf_series gf_test_series(size_t nframes, double W, double D);
+
+struct gf_measure_out;
+struct gf_table;
+/// The table of a measurement's output by name (fails the test when absent).
+const struct gf_table *gf_test_table(const struct gf_measure_out *o, const char *name);
+/// A headline value of a measurement's output by key (fails the test when absent).
+double gf_test_value(const struct gf_measure_out *o, const char *key);
+
 /// Asserts |a - b| <= tol with a message showing both values and the tolerance.
 #define gf_assert_near(a, b, tol) gf_assert_near_((a), (b), (tol), #a, #b, __FILE__, __LINE__)
 void gf_assert_near_(double a, double b, double tol, const char *ea, const char *eb, const char *file,

@@ -39,22 +39,6 @@ static void push(gf_packing *p, int64_t id, int32_t layer, double x, double z)
     assert_int_equal(gf_packing_push(p, id, layer, x, 0.0, z, 0.5), GF_OK);
 }
 
-static double value(const gf_measure_out *o, const char *key)
-{
-    for (size_t k = 0; k < o->nvalues; k++)
-        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
-    fail_msg("no headline value '%s'", key);
-    return NAN;
-}
-
-static const gf_table *table(const gf_measure_out *o, const char *name)
-{
-    for (size_t k = 0; k < o->ntables; k++)
-        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
-    fail_msg("no table '%s'", name);
-    return NULL;
-}
-
 static double cell(const gf_table *t, size_t row, size_t col)
 {
     assert_true(row < t->nrow && col < t->ncol);
@@ -116,10 +100,10 @@ static void outflow_from_exits(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
-    gf_assert_near(value(&out, "flow_rate"), R, 1e-9 * R);
+    gf_assert_near(gf_test_value(&out, "flow_rate"), R, 1e-9 * R);
     // k = 0..129 leave before t = 2 (k = 130 leaves exactly at 2 and counts).
-    assert_true(value(&out, "particles_exited") == (double)(N - 130));
-    const gf_table *t = table(&out, "outflow");
+    assert_true(gf_test_value(&out, "particles_exited") == (double)(N - 130));
+    const gf_table *t = gf_test_table(&out, "outflow");
     assert_int_equal(t->ncol, 3);
     assert_int_equal(t->nrow, 1 + (N - 130) + 1); // start, one row per exit, held to t = 16
     assert_true(cell(t, 0, 0) == 2.0 && cell(t, 0, 1) == 0.0);
@@ -135,7 +119,7 @@ static void outflow_from_exits(void **state)
     assert_int_equal(gf_analysis_opts_set(&o, "window.t0=3"), GF_OK);
     assert_int_equal(gf_analysis_opts_set(&o, "window.t1=4"), GF_OK);
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
-    gf_assert_near(value(&out, "flow_rate"), R, 1e-9 * R);
+    gf_assert_near(gf_test_value(&out, "flow_rate"), R, 1e-9 * R);
     gf_measure_free(&out);
     gf_series_free(&s);
 }
@@ -155,9 +139,9 @@ static void outflow_from_counts(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
-    gf_assert_near(value(&out, "flow_rate"), 25.0, 1e-12);
-    assert_true(value(&out, "particles_exited") == 250.0);
-    const gf_table *t = table(&out, "outflow");
+    gf_assert_near(gf_test_value(&out, "flow_rate"), 25.0, 1e-12);
+    assert_true(gf_test_value(&out, "particles_exited") == 250.0);
+    const gf_table *t = gf_test_table(&out, "outflow");
     assert_int_equal(t->nrow, 6);
     for (size_t k = 0; k < 6; k++) {
         assert_true(cell(t, k, 0) == 2.0 * (double)k && cell(t, k, 1) == 50.0 * (double)k);
@@ -169,7 +153,7 @@ static void outflow_from_counts(void **state)
     // One frame: no rate (NaN), not an error.
     s.nframes = 1;
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
-    assert_true(isnan(value(&out, "flow_rate")));
+    assert_true(isnan(gf_test_value(&out, "flow_rate")));
     gf_measure_free(&out);
     s.nframes = 6;
     gf_series_free(&s);
@@ -199,19 +183,19 @@ static void density_counts_the_slice(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
-    const gf_table *t = table(&out, "density");
+    const gf_table *t = gf_test_table(&out, "density");
     assert_int_equal(t->nrow, 5);
     for (size_t k = 0; k < 5; k++) assert_true(cell(t, k, 0) == times[k] && cell(t, k, 1) == c[k]);
-    assert_true(value(&out, "density_initial") == 9.0);
+    assert_true(gf_test_value(&out, "density_initial") == 9.0);
     // Auto window 1 .. 4: frames 1-4.
-    assert_true(value(&out, "density_steady") == (7.0 + 6.0 + 8.0 + 5.0) / 4.0);
+    assert_true(gf_test_value(&out, "density_steady") == (7.0 + 6.0 + 8.0 + 5.0) / 4.0);
     gnuplot_runs(&out, "density");
     gf_measure_free(&out);
     // Another slice, by option: 0 < z < 50.0005 holds z = 50, 49.999 and 10.
     assert_int_equal(gf_analysis_opts_set(&o, "density.z0=0"), GF_OK);
     assert_int_equal(gf_analysis_opts_set(&o, "density.z1=50.0005"), GF_OK);
     assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
-    assert_true(value(&out, "density_initial") == 3.0);
+    assert_true(gf_test_value(&out, "density_initial") == 3.0);
     gf_measure_free(&out);
     gf_series_free(&s);
 }
@@ -277,7 +261,7 @@ static void surface_angle_regression(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_surface(&s, &o, &out), GF_OK);
-    const gf_table *t = table(&out, "surface");
+    const gf_table *t = gf_test_table(&out, "surface");
     assert_int_equal(t->nrow, 6);
     gf_assert_near(cell(t, 0, 2), 30.0, 1e-9);
     gf_assert_near(cell(t, 0, 1), tan(30.0 / deg_per_rad), 1e-12);
@@ -291,8 +275,8 @@ static void surface_angle_regression(void **state)
     gf_assert_near(cell(t, 5, 2), 30.0, 1e-9);
     // Window auto: 1.25 .. 5 -> frames 2, 3, 5 (frame 4 has no angle).
     double mean = (cell(t, 2, 2) + cell(t, 3, 2) + cell(t, 5, 2)) / 3.0;
-    gf_assert_near(value(&out, "surface_angle"), mean, 1e-12);
-    gf_assert_near(value(&out, "surface_angle"), 30.0, tol / 3.0 + 1e-9);
+    gf_assert_near(gf_test_value(&out, "surface_angle"), mean, 1e-12);
+    gf_assert_near(gf_test_value(&out, "surface_angle"), 30.0, tol / 3.0 + 1e-9);
     gnuplot_runs(&out, "surface");
     gf_measure_free(&out);
     gf_series_free(&s);
@@ -323,16 +307,16 @@ static void rtd_per_layer(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
-    const gf_table *t = table(&out, "rtd");
+    const gf_table *t = gf_test_table(&out, "rtd");
     assert_int_equal(t->nrow, 2);
     const double want[2][6] = {{1, 3, 4, sqrt(13.0), 3, 1}, {2, 2, 5, sqrt(2.0), 5, 4}};
     for (size_t r = 0; r < 2; r++)
         for (size_t c = 0; c < 6; c++) gf_assert_near(cell(t, r, c), want[r][c], 1e-12);
-    gf_assert_near(value(&out, "rtd_mean"), 4.4, 1e-12);
-    gf_assert_near(value(&out, "rtd_median"), 4.0, 0.0);
-    assert_true(value(&out, "rtd_exited") == 5.0);
+    gf_assert_near(gf_test_value(&out, "rtd_mean"), 4.4, 1e-12);
+    gf_assert_near(gf_test_value(&out, "rtd_median"), 4.0, 0.0);
+    assert_true(gf_test_value(&out, "rtd_exited") == 5.0);
     // Histogram: per layer, pdf = count / (n bw) in bins of 0.25 tau.
-    const gf_table *hg = table(&out, "rtd_hist");
+    const gf_table *hg = gf_test_table(&out, "rtd_hist");
     double integral[3] = {0, 0, 0};
     size_t rows[3] = {0, 0, 0};
     for (size_t r = 0; r < hg->nrow; r++) {
@@ -373,7 +357,7 @@ static void rtd_needs_exits(void **state)
     // Exits, but none yet: a valid, empty result.
     series_exits(&s, (const gf_exit[]){{1, -1.0, 0, 0}}, 1); // before the first frame
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
-    assert_true(value(&out, "rtd_exited") == 0.0 && isnan(value(&out, "rtd_mean")));
+    assert_true(gf_test_value(&out, "rtd_exited") == 0.0 && isnan(gf_test_value(&out, "rtd_mean")));
     gnuplot_runs(&out, "rtd_empty");
     gf_measure_free(&out);
     gf_series_free(&s);

@@ -4,6 +4,7 @@
 // and h, friction k, wall roughness b and both propagation steps on tiny
 // lattices, and the statistics of the p and q draws.
 #include "support.h"
+#include "lga_support.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -33,18 +34,6 @@ static gf_lga *empty_lattice(const gf_config *c, int w, int h, bool periodic)
     gf_lga *l = NULL;
     assert_int_equal(gf_lga_create_empty(c, w, h, periodic, &l), GF_OK);
     return l;
-}
-
-// Particles on the lattice counted from the site states (and stacks).
-static int64_t recount(const gf_lga *l)
-{
-    int64_t n = 0;
-    for (int j = 0; j < l->h; j++)
-        for (int i = 0; i < l->w; i++) {
-            size_t s = gf_lga_index(l, i, j);
-            n += __builtin_popcount(l->state[s] & GF_LGA_PARTICLES) + l->excess[s];
-        }
-    return n;
 }
 
 // ---- the table ---------------------------------------------------------------

@@ -4,6 +4,7 @@
 // waves in the channel (and none without dissipation), outflow growing with
 // gravity g, determinism, the density maps and the run directory.
 #include "support.h"
+#include "lga_support.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -37,18 +38,6 @@ static gf_lga *make(gf_config *c)
     gf_lga *l = NULL;
     if (gf_lga_create(c, &l) != GF_OK) fail_msg("gf_lga_create: %s", gf_last_error());
     return l;
-}
-
-// Particles counted from the site states, independently of the engine's counters.
-static int64_t recount(const gf_lga *l)
-{
-    int64_t n = 0;
-    for (int j = 0; j < l->h; j++)
-        for (int i = 0; i < l->w; i++) {
-            size_t s = gf_lga_index(l, i, j);
-            n += __builtin_popcount(l->state[s] & GF_LGA_PARTICLES) + l->excess[s];
-        }
-    return n;
 }
 
 static uint64_t state_hash(const gf_lga *l)

@@ -14,37 +14,6 @@
 
 #define PI 3.14159265358979323846
 
-// A series of nframes empty frames at times 0, 1, 2, ... in a W x D container.
-static gf_series make_series(size_t nframes, double W, double D)
-{
-    gf_series s;
-    memset(&s, 0, sizeof s);
-    s.cfg = gf_config_default();
-    s.cfg.container_width = W;
-    s.cfg.container_depth = D;
-    s.nframes = nframes;
-    s.frames = GF_NEW(gf_frame, nframes);
-    assert_non_null(s.frames);
-    for (size_t k = 0; k < nframes; k++) s.frames[k].time = (double)k;
-    return s;
-}
-
-static const gf_table *find_table(const gf_measure_out *o, const char *name)
-{
-    for (size_t k = 0; k < o->ntables; k++)
-        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
-    fail_msg("no table %s", name);
-    return NULL;
-}
-
-static double find_value(const gf_measure_out *o, const char *key)
-{
-    for (size_t k = 0; k < o->nvalues; k++)
-        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
-    fail_msg("no value %s", key);
-    return NAN;
-}
-
 // xorshift-style uniform deviates in [0, 1), fixed seed: the test is repeatable.
 static double uniform(uint64_t *s)
 {
@@ -62,7 +31,7 @@ static void gr_random_points_tend_to_one(void **state)
     // base, so both the exact slab correction and the numerical one are used.
     const double W = 12, D = 4, H = 12, rmax = 3, dr = 0.05;
     const size_t N = 2500, F = 3;
-    gf_series s = make_series(F, W, D);
+    gf_series s = gf_test_series(F, W, D);
     uint64_t seed = 0x9e3779b97f4a7c15ULL;
     for (size_t k = 0; k < F; k++)
         for (size_t i = 0; i < N; i++)
@@ -81,7 +50,7 @@ static void gr_random_points_tend_to_one(void **state)
     o.gr_dr = dr;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_gr(&s, &o, &out), GF_OK);
-    const gf_table *g = find_table(&out, "gr");
+    const gf_table *g = gf_test_table(&out, "gr");
     size_t nbin = (size_t)(rmax / dr + 0.5);
     assert_int_equal(g->nrow, nbin);
     // Pair counts per bin, brute force, for the size of the errors.
@@ -143,7 +112,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
 {
     (void)state;
     const double W = 10, D = 7, H = 12, dr = 0.03, rcut = 1.2;
-    gf_series s = make_series(1, W, D);
+    gf_series s = gf_test_series(1, W, D);
     fcc_fill(&s.frames[0].pk, W, D, H);
     gf_analysis_opts o;
     gf_analysis_opts_default(&o);
@@ -159,7 +128,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
 
     // g(r): non-zero exactly in the bins holding the FCC distances sqrt(n),
     // n = 1..6 (none lies within 0.005 of a bin edge with dr = 0.03).
-    const gf_table *g = find_table(&out, "gr");
+    const gf_table *g = gf_test_table(&out, "gr");
     bool lattice_bin[84] = {false};
     assert_int_equal(g->nrow, 84);
     for (int n = 1; n <= 6; n++) lattice_bin[(int)(sqrt((double)n) / dr)] = true;
@@ -174,7 +143,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
         size_t k = (size_t)(peaks[m] / dr);
         assert_true(g->v[k * 2 + 1] > g->v[(k - 1) * 2 + 1] && g->v[k * 2 + 1] > g->v[(k + 1) * 2 + 1]);
     }
-    gf_assert_near(find_value(&out, "gr_first_peak_r"), 1.0, dr);
+    gf_assert_near(gf_test_value(&out, "gr_first_peak_r"), 1.0, dr);
 
     // Reference by brute force: neighbours within rcut of each region centre
     // and the angles between them, sorted into 60, 90, 120 and 180 degrees.
@@ -202,12 +171,12 @@ static void gr_and_g3_of_fcc_lattice(void **state)
             }
     }
     assert_true(centres > 50);
-    gf_assert_near(find_value(&out, "coordination"), bonds / centres, 1e-12);
+    gf_assert_near(gf_test_value(&out, "coordination"), bonds / centres, 1e-12);
     assert_true(bonds / centres > 10.0 && bonds / centres <= 12.0);
 
     // g3: a density per degree on 1-degree bins; exact angles 60, 90, 120 and
     // 180 land in the bin on either side of the edge (rounding), 180 in the last.
-    const gf_table *g3 = find_table(&out, "g3");
+    const gf_table *g3 = gf_test_table(&out, "g3");
     assert_int_equal(g3->nrow, 180);
     double total = 0, at[4] = {0};
     for (size_t k = 0; k < 180; k++) {
@@ -231,7 +200,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
 static void gr_rejects_bad_options(void **state)
 {
     (void)state;
-    gf_series s = make_series(1, 10, 8);
+    gf_series s = gf_test_series(1, 10, 8);
     gf_analysis_opts o;
     gf_analysis_opts_default(&o);
     o.gr_x0 = 20; // entirely outside the 10 d wide container
@@ -280,7 +249,7 @@ static void badness_of_hand_built_overlaps(void **state)
 static void badness_measure_averages_the_window(void **state)
 {
     (void)state;
-    gf_series s = make_series(3, 50, 8);
+    gf_series s = gf_test_series(3, 50, 8);
     const double shift[3] = {0.3, 0.0, 0.1}; // B's overlap with A: 0.4, 0.1, 0.2
     for (size_t k = 0; k < 3; k++) overlaps(&s.frames[k].pk, shift[k]);
     gf_analysis_opts o;
@@ -288,7 +257,7 @@ static void badness_measure_averages_the_window(void **state)
     o.t0 = 0.5;                   // frames at t = 1 and 2
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_badness(&s, &o, &out), GF_OK);
-    const gf_table *t = find_table(&out, "badness");
+    const gf_table *t = gf_test_table(&out, "badness");
     assert_int_equal(t->nrow, 2);
     assert_int_equal(t->ncol, 3);
     double b1 = (2 * 0.01 + 4 * 0.0025) / 5, b2 = (2 * 0.04 + 4 * 0.0025) / 5;
@@ -297,7 +266,7 @@ static void badness_measure_averages_the_window(void **state)
     gf_assert_near(t->v[2], 5.0, 0);
     gf_assert_near(t->v[3], 2.0, 0);
     gf_assert_near(t->v[4], b2, 1e-14);
-    gf_assert_near(find_value(&out, "badness"), 0.5 * (b1 + b2), 1e-14);
+    gf_assert_near(gf_test_value(&out, "badness"), 0.5 * (b1 + b2), 1e-14);
     assert_non_null(out.gnuplot);
     assert_non_null(strstr(out.gnuplot, "badness.csv"));
     gf_measure_free(&out);

@@ -34,22 +34,6 @@ static void push(gf_frame *f, int64_t id, double x, double y, double z)
     assert_int_equal(gf_packing_push(&f->pk, id, 1, x, y, z, 0.5), GF_OK);
 }
 
-static const gf_table *table(const gf_measure_out *o, const char *name)
-{
-    for (size_t k = 0; k < o->ntables; k++)
-        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
-    fail_msg("no table %s", name);
-    return NULL;
-}
-
-static double value(const gf_measure_out *o, const char *key)
-{
-    for (size_t k = 0; k < o->nvalues; k++)
-        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
-    fail_msg("no value %s", key);
-    return NAN;
-}
-
 static double cell(const gf_table *t, size_t row, size_t col) { return t->v[row * t->ncol + col]; }
 
 // ---------------------------------------------------------------------------
@@ -97,7 +81,7 @@ static void velocity_recovers_variance_line(void **state)
 
     // Every height 10 .. 60 is an exact Gaussian: amplitude A, centre 0,
     // variance 2 h + 1, recovered to the fit's convergence (1e-8).
-    const gf_table *tv = table(&out, "velocity_variance");
+    const gf_table *tv = gf_test_table(&out, "velocity_variance");
     assert_int_equal(tv->nrow, 6);
     for (size_t r = 0; r < 6; r++) {
         double h = 10.0 * (double)(r + 1);
@@ -106,11 +90,11 @@ static void velocity_recovers_variance_line(void **state)
         gf_assert_near(cell(tv, r, 2), VEL_A, 1e-8);
         gf_assert_near(cell(tv, r, 3), 0.0, 1e-8);
     }
-    gf_assert_near(value(&out, "velocity_variance_slope"), 2.0, 1e-8);
-    gf_assert_near(value(&out, "velocity_variance_intercept"), 1.0, 1e-6);
+    gf_assert_near(gf_test_value(&out, "velocity_variance_slope"), 2.0, 1e-8);
+    gf_assert_near(gf_test_value(&out, "velocity_variance_intercept"), 1.0, 1e-6);
 
     // Profiles: 50 bins per height, data and fit both equal to v_z.
-    const gf_table *tp = table(&out, "velocity_profiles");
+    const gf_table *tp = gf_test_table(&out, "velocity_profiles");
     assert_int_equal(tp->nrow, 6 * 50);
     for (size_t r = 0; r < tp->nrow; r++) {
         double v = vz_model(cell(tp, r, 1), cell(tp, r, 0));
@@ -120,7 +104,7 @@ static void velocity_recovers_variance_line(void **state)
 
     // The field: one bin per grid row/column, 3 samples (y) less the exits,
     // and its total equals the number of particles present at both times.
-    const gf_table *tf = table(&out, "velocity_field");
+    const gf_table *tf = gf_test_table(&out, "velocity_field");
     assert_int_equal(tf->nrow, 61 * 50);
     double total = 0.0;
     for (size_t r = 0; r < tf->nrow; r++) {
@@ -169,7 +153,7 @@ static void velocity_depth_profile(void **state)
     o.t1 = 1.0;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
-    const gf_table *td = table(&out, "velocity_depth");
+    const gf_table *td = gf_test_table(&out, "velocity_depth");
     assert_int_equal(td->nrow, 32);
     for (size_t r = 0; r < 32; r++) {
         double y = -4.0 + 0.25 * ((double)r + 0.5);
@@ -179,7 +163,7 @@ static void velocity_depth_profile(void **state)
     }
     // One height band (z = 60) has uniform flow: no peak, so its fit is NaN,
     // and the others have no particles: too few heights for the line.
-    assert_true(isnan(value(&out, "velocity_variance_slope")));
+    assert_true(isnan(gf_test_value(&out, "velocity_variance_slope")));
     gf_measure_free(&out);
     gf_series_free(&s);
 }
@@ -242,9 +226,9 @@ static void diffusion_recovers_random_walk(void **state)
     gf_analysis_opts_default(&o);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
-    gf_assert_near(value(&out, "diffusion_particles"), N, 0.0);
-    gf_assert_near(value(&out, "diffusion_length"), b, 5.0 * sqrt(2.0 / N) * b);
-    const gf_table *t = table(&out, "diffusion");
+    gf_assert_near(gf_test_value(&out, "diffusion_particles"), N, 0.0);
+    gf_assert_near(gf_test_value(&out, "diffusion_length"), b, 5.0 * sqrt(2.0 / N) * b);
+    const gf_table *t = gf_test_table(&out, "diffusion");
     assert_int_equal(t->nrow, 9);
     for (size_t r = 0; r < t->nrow; r++) {
         double dz = 2.0 * (double)(r + 1);
@@ -324,16 +308,16 @@ static void correlation_recovers_length(void **state)
     o.vel_bin = 16.0;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_correlation(&s, &o, &out), GF_OK);
-    gf_assert_near(value(&out, "correlation_length"), beta, 0.105 * beta);
-    gf_assert_near(value(&out, "correlation_amplitude"), 1.0, 0.075);
+    gf_assert_near(gf_test_value(&out, "correlation_length"), beta, 0.105 * beta);
+    gf_assert_near(gf_test_value(&out, "correlation_amplitude"), 1.0, 0.075);
     // Steady flow: the flow amplitude is the same in every frame pair (only
     // the y fluctuations enter it, through <v_y> ~ sigma / sqrt(K NP) ~ 1e-5).
-    gf_assert_near(value(&out, "correlation_unsteadiness"), 0.0, 1e-6);
+    gf_assert_near(gf_test_value(&out, "correlation_unsteadiness"), 0.0, 1e-6);
     // Pairs lie at r = m s: each bin's r is one of them, holding all NL K (NP - m)
     // such pairs, and C(r) = exp(-r / beta) within 5 sd: the sd of a bin's C is
     // at most that of the AR(1) sample autocovariance over NL K lines of NP
     // points, ~ sqrt((1 + rho^2) / (1 - rho^2) / (NL K NP)) = 0.4%, so 0.02.
-    const gf_table *t = table(&out, "correlation");
+    const gf_table *t = gf_test_table(&out, "correlation");
     assert_int_equal(t->nrow, 30); // m = 1 .. 30 (31 s = 8.0002 is beyond r = 8)
     for (size_t r = 0; r < t->nrow; r++) {
         double rr = cell(t, r, 0), m = rr / sp;

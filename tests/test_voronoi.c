@@ -14,22 +14,6 @@
 
 #define PI 3.14159265358979323846
 
-static const gf_table *find_table(const gf_measure_out *o, const char *name)
-{
-    for (size_t k = 0; k < o->ntables; k++)
-        if (strcmp(o->tables[k].name, name) == 0) return &o->tables[k];
-    fail_msg("no table %s", name);
-    return NULL;
-}
-
-static double find_value(const gf_measure_out *o, const char *key)
-{
-    for (size_t k = 0; k < o->nvalues; k++)
-        if (strcmp(o->values[k].key, key) == 0) return o->values[k].value;
-    fail_msg("no value %s", key);
-    return NAN;
-}
-
 // Simple cubic lattice, spacing 1, points at lo + off + i on each axis, in
 // the box of the container W x D x ztop (nx x ny x nz points).
 static void cubic(gf_packing *p, double W, double D, double off, int nx, int ny, int nz)
@@ -130,20 +114,6 @@ static void random_cells_fill_the_box(void **state)
     gf_packing_free(&p);
 }
 
-static gf_series make_series(size_t nframes, double W, double D)
-{
-    gf_series s;
-    memset(&s, 0, sizeof s);
-    s.cfg = gf_config_default();
-    s.cfg.container_width = W;
-    s.cfg.container_depth = D;
-    s.nframes = nframes;
-    s.frames = GF_NEW(gf_frame, nframes);
-    assert_non_null(s.frames);
-    for (size_t k = 0; k < nframes; k++) s.frames[k].time = (double)k;
-    return s;
-}
-
 static void measure_on_a_cubic_lattice(void **state)
 {
     (void)state;
@@ -151,7 +121,7 @@ static void measure_on_a_cubic_lattice(void **state)
     // (z = 19.5, cell up to ztop = 20.5). The surface is the top two layers
     // (centres within 1.5 of the top, 19.5); the rest is bulk with phi = pi/6.
     const double W = 8, D = 4;
-    gf_series s = make_series(4, W, D);
+    gf_series s = gf_test_series(4, W, D);
     for (size_t k = 0; k < 4; k++) cubic(&s.frames[k].pk, W, D, 0.5, 8, 4, 20);
     gf_analysis_opts o;
     gf_analysis_opts_default(&o); // window: a quarter in, frames 1..3
@@ -161,8 +131,8 @@ static void measure_on_a_cubic_lattice(void **state)
     o.gr_z1 = 10;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_voronoi(&s, &o, &out), GF_OK);
-    gf_assert_near(find_value(&out, "bulk_packing_fraction"), PI / 6, 1e-9);
-    const gf_table *t = find_table(&out, "voronoi");
+    gf_assert_near(gf_test_value(&out, "bulk_packing_fraction"), PI / 6, 1e-9);
+    const gf_table *t = gf_test_table(&out, "voronoi");
     assert_int_equal(t->nrow, 8 * 4 * 20);
     assert_int_equal(t->ncol, 7);
     for (size_t i = 0; i < t->nrow; i++) {
@@ -173,7 +143,7 @@ static void measure_on_a_cubic_lattice(void **state)
         // The field averages bulk cells only: pi/6 wherever one is within 2.2.
         gf_assert_near(row[5], PI / 6, 1e-9);
     }
-    const gf_table *pr = find_table(&out, "voronoi_profile");
+    const gf_table *pr = gf_test_table(&out, "voronoi_profile");
     assert_int_equal(pr->nrow, 21); // slabs up to ztop = 20.5
     for (size_t k = 0; k < pr->nrow; k++) {
         const double *row = pr->v + k * 3;
@@ -231,7 +201,7 @@ static void measure_headline_equals_full_tessellation(void **state)
     o.gr_z0 = 6;
     o.gr_z1 = 14; // far below the surface: every region particle is bulk
     for (int sparse = 0; sparse < 2; sparse++) {
-        gf_series s = make_series(2, c.container_width, c.container_depth);
+        gf_series s = gf_test_series(2, c.container_width, c.container_depth);
         s.cfg = c;
         if (!sparse) {
             assert_int_equal(gf_packing_generate(&c, &s.frames[0].pk), GF_OK);
@@ -249,7 +219,7 @@ static void measure_headline_equals_full_tessellation(void **state)
         double expect = region_mean_phi(p, &o, c.container_width, c.container_depth);
         gf_measure_out out = {0};
         assert_int_equal(gf_measure_voronoi(&s, &o, &out), GF_OK);
-        double bulk = find_value(&out, "bulk_packing_fraction");
+        double bulk = gf_test_value(&out, "bulk_packing_fraction");
         gf_assert_near(bulk, expect, 1e-12);
         if (!sparse) assert_true(bulk > 0.55 && bulk < 0.68);
         else assert_true(bulk < 0.2);
@@ -343,7 +313,7 @@ static void field_equals_the_measure_column(void **state)
     c.container_depth = 6;
     c.packing_particles = 2500;
     assert_int_equal(gf_config_validate(&c), GF_OK);
-    gf_series s = make_series(1, c.container_width, c.container_depth);
+    gf_series s = gf_test_series(1, c.container_width, c.container_depth);
     s.cfg = c;
     assert_int_equal(gf_packing_generate(&c, &s.frames[0].pk), GF_OK);
     const gf_packing *p = &s.frames[0].pk;
@@ -352,7 +322,7 @@ static void field_equals_the_measure_column(void **state)
     o.vor_avg_radius = 1.7; // not the default, to see that the radius is passed on
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_voronoi(&s, &o, &out), GF_OK);
-    const gf_table *t = find_table(&out, "voronoi");
+    const gf_table *t = gf_test_table(&out, "voronoi");
     assert_int_equal(t->nrow, p->n);
     double zmax = -INFINITY;
     for (size_t i = 0; i < p->n; i++) zmax = fmax(zmax, p->z[i]);
