@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cli.h"
 
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,4 +106,23 @@ int gf_cli_fail(const char *cmd, gf_status st)
     case GF_ERR_INTERRUPTED: return GF_EXIT_INTERRUPTED;
     default: return GF_EXIT_FAIL;
     }
+}
+
+static volatile sig_atomic_t gf_cli_stop;
+
+static void gf_cli_on_signal(int sig)
+{
+    (void)sig;
+    gf_cli_stop = 1;
+}
+
+volatile sig_atomic_t *gf_cli_catch_stop(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = gf_cli_on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    return &gf_cli_stop;
 }

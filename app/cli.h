@@ -3,6 +3,7 @@
 #ifndef GF_APP_CLI_H
 #define GF_APP_CLI_H
 
+#include <signal.h>
 #include <stdbool.h>
 
 #include "granflow/granflow.h"
@@ -35,6 +36,10 @@ bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli);
 /// Default config, then the CONFIG file, then the --set overrides, validated.
 /// Prints the error and returns false on failure.
 bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg);
+
+/// Makes SIGINT and SIGTERM set a flag instead of killing the process; the
+/// returned flag is what a run polls to stop cleanly (writing a checkpoint).
+volatile sig_atomic_t *gf_cli_catch_stop(void);
 
 /// Maps a status to the exit code and prints `granflow CMD: error: ...`.
 int gf_cli_fail(const char *cmd, gf_status st);

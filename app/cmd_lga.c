@@ -1,20 +1,11 @@
 // SPDX-License-Identifier: MIT
 // `granflow lga`: the lattice-gas automaton's pile, channel or silo into a directory.
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
-
-static volatile sig_atomic_t gf_lga_stop;
-
-static void gf_lga_on_signal(int sig)
-{
-    (void)sig;
-    gf_lga_stop = 1;
-}
 
 typedef struct gf_lga_progress_ctx {
     double t0, last;
@@ -53,12 +44,7 @@ int gf_cmd_lga(int argc, char **argv)
     }
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = gf_lga_on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    volatile sig_atomic_t *stop = gf_cli_catch_stop();
 
     const char *dir = cli.out ? cli.out : "runs/lga";
     bool tty = !cli.quiet && isatty(STDERR_FILENO);
@@ -66,7 +52,7 @@ int gf_cmd_lga(int argc, char **argv)
     gf_lga_run_opts opts = {
         .dir = dir,
         .force = cli.force,
-        .stop = &gf_lga_stop,
+        .stop = stop,
         .progress = tty ? gf_lga_progress : NULL,
         .ctx = &pc,
     };

@@ -1,19 +1,10 @@
 // SPDX-License-Identifier: MIT
 // `granflow run`: drain a silo into a run directory, or resume one.
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
-
-static volatile sig_atomic_t gf_stop;
-
-static void gf_on_signal(int sig)
-{
-    (void)sig;
-    gf_stop = 1;
-}
 
 typedef struct gf_progress_ctx {
     bool tty;
@@ -81,19 +72,14 @@ int gf_cmd_run(int argc, char **argv)
     } else if (!gf_cli_config(&cli, NULL, &cfg)) {
         return GF_EXIT_USAGE;
     }
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = gf_on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    volatile sig_atomic_t *stop = gf_cli_catch_stop();
 
     gf_progress_ctx pc = {.tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
     gf_run_opts opts = {
         .dir = dir,
         .resume = cli.resume != NULL,
         .force = cli.force,
-        .stop = &gf_stop,
+        .stop = stop,
         .progress = cli.quiet ? NULL : gf_show_progress,
         .ctx = &pc,
     };
