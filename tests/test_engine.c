@@ -46,10 +46,8 @@ static gf_status check_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     return GF_OK;
 }
 
-static void drain_keeps_invariants(void **state)
+static void drain_with(gf_config c)
 {
-    (void)state;
-    gf_config c = gf_test_silo_config(16, 2500, 3);
     c.output_snapshot_interval = 1.0;
     gf_sim *sim = gf_test_generated_sim(&c);
     inv_ctx ic = {.worst_wall = INFINITY, .worst_pair = INFINITY};
@@ -65,6 +63,23 @@ static void drain_keeps_invariants(void **state)
     assert_true(ic.worst_wall >= 0.5 - 0.02);
     gf_packing_free(&ic.pk);
     gf_sim_destroy(sim);
+}
+
+static void drain_keeps_invariants(void **state)
+{
+    (void)state;
+    drain_with(gf_test_silo_config(16, 2500, 3));
+}
+
+// The same for the parallel spatial fixed step, on two threads.
+static void spatial_step_keeps_invariants(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(16, 2500, 3);
+    c.run_mode = GF_MODE_FIXED;
+    c.run_order = GF_ORDER_SPATIAL;
+    c.run_threads = 2;
+    drain_with(c);
 }
 
 // ---- mean drift of one spot move --------------------------------------------
@@ -92,7 +107,7 @@ static drift measure_drift(gf_sim *sim, size_t trials, double z0)
         bool deleted;
         long ball;
         uint32_t count = 0;
-        assert_int_equal(gf_spot_step(sim, s, &count, &deleted, &ball), GF_OK);
+        assert_int_equal(gf_spot_step(sim, &sim->w0, s, &count, &deleted, &ball), GF_OK);
         assert_false(deleted);
         assert_true(ball > 30);
         double d[3] = {0};
@@ -367,6 +382,7 @@ static void corrupt_checkpoint_is_rejected(void **state)
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(drain_keeps_invariants),
+    cmocka_unit_test(spatial_step_keeps_invariants),
     cmocka_unit_test(spot_move_drift_is_minus_step_over_w),
     cmocka_unit_test(outflow_matches_mass_balance),
     cmocka_unit_test(same_seed_same_bytes),

@@ -53,8 +53,8 @@ static void spot_moves_exactly_the_ball(void **state)
     const double pos[][3] = {{0, 0, 10}, {2.5, 0, 10}, {0, 1.5, 11.5}, {2.7, 0, 10}, {0, 0, 12.61}};
     gf_sim *sim = make_sim(pos, 5);
     const double c[3] = {0, 0, 10}, u[3] = {1e-3, -2e-3, -2.5e-4};
-    long moved = gf_spot_apply(sim, c, u);
-    gf_spot_unmark(sim);
+    long moved = gf_spot_apply(sim, &sim->w0, c, u);
+    gf_spot_unmark(sim, &sim->w0);
     assert_int_equal(moved, 3);
     for (int id = 1; id <= 5; id++) {
         const gf_pos *q = by_id(sim, id);
@@ -74,7 +74,7 @@ static void relax_pair_both_inside(void **state)
     const double pos[][3] = {{-0.45, 0, 10}, {0.45, 0, 10}};
     gf_sim *sim = make_sim(pos, 2);
     const double c[3] = {0, 0, 10};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, -0.49, 1e-12);
     gf_assert_near(by_id(sim, 2)->x, 0.49, 1e-12);
     gf_assert_near(by_id(sim, 1)->z, 10.0, 1e-15);
@@ -89,7 +89,7 @@ static void relax_pair_inside_and_shell(void **state)
     const double pos[][3] = {{3.4, 0, 10}, {4.2, 0, 10}};
     gf_sim *sim = make_sim(pos, 2);
     const double c[3] = {0, 0, 10};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, 3.4 - 0.16, 1e-12);
     gf_assert_near(by_id(sim, 2)->x, 4.2, 0.0);
     gf_sim_destroy(sim);
@@ -102,7 +102,7 @@ static void relax_ignores_pairs_outside(void **state)
     const double pos[][3] = {{3.7, 0, 10}, {4.4, 0, 10}};
     gf_sim *sim = make_sim(pos, 2);
     const double c[3] = {0, 0, 10};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, 3.7, 0.0);
     gf_assert_near(by_id(sim, 2)->x, 4.4, 0.0);
     gf_sim_destroy(sim);
@@ -117,7 +117,7 @@ static void relax_wall_and_base(void **state)
     const double pos[][3] = {{-9.7, 3.6, 0.45}};
     gf_sim *sim = make_sim(pos, 1);
     const double c[3] = {-8, 2, 1};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, -9.7 + 0.16, 1e-12);
     gf_assert_near(by_id(sim, 1)->y, 3.6 - 0.08, 1e-12);
     gf_assert_near(by_id(sim, 1)->z, 0.45 + 0.04, 1e-12);
@@ -133,7 +133,7 @@ static void relax_orifice_rim(void **state)
     const double pos[][3] = {{3.8, 0, 0.2}};
     gf_sim *sim = make_sim(pos, 1);
     const double c[3] = {2, 0, 1};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     double d = sqrt(0.08), push = 0.8 * (0.5 - d) / d;
     gf_assert_near(by_id(sim, 1)->x, 3.8 - push * 0.2, 1e-12);
     gf_assert_near(by_id(sim, 1)->z, 0.2 + push * 0.2, 1e-12);
@@ -149,7 +149,7 @@ static void relax_displacements_applied_together(void **state)
     const double pos[][3] = {{-0.9, 0, 10}, {0, 0, 10}, {0.8, 0, 10}};
     gf_sim *sim = make_sim(pos, 3);
     const double c[3] = {0, 0, 10};
-    assert_int_equal(gf_relax_at(sim, c), GF_OK);
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, -0.94, 1e-12);
     gf_assert_near(by_id(sim, 2)->x, -0.04, 1e-12);
     gf_assert_near(by_id(sim, 3)->x, 0.88, 1e-12);
@@ -164,8 +164,8 @@ static void spot_exit_through_orifice(void **state)
     const double pos[][3] = {{0, 0, 0.0001}, {6, 0, 0.5}};
     gf_sim *sim = make_sim(pos, 2);
     const double c[3] = {0, 0, 0}, u[3] = {0, 0, -0.001};
-    assert_int_equal(gf_spot_apply(sim, c, u), 1);
-    gf_spot_unmark(sim);
+    assert_int_equal(gf_spot_apply(sim, &sim->w0, c, u), 1);
+    gf_spot_unmark(sim, &sim->w0);
     gf_sim_stats s = gf_sim_get_stats(sim);
     assert_int_equal(s.particles_exited, 1);
     assert_int_equal(s.particles_remaining, 1);
@@ -200,10 +200,10 @@ static void weighting_scales_by_population(void **state)
     const double pos[][3] = {{0, 0, 40}, {1, 0, 40}, {0, 1, 40}, {0, 0, 10}, {1, 0, 10}};
     gf_sim *sim = make_sim_cfg(&c, pos, 5);
     const double hi[3] = {0, 0, 40}, lo[3] = {0, 0, 10}, u[3] = {1e-3, -2e-3, -2.5e-4};
-    assert_int_equal(gf_spot_apply(sim, hi, u), 3);
-    gf_spot_unmark(sim);
-    assert_int_equal(gf_spot_apply(sim, lo, u), 2);
-    gf_spot_unmark(sim);
+    assert_int_equal(gf_spot_apply(sim, &sim->w0, hi, u), 3);
+    gf_spot_unmark(sim, &sim->w0);
+    assert_int_equal(gf_spot_apply(sim, &sim->w0, lo, u), 2);
+    gf_spot_unmark(sim, &sim->w0);
     const double f = 81.7 / 20.0;
     for (int id = 1; id <= 5; id++) {
         const gf_pos *q = by_id(sim, id);
@@ -226,8 +226,8 @@ static void reflection_doubles_the_wall_side(void **state)
     const double pos[][3] = {{0, 3.4, 20}, {0, 1, 20}, {0, 0.3, 20}, {2.0, 3.4, 21}};
     gf_sim *sim = make_sim_cfg(&c, pos, 4);
     const double ctr[3] = {0, 3, 20}, u[3] = {0, 0, -1e-3};
-    assert_int_equal(gf_spot_apply(sim, ctr, u), 3);
-    gf_spot_unmark(sim);
+    assert_int_equal(gf_spot_apply(sim, &sim->w0, ctr, u), 3);
+    gf_spot_unmark(sim, &sim->w0);
     // id 4: |(2, 0.4, 1)| = 2.27 < r_s from the spot, |(2, -1.6, 1)| = 2.75 > r_s from the mirror: S = 1.
     const double S[4] = {2, 1, 0, 1};
     for (int id = 1; id <= 4; id++) gf_assert_near(by_id(sim, id)->z, pos[id - 1][2] + S[id - 1] * u[2], 1e-15);
@@ -268,7 +268,7 @@ static void counter_method_relaxes_every_kth_move(void **state)
     for (int k = 1; k <= 12; k++) {
         bool deleted;
         long ball;
-        assert_int_equal(gf_spot_step(sim, s, &count, &deleted, &ball), GF_OK);
+        assert_int_equal(gf_spot_step(sim, &sim->w0, s, &count, &deleted, &ball), GF_OK);
         assert_false(deleted);
         assert_int_equal(gf_sim_get_stats(sim).relax_calls, (uint64_t)(k / 4));
     }

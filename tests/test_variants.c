@@ -101,24 +101,30 @@ static void fixed_mode_is_deterministic_in_both_orders(void **state)
     assert_true(same_snapshot(d[2], part, 2));
 }
 
-// Fig. 4 / Sec. 2.1: fixed and event modes drain at the same rate. Counts
+// Fig. 4 / Sec. 2.1: fixed (all three orders) and event modes drain at the same rate. Counts
 // over 3 < t < 9 tau summed over 2 seeds (~700 particles each way); the
 // difference of two counts N_a - N_b has sd <= sqrt(N_a + N_b) (granular
 // outflow is steadier than Poisson), allowed 4 sd.
 static void fixed_and_event_modes_flow_alike(void **state)
 {
     (void)state;
-    gf_config ev = small_silo(1), fx = ev, nw = ev;
+    gf_config ev = small_silo(1), fx = ev, nw = ev, sp = ev;
     fx.run_mode = GF_MODE_FIXED;
     nw.run_mode = GF_MODE_FIXED;
     nw.run_order = GF_ORDER_NEWEST;
-    size_t ne, nf, ne2, nn;
+    sp.run_mode = GF_MODE_FIXED;
+    sp.run_order = GF_ORDER_SPATIAL;
+    sp.run_threads = 2;
+    size_t ne, nf, ne2, nn, ne3, ns;
     outflow_pair(&ev, &fx, 2, 3.0, 9.0, &ne, &nf);
     outflow_pair(&ev, &nw, 1, 3.0, 9.0, &ne2, &nn);
-    print_message("event %zu, fixed random %zu (2 seeds); event %zu, fixed newest %zu (1 seed)\n", ne, nf, ne2, nn);
+    outflow_pair(&ev, &sp, 2, 3.0, 9.0, &ne3, &ns);
+    print_message("event %zu, fixed random %zu (2 seeds); event %zu, fixed newest %zu (1 seed); "
+                  "event %zu, spatial (2 threads) %zu (2 seeds)\n", ne, nf, ne2, nn, ne3, ns);
     assert_true(ne > 400);
     assert_true(fabs((double)ne - (double)nf) < 4.0 * sqrt((double)(ne + nf)));
     assert_true(fabs((double)ne2 - (double)nn) < 4.0 * sqrt((double)(ne2 + nn)));
+    assert_true(fabs((double)ne3 - (double)ns) < 4.0 * sqrt((double)(ne3 + ns)));
 }
 
 // ---- infrequent relaxation (Sec. 5) ----------------------------------------
@@ -173,7 +179,7 @@ static double widest_y(gf_config c)
         if (k % 50 == 0) s[2] = 3; // back down before it leaves the top of the packing
         bool deleted;
         long ball;
-        assert_int_equal(gf_spot_step(sim, s, &count, &deleted, &ball), GF_OK);
+        assert_int_equal(gf_spot_step(sim, &sim->w0, s, &count, &deleted, &ball), GF_OK);
         if (deleted) { // left the packing (an empty ball beyond a wall): start again
             s[0] = 0;
             s[1] = 2.0;

@@ -35,6 +35,7 @@ typedef enum gf_run_mode {
 typedef enum gf_run_order {
     GF_ORDER_RANDOM = 0, ///< a fresh random permutation every step (method a)
     GF_ORDER_NEWEST = 1, ///< newest spots first (method b)
+    GF_ORDER_SPATIAL = 2, ///< slab by slab in a fixed colouring, slabs of one colour in parallel (run.threads)
 } gf_run_order;
 
 /// What a spot does at a side wall (2009 paper Sec. 4).
@@ -120,7 +121,8 @@ typedef struct gf_config {
     double run_checkpoint_interval;    ///< checkpoint every this many tau (0: only on stop/end); default 0
     int64_t run_reorder_interval;      ///< events between full re-sorts of particle memory; default 1000000
     gf_run_mode run_mode;              ///< event (default) or fixed
-    gf_run_order run_order;            ///< fixed mode: random (default) or newest first
+    gf_run_order run_order;            ///< fixed mode: random (default), newest first, or spatial (parallel)
+    int64_t run_threads;               ///< threads of the spatial fixed step; 0 (default): every core
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2

@@ -24,7 +24,7 @@ static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
 static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
 static const char *const gf_keys_lga_flow_names[] = {"mass", "funnel", NULL};
 static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
-static const char *const gf_keys_order_names[] = {"random", "newest", NULL};
+static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", NULL};
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
@@ -116,7 +116,10 @@ const gf_key gf_keys[] = {
     {"run", "mode", GF_KEY_ENUM, GF_OFF(run_mode), .names = gf_keys_mode_names, .def = "event", .unit = "",
      .doc = "event (Gillespie) or fixed (steps of 1/mu: Poisson(lambda/mu) insertions, every spot moves once)"},
     {"run", "order", GF_KEY_ENUM, GF_OFF(run_order), .names = gf_keys_order_names, .def = "random",
-     .unit = "", .doc = "fixed mode: order of the moves in a step, random or newest first"},
+     .unit = "", .doc = "fixed mode: order of the moves in a step: random, newest first, or spatial (slabs in a "
+                        "fixed colouring, run in parallel; results do not depend on run.threads)"},
+    {"run", "threads", GF_KEY_INT64, GF_OFF(run_threads), .min = 0, .max = 4096, .def = "0", .unit = "",
+     .doc = "threads of the spatial fixed step (run.order = spatial); 0: every core"},
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long"},

@@ -71,6 +71,7 @@ gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c)
     g->count[c] = k + 1;
     g->cell_of[i] = c;
     g->slot_of[i] = k;
+    if (g->lazy_top) return GF_OK;
     int32_t cz = (int32_t)(c / ((uint32_t)g->nx * (uint32_t)g->ny));
     uint32_t col = c % ((uint32_t)g->nx * (uint32_t)g->ny);
     if (cz > g->top[col]) g->top[col] = cz;
@@ -89,7 +90,7 @@ void gf_grid_remove(gf_grid *g, uint32_t i)
     }
     g->count[c] = last;
     g->cell_of[i] = GF_NO_CELL;
-    if (last == 0) {
+    if (last == 0 && !g->lazy_top) {
         uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
         int32_t cz = (int32_t)(c / layer);
         uint32_t col = c % layer;
@@ -98,6 +99,16 @@ void gf_grid_remove(gf_grid *g, uint32_t i)
             while (z >= 0 && g->count[(uint32_t)z * layer + col] == 0) z--;
             g->top[col] = z;
         }
+    }
+}
+
+void gf_grid_recompute_top(gf_grid *g)
+{
+    const size_t layer = (size_t)g->nx * (size_t)g->ny;
+    for (size_t col = 0; col < layer; col++) {
+        int32_t z = g->nz - 1;
+        while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
+        g->top[col] = z;
     }
 }
 

@@ -5,6 +5,7 @@
 #ifndef GF_GEOM_GRID_H
 #define GF_GEOM_GRID_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -21,6 +22,7 @@ typedef struct gf_grid {
     uint32_t *count;     ///< particles per cell
     uint32_t *slot;      ///< cell c holds slot[c * GF_CELL_CAP + k], k < count[c]
     int32_t *top;        ///< per column (cx + nx cy): highest non-empty cz, -1 if none
+    bool lazy_top;       ///< top[] not kept by insert/remove (parallel phases): gf_grid_recompute_top after
     size_t np;           ///< capacity of the per-particle arrays
     uint32_t *cell_of;   ///< per particle: its cell, GF_NO_CELL when not in the grid
     uint32_t *slot_of;   ///< per particle: its position k in that cell
@@ -49,6 +51,11 @@ static inline uint32_t gf_grid_cell(const gf_grid *g, double x, double y, double
     return (uint32_t)((cz * g->ny + cy) * g->nx + cx);
 }
 
+/// Column index (cx + nx cy) of a point (clamped).
+static inline uint32_t gf_grid_column(const gf_grid *g, double x, double y)
+{
+    return (uint32_t)(gf_grid_axis(y, g->oy, g->inv_h, g->ny) * g->nx + gf_grid_axis(x, g->ox, g->inv_h, g->nx));
+}
 /// The particles of cell (cx, cy, cz): *n of them from the returned slots.
 static inline const uint32_t *gf_grid_slots(const gf_grid *g, int cx, int cy, int cz, uint32_t *n)
 {
@@ -79,6 +86,8 @@ gf_status gf_grid_restore(gf_grid *g, const uint32_t *count, const uint32_t *slo
 /// Inclusive cell ranges of the box [c - r, c + r] (clamped to the grid).
 void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int hi[3]);
 
+/// Recomputes top[] from the counts (after phases that ran with lazy_top).
+void gf_grid_recompute_top(gf_grid *g);
 /// Largest z among particles in the column of cells containing (x, y), or
 /// -INFINITY when the column is empty. `z` is the particles' z array, stride `stride`.
 double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride);

@@ -82,6 +82,7 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
     gf_config d = gf_config_default();
     c.run_duration = d.run_duration;
     c.run_checkpoint_interval = d.run_checkpoint_interval;
+    c.run_threads = d.run_threads; // results do not depend on it
     FILE *f = open_memstream(text, len);
     if (!f) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     gf_status st = gf_config_write(&c, f);
@@ -271,8 +272,8 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
         free(mine);
         return gf_ckpt_fail(sim, data,
                             gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
-                                                       "was made with (on resume only run.duration and "
-                                                       "run.checkpoint_interval may change)",
+                                                       "was made with (on resume only run.duration, "
+                                                       "run.checkpoint_interval and run.threads may change)",
                                          path, key));
     }
     free(mine);

@@ -10,14 +10,14 @@
 // Distance from v to the interval [a, b] (0 inside).
 static inline double gf_gap(double v, double a, double b) { return v < a ? a - v : (v > b ? v - b : 0.0); }
 
-// Collects every grid particle within r_e of c into sim->inside, visiting only
+// Collects every grid particle within r_e of c into w->inside, visiting only
 // the cells that the ball reaches (rows culled against the sphere).
-static size_t gf_gather(gf_sim *sim, const double c[3])
+static size_t gf_gather(const gf_sim *sim, gf_work *w, const double c[3])
 {
     const gf_grid *g = &sim->grid;
     const gf_pos *restrict p = sim->p;
-    uint32_t *restrict inside = sim->inside;
-    uint8_t *restrict in_ball = sim->in_ball;
+    uint32_t *restrict inside = w->inside;
+    uint8_t *restrict in_ball = w->in_ball;
     const double re2 = sim->re2, rs2 = sim->rs2, h = g->h;
     int lo[3], hi[3];
     gf_grid_range(g, c, sim->re, lo, hi);
@@ -55,13 +55,13 @@ static size_t gf_gather(gf_sim *sim, const double c[3])
 // Numbers the inside particles (mark = position + 1) so relax() can tell an
 // inside neighbour from a shell one with one load, and copies their
 // positions (after spot()), p0 and cells next to each other.
-static void gf_mark_inside(gf_sim *sim, size_t m)
+static void gf_mark_inside(gf_sim *sim, gf_work *w, size_t m)
 {
-    const uint32_t *restrict inside = sim->inside;
+    const uint32_t *restrict inside = w->inside;
     const gf_pos *restrict p = sim->p, *restrict p0 = sim->p0;
     const uint32_t *restrict cell_of = sim->grid.cell_of;
-    gf_pos *restrict ip = sim->ip, *restrict ip0 = sim->ip0;
-    uint32_t *restrict mark = sim->mark, *restrict icell = sim->icell;
+    gf_pos *restrict ip = w->ip, *restrict ip0 = w->ip0;
+    uint32_t *restrict mark = sim->mark, *restrict icell = w->icell;
     for (size_t k = 0; k < m; k++) {
         uint32_t i = inside[k];
         mark[i] = (uint32_t)k + 1;
@@ -71,18 +71,18 @@ static void gf_mark_inside(gf_sim *sim, size_t m)
         ip0[k] = p0[i];
         icell[k] = cell_of[i];
     }
-    sim->scratch_used = m;
+    w->scratch_used = m;
 }
 
-static void gf_clear_marks(gf_sim *sim)
+static void gf_clear_marks(gf_sim *sim, gf_work *w)
 {
-    for (size_t k = 0; k < sim->scratch_used; k++) sim->mark[sim->inside[k]] = 0;
+    for (size_t k = 0; k < w->scratch_used; k++) sim->mark[w->inside[k]] = 0;
 }
 
-gf_status gf_spot_unmark(gf_sim *sim)
+gf_status gf_spot_unmark(gf_sim *sim, gf_work *w)
 {
-    gf_clear_marks(sim);
-    return gf_sim_track_moves(sim, sim->scratch_used, sim->in_ball);
+    gf_clear_marks(sim, w);
+    return gf_sim_track_moves(sim, w, w->scratch_used, w->in_ball);
 }
 
 // Mirror images of c in the side walls its ball crosses (2009 paper Sec. 4,
@@ -105,13 +105,13 @@ static int gf_wall_mirrors(const gf_sim *sim, const double c[3], double m[4][3])
     return n;
 }
 
-long gf_spot_apply(gf_sim *sim, const double c[3], const double u0[3])
+long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u0[3])
 {
-    size_t m = gf_gather(sim, c);
+    size_t m = gf_gather(sim, w, c);
     long moved = 0;
     gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
-    uint32_t *restrict inside = sim->inside;
-    uint8_t *restrict in_ball = sim->in_ball;
+    uint32_t *restrict inside = w->inside;
+    uint8_t *restrict in_ball = w->in_ball;
     const gf_config *cfg = &sim->cfg;
     double u[3] = {u0[0], u0[1], u0[2]};
     // Sec. 3 influence weighting: the spot's free volume is shared by the p
@@ -138,8 +138,8 @@ long gf_spot_apply(gf_sim *sim, const double c[3], const double u0[3])
         uint8_t b = in_ball[k];
         if (b) {
             double sx = 1.0;
-            for (int w = 0; w < nmir; w++) {
-                double dx = p[i].x - mir[w][0], dy = p[i].y - mir[w][1], dz = p[i].z - mir[w][2];
+            for (int k2 = 0; k2 < nmir; k2++) {
+                double dx = p[i].x - mir[k2][0], dy = p[i].y - mir[k2][1], dz = p[i].z - mir[k2][2];
                 sx += dx * dx + dy * dy + dz * dz < sim->rs2;
             }
             p[i].x += sx * u[0];
@@ -147,14 +147,14 @@ long gf_spot_apply(gf_sim *sim, const double c[3], const double u0[3])
             p[i].z += sx * u[2];
             weight += sx;
             moved++;
-            if (gf_sim_exit_check(sim, i)) continue;
+            if (gf_sim_exit_check(sim, w, i)) continue;
         }
         inside[keep] = i;
         in_ball[keep] = b;
         keep++;
     }
-    gf_mark_inside(sim, keep);
-    sim->st.spot_dz += weight * u[2];
+    gf_mark_inside(sim, w, keep);
+    w->st->spot_dz += weight * u[2];
     return moved;
 }
 
@@ -179,16 +179,16 @@ size_t gf_ball_count(const gf_sim *sim, const double c[3], double r)
     return n;
 }
 
-gf_status gf_relax_apply(gf_sim *sim, const double c[3])
+gf_status gf_relax_apply(gf_sim *sim, gf_work *w, const double c[3])
 {
     (void)c; // inside/shell membership was fixed by the gather (marks)
-    const size_t m = sim->scratch_used;
+    const size_t m = w->scratch_used;
     gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
-    const gf_pos *restrict ip = sim->ip;
+    const gf_pos *restrict ip = w->ip;
     const uint32_t *restrict mark = sim->mark;
-    const uint32_t *restrict inside = sim->inside;
-    uint8_t *restrict moved = sim->in_ball;
-    double (*restrict disp)[3] = sim->disp;
+    const uint32_t *restrict inside = w->inside;
+    uint8_t *restrict moved = w->in_ball;
+    double (*restrict disp)[3] = w->disp;
     const double alpha = sim->alpha, half = 0.5 * sim->alpha;
     for (size_t k = 0; k < m; k++) disp[k][0] = disp[k][1] = disp[k][2] = 0.0;
     // SPEC 1.3 relax(c, r_e): pairs closer than contact push apart, by alpha
@@ -196,7 +196,7 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
     // one when the other is in the fixed shell; walls push by alpha (r - gap).
     // A pair of inside particles is seen once, from its earlier member.
     const uint32_t *restrict nl = sim->nl;
-    uint32_t *restrict cnts = sim->cross; // free until gf_sim_track_moves
+    uint32_t *restrict cnts = w->cross; // free until gf_sim_track_moves
     // Row lengths first: a loop of independent loads fetches the rows, cold
     // in memory (spots move in random order all over the silo), in parallel
     // rather than one at a time in the loop below.
@@ -246,7 +246,7 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
         disp[k][2] += az;
     }
     // All displacements are applied together, after every pair was seen.
-    gf_clear_marks(sim);
+    gf_clear_marks(sim, w);
     double dz_sum = 0.0;
     for (size_t k = 0; k < m; k++) {
         if (disp[k][0] == 0.0 && disp[k][1] == 0.0 && disp[k][2] == 0.0) continue;
@@ -256,18 +256,18 @@ gf_status gf_relax_apply(gf_sim *sim, const double c[3])
         p[i].y += disp[k][1];
         p[i].z += disp[k][2];
         moved[k] = 1;
-        if (gf_sim_exit_check(sim, i)) moved[k] = 0;
+        if (gf_sim_exit_check(sim, w, i)) moved[k] = 0;
     }
-    sim->st.relax_dz += dz_sum;
-    return gf_sim_track_moves(sim, m, moved);
+    w->st->relax_dz += dz_sum;
+    return gf_sim_track_moves(sim, w, m, moved);
 }
 
-gf_status gf_relax_at(gf_sim *sim, const double c[3])
+gf_status gf_relax_at(gf_sim *sim, gf_work *w, const double c[3])
 {
-    size_t m = gf_gather(sim, c);
-    for (size_t k = 0; k < m; k++) sim->in_ball[k] = 0; // nothing moved yet
-    gf_mark_inside(sim, m);
-    return gf_relax_apply(sim, c);
+    size_t m = gf_gather(sim, w, c);
+    for (size_t k = 0; k < m; k++) w->in_ball[k] = 0; // nothing moved yet
+    gf_mark_inside(sim, w, m);
+    return gf_relax_apply(sim, w, c);
 }
 
 gf_status gf_relax_global(gf_sim *sim)
@@ -309,7 +309,7 @@ gf_status gf_relax_global(gf_sim *sim)
         sim->p[i].y += d[i][1];
         sim->p[i].z += d[i][2];
         dz_sum += d[i][2];
-        if (!gf_sim_exit_check(sim, (uint32_t)i)) moved[nmoved++] = (uint32_t)i;
+        if (!gf_sim_exit_check(sim, &sim->w0, (uint32_t)i)) moved[nmoved++] = (uint32_t)i;
     }
     sim->st.relax_dz += dz_sum;
     // Cells first, then the lists of those past their skin (as gf_sim_track_moves).

@@ -45,23 +45,44 @@ gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
     return GF_OK;
 }
 
-gf_status gf_sim_alloc_scratch(gf_sim *sim)
+gf_status gf_work_init(const gf_sim *sim, gf_work *w)
 {
     // The gather of one step scans at most this many cells of GF_CELL_CAP slots.
     size_t span = (size_t)ceil(2.0 * sim->re / sim->grid.h) + 2;
     size_t cap = span * span * span * GF_CELL_CAP;
     if (cap > sim->cap) cap = sim->cap ? sim->cap : 1;
-    sim->scratch_cap = cap;
-    sim->inside = GF_NEW(uint32_t, cap);
-    sim->in_ball = GF_NEW(uint8_t, cap);
-    sim->disp = gf_alloc(sizeof(double[3]) * cap);
-    sim->cross = GF_NEW(uint32_t, cap);
-    sim->ip = GF_NEW(gf_pos, cap);
-    sim->ip0 = GF_NEW(gf_pos, cap);
-    sim->icell = GF_NEW(uint32_t, cap);
-    if (!sim->inside || !sim->in_ball || !sim->disp || !sim->cross || !sim->ip || !sim->ip0 || !sim->icell)
+    w->scratch_cap = cap;
+    w->inside = GF_NEW(uint32_t, cap);
+    w->in_ball = GF_NEW(uint8_t, cap);
+    w->disp = gf_alloc(sizeof(double[3]) * cap);
+    w->cross = GF_NEW(uint32_t, cap);
+    w->ip = GF_NEW(gf_pos, cap);
+    w->ip0 = GF_NEW(gf_pos, cap);
+    w->icell = GF_NEW(uint32_t, cap);
+    if (!w->inside || !w->in_ball || !w->disp || !w->cross || !w->ip || !w->ip0 || !w->icell)
         return gf_error_set(GF_ERR_NOMEM, "out of memory");
     return GF_OK;
+}
+
+void gf_work_free(gf_work *w)
+{
+    GF_DELETE(w->inside, w->scratch_cap);
+    GF_DELETE(w->in_ball, w->scratch_cap);
+    GF_DELETE(w->cross, w->scratch_cap);
+    GF_DELETE(w->ip, w->scratch_cap);
+    GF_DELETE(w->ip0, w->scratch_cap);
+    GF_DELETE(w->icell, w->scratch_cap);
+    gf_free(w->disp, sizeof(double[3]) * w->scratch_cap);
+    GF_DELETE(w->exits, w->exit_cap);
+    *w = (gf_work){0};
+}
+
+gf_status gf_sim_alloc_scratch(gf_sim *sim)
+{
+    gf_status st = gf_work_init(sim, &sim->w0);
+    sim->w0.rng = &sim->rng;
+    sim->w0.st = &sim->st;
+    return st;
 }
 
 gf_status gf_sim_make_grid(gf_sim *sim)
@@ -93,13 +114,8 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->sz, sim->ns_cap);
     GF_DELETE(sim->sbirth, sim->ns_cap);
     GF_DELETE(sim->scount, sim->ns_cap);
-    GF_DELETE(sim->inside, sim->scratch_cap);
-    GF_DELETE(sim->in_ball, sim->scratch_cap);
-    GF_DELETE(sim->cross, sim->scratch_cap);
-    GF_DELETE(sim->ip, sim->scratch_cap);
-    GF_DELETE(sim->ip0, sim->scratch_cap);
-    GF_DELETE(sim->icell, sim->scratch_cap);
-    gf_free(sim->disp, sizeof(double[3]) * sim->scratch_cap);
+    gf_work_free(&sim->w0);
+    gf_par_free(sim);
     gf_grid_free(&sim->grid);
     gf_free(sim, sizeof *sim);
 }
@@ -145,32 +161,48 @@ fail:
     return st;
 }
 
-bool gf_sim_exit_slow(gf_sim *sim, uint32_t i)
+bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
     if (!(q->z < sim->box.exit_z) || !gf_container_over_hole(&sim->box, q->x, q->y)) return false;
-    // Exits of one step share its time; keep them ordered by id so the list
-    // does not depend on the order particles were found in.
-    size_t k = sim->nexit++;
-    while (k > 0 && sim->exits[k - 1].time == sim->t && sim->exits[k - 1].id > sim->id[i]) {
-        sim->exits[k] = sim->exits[k - 1];
-        k--;
+    gf_exit e = {sim->id[i], sim->t, q->x, q->y};
+    if (w->defer_exits) {
+        // The parallel step: kept by the worker, merged (sorted by id) after the phase.
+        if (w->nexit == w->exit_cap) {
+            size_t cap = w->exit_cap ? 2 * w->exit_cap : 64;
+            gf_exit *x = gf_realloc(w->exits, w->exit_cap * sizeof(gf_exit), cap * sizeof(gf_exit));
+            if (!x) { // out of memory: the particle stays, and the step reports it
+                w->exit_failed = true;
+                return false;
+            }
+            w->exits = x;
+            w->exit_cap = cap;
+        }
+        w->exits[w->nexit++] = e;
+    } else {
+        // Exits of one step share its time; keep them ordered by id so the list
+        // does not depend on the order particles were found in.
+        size_t k = sim->nexit++;
+        while (k > 0 && sim->exits[k - 1].time == sim->t && sim->exits[k - 1].id > sim->id[i]) {
+            sim->exits[k] = sim->exits[k - 1];
+            k--;
+        }
+        sim->exits[k] = e;
+        sim->n_alive--;
     }
-    sim->exits[k] = (gf_exit){sim->id[i], sim->t, q->x, q->y};
     gf_grid_remove(&sim->grid, i);
     gf_nlist_drop(sim, i);
     sim->alive[i] = 0;
-    sim->n_alive--;
     q->x = q->y = q->z = GF_PARK_COORD;
     return true;
 }
 
-gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved)
+gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved)
 {
-    const uint32_t *inside = sim->inside, *icell = sim->icell;
-    const gf_pos *p = sim->p, *ip0 = sim->ip0;
+    const uint32_t *inside = w->inside, *icell = w->icell;
+    const gf_pos *p = sim->p, *ip0 = w->ip0;
     gf_grid *g = &sim->grid;
-    uint32_t *cross = sim->cross;
+    uint32_t *cross = w->cross;
     size_t nc = 0;
     // Cells first, so that the refreshes below search a grid that is current.
     // (Exited particles are not flagged in moved[]; p0 and the cells were
@@ -196,7 +228,7 @@ gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved)
     return GF_OK;
 }
 
-static gf_status gf_spot_insert(gf_sim *sim)
+gf_status gf_spot_insert(gf_sim *sim)
 {
     if (sim->ns == sim->ns_cap) {
         size_t old = sim->ns_cap, cap = old ? 2 * old : 1024;
@@ -282,7 +314,7 @@ static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir
 // Sec. 3 biased walk: candidate i with probability p_i^beta / sum_j p_j^beta,
 // p_i the particles a step to i would move. Returns false when every p_i is
 // 0 above the base (the spot is to be removed).
-static bool gf_walk_biased(gf_sim *sim, const double s[3], double n[3])
+static bool gf_walk_biased(gf_sim *sim, gf_work *w, const double s[3], double n[3])
 {
     double cand[4][3], wgt[4], q = 0.0;
     const double f = sim->ball_frac, beta = sim->cfg.spot_bias_exponent;
@@ -293,7 +325,7 @@ static bool gf_walk_biased(gf_sim *sim, const double s[3], double n[3])
         wgt[d] = p > 0.0 ? pow(p, beta) : 0.0;
         q += wgt[d];
     }
-    double u = gf_rng_uniform(&sim->rng);
+    double u = gf_rng_uniform(w->rng);
     uint64_t pick = 3;
     if (q > 0.0) {
         double acc = 0.0, target = u * q;
@@ -318,13 +350,13 @@ static bool gf_walk_biased(gf_sim *sim, const double s[3], double n[3])
 }
 
 // Whether this move relaxes (2009 paper Sec. 5).
-static bool gf_relax_due(gf_sim *sim, uint32_t *count)
+static bool gf_relax_due(gf_sim *sim, gf_work *w, uint32_t *count)
 {
     const gf_config *c = &sim->cfg;
     if (sim->no_relax) return false;
     switch (c->relax_method) {
     case GF_RELAX_FULL: return true;
-    case GF_RELAX_RANDOM: return gf_rng_uniform(&sim->rng) * c->relax_k < 1.0; // method 1: probability 1/k
+    case GF_RELAX_RANDOM: return gf_rng_uniform(w->rng) * c->relax_k < 1.0; // method 1: probability 1/k
     case GF_RELAX_COUNTER:                                                   // method 2: every k-th own move
         if (++*count < (uint32_t)llround(c->relax_k)) return false;
         *count = 0;
@@ -335,21 +367,24 @@ static bool gf_relax_due(gf_sim *sim, uint32_t *count)
 
 // One step of a spot at s (2009 paper Sec. 2 pseudocode; SPEC 1.3): the
 // walk, wall truncation, removal test, spot() and relax().
-gf_status gf_spot_step(gf_sim *sim, double s[3], uint32_t *count, bool *deleted, long *ball)
+gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bool *deleted, long *ball)
 {
     *deleted = false;
     *ball = 0;
     double n[3];
     if (sim->cfg.spot_bias_exponent > 0.0) {
-        if (!gf_walk_biased(sim, s, n)) {
+        if (!gf_walk_biased(sim, w, s, n)) {
             *deleted = true;
             return GF_OK;
         }
     } else {
         // The BCC walk, each candidate with probability 1/4.
-        gf_walk_candidate(sim, s, gf_rng_below(&sim->rng, 4), n);
-        // SPEC 1.3 removal: above the highest particle of its column.
-        if (n[2] > gf_grid_column_top(&sim->grid, n[0], n[1], &sim->p[0].z, 4)) {
+        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
+        // SPEC 1.3 removal: above the highest particle of its column (in the
+        // parallel step: as the column was when the step began).
+        double top = w->coltop ? w->coltop[gf_grid_column(&sim->grid, n[0], n[1])]
+                               : gf_grid_column_top(&sim->grid, n[0], n[1], &sim->p[0].z, 4);
+        if (n[2] > top) {
             *deleted = true;
             return GF_OK;
         }
@@ -360,28 +395,28 @@ gf_status gf_spot_step(gf_sim *sim, double s[3], uint32_t *count, bool *deleted,
     double u[3] = {-v[0] * sim->inv_w, -v[1] * sim->inv_w, -v[2] * sim->inv_w};
 
     double t0 = sim->timing ? gf_clock_now() : 0.0;
-    long moved = gf_spot_apply(sim, centre, u);
-    if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t0;
+    long moved = gf_spot_apply(sim, w, centre, u);
+    if (sim->timing) w->st->spot_seconds += gf_clock_now() - t0;
     if (moved < 0) return GF_ERR_STATE;
-    sim->st.spot_moves++;
+    w->st->spot_moves++;
     *ball = moved;
     gf_status st;
     if (moved == 0) {
-        if ((st = gf_spot_unmark(sim)) != GF_OK) return st;
+        if ((st = gf_spot_unmark(sim, w)) != GF_OK) return st;
         // SPEC 1.3 removal: no particle in reach; never keep moving in empty
         // space (below the base, on the way up from its birth, it may).
         if (n[2] > 0.0) {
             *deleted = true;
             return GF_OK;
         }
-    } else if (!gf_relax_due(sim, count)) {
-        if ((st = gf_spot_unmark(sim)) != GF_OK) return st;
+    } else if (!gf_relax_due(sim, w, count)) {
+        if ((st = gf_spot_unmark(sim, w)) != GF_OK) return st;
     } else {
         double t1 = gf_clock_now(); // t_relax is always measured (the summary reports it)
-        st = gf_relax_apply(sim, centre);
-        sim->st.relax_seconds += gf_clock_now() - t1;
+        st = gf_relax_apply(sim, w, centre);
+        w->st->relax_seconds += gf_clock_now() - t1;
         if (st != GF_OK) return st;
-        sim->st.relax_calls++;
+        w->st->relax_calls++;
     }
     s[0] = n[0];
     s[1] = n[1];
@@ -394,7 +429,7 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
     double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
     bool deleted;
     long ball;
-    gf_status st = gf_spot_step(sim, s, &sim->scount[k], &deleted, &ball);
+    gf_status st = gf_spot_step(sim, &sim->w0, s, &sim->scount[k], &deleted, &ball);
     if (st != GF_OK) return st;
     if (deleted) {
         gf_spot_delete(sim, k);
@@ -406,7 +441,23 @@ static gf_status gf_spot_move(gf_sim *sim, size_t k)
     return GF_OK;
 }
 
-static gf_status gf_sim_global(gf_sim *sim)
+void gf_spots_compact(gf_sim *sim, const uint8_t *dead)
+{
+    size_t w = 0, ns = sim->ns;
+    for (size_t k = 0; k < ns; k++) {
+        if (dead[k]) continue;
+        sim->sx[w] = sim->sx[k];
+        sim->sy[w] = sim->sy[k];
+        sim->sz[w] = sim->sz[k];
+        sim->sbirth[w] = sim->sbirth[k];
+        sim->scount[w] = sim->scount[k];
+        w++;
+    }
+    sim->st.spots_deleted += ns - w;
+    sim->ns = w;
+}
+
+gf_status gf_sim_global(gf_sim *sim)
 {
     double t0 = gf_clock_now();
     gf_status st = gf_relax_global(sim);
@@ -462,7 +513,7 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
         double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
         bool deleted;
         long ball;
-        st = gf_spot_step(sim, s, &sim->scount[k], &deleted, &ball);
+        st = gf_spot_step(sim, &sim->w0, s, &sim->scount[k], &deleted, &ball);
         if (deleted) {
             dead[k] = 1;
             continue;
@@ -471,20 +522,7 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
         sim->sy[k] = s[1];
         sim->sz[k] = s[2];
     }
-    if (st == GF_OK) {
-        size_t w = 0;
-        for (size_t k = 0; k < ns; k++) {
-            if (dead[k]) continue;
-            sim->sx[w] = sim->sx[k];
-            sim->sy[w] = sim->sy[k];
-            sim->sz[w] = sim->sz[k];
-            sim->sbirth[w] = sim->sbirth[k];
-            sim->scount[w] = sim->scount[k];
-            w++;
-        }
-        sim->st.spots_deleted += ns - w;
-        sim->ns = w;
-    }
+    if (st == GF_OK) gf_spots_compact(sim, dead);
     if (order) GF_DELETE(order, cap);
     if (dead) GF_DELETE(dead, cap);
     // Method 3: the whole packing every k steps (every k / mu).
@@ -508,7 +546,8 @@ static gf_status gf_sim_event(gf_sim *sim)
         if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
         sim->nl_built_at = gf_sim_work(sim);
     }
-    if (sim->cfg.run_mode == GF_MODE_FIXED) return gf_sim_fixed_step(sim);
+    if (sim->cfg.run_mode == GF_MODE_FIXED)
+        return sim->cfg.run_order == GF_ORDER_SPATIAL ? gf_sim_spatial_step(sim) : gf_sim_fixed_step(sim);
     if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
         double tg = gf_sim_global_time(sim);
         if (tg <= sim->t_pending) {

@@ -19,6 +19,29 @@ typedef struct gf_pos {
     double x, y, z, r;
 } gf_pos;
 
+/// What one thread needs to run spot steps: scratch for one gather, the
+/// random stream and the counters the steps draw on and add to, and, in the
+/// parallel step, the exits it found (merged after each phase).
+typedef struct gf_work {
+    uint32_t *inside;   ///< particles within r_e of the step centre
+    uint8_t *in_ball;   ///< per inside entry: 1 if moved this step (within r_s, or by relax)
+    double (*disp)[3];  ///< relax displacements of the inside particles
+    uint32_t *cross;    ///< particles that went past their skin this step
+    gf_pos *ip;         ///< per inside entry: its position (after spot())
+    gf_pos *ip0;        ///< per inside entry: its p0
+    uint32_t *icell;    ///< per inside entry: its grid cell
+    size_t scratch_cap;
+    size_t scratch_used; ///< entries of inside[] filled by the last gather
+
+    gf_rng *rng;          ///< the stream walks and relax.method = random draw on
+    gf_sim_stats *st;     ///< where the step's counters go
+    const double *coltop; ///< per grid column: its top z when the step began (NULL: ask the grid)
+    bool defer_exits;     ///< exits go to exits[] below, not into the sim
+    bool exit_failed;     ///< exits[] could not grow (out of memory)
+    gf_exit *exits;
+    size_t nexit, exit_cap;
+} gf_work;
+
 struct gf_sim {
     gf_config cfg;
     gf_container box;
@@ -67,17 +90,12 @@ struct gf_sim {
     gf_exit *exits;
     size_t nexit, exit_cap;
 
-    // Scratch for one spot step.
-    uint32_t *inside;   ///< particles within r_e of the step centre
-    uint8_t *in_ball;   ///< per inside entry: 1 if moved this step (within r_s, or by relax)
-    double (*disp)[3];  ///< relax displacements of the inside particles
-    uint32_t *mark;     ///< per particle: 1 + its position in inside[], 0 if not inside
-    uint32_t *cross;    ///< particles that went past their skin this step
-    gf_pos *ip;         ///< per inside entry: its position (after spot())
-    gf_pos *ip0;        ///< per inside entry: its p0
-    uint32_t *icell;    ///< per inside entry: its grid cell
-    size_t scratch_cap;
-    size_t scratch_used; ///< entries of inside[] filled by the last gather
+    // The serial engine's worker (event mode, fixed random/newest): draws on
+    // rng and counts into st.
+    gf_work w0;
+    uint32_t *mark;     ///< per particle: 1 + its position in its worker's inside[], 0 if in none
+    // The spatial fixed step's state (parallel.c), made on its first step.
+    struct gf_par *par;
 
     // Derived parameters.
     double rs, rs2, re, re2, alpha, inv_w, ball_frac;
@@ -93,13 +111,13 @@ struct gf_sim {
 /// Gathers the particles within r_e of c into sim->inside and moves those
 /// within r_s by u (SPEC 1.3 spot()). Returns the number moved (the ball's
 /// population), or -1 with an error set.
-long gf_spot_apply(gf_sim *sim, const double c[3], const double u[3]);
+long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u[3]);
 
 /// One step of a spot at s: walk, truncation, removal test, spot(), relax()
 /// (as relax.method says; *count is the spot's move counter for the counter
 /// method). Updates s, or sets *deleted when the spot is to be removed; *ball
 /// receives the number of particles it moved.
-gf_status gf_spot_step(gf_sim *sim, double s[3], uint32_t *count, bool *deleted, long *ball);
+gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bool *deleted, long *ball);
 
 /// Number of particles within r of c (the biased walk's p_i, Sec. 3).
 size_t gf_ball_count(const gf_sim *sim, const double c[3], double r);
@@ -111,13 +129,13 @@ gf_status gf_relax_global(gf_sim *sim);
 
 /// Ends a gather that is not followed by relax(): clears the inside marks
 /// and does the bookkeeping of the particles spot() moved (cells, lists).
-gf_status gf_spot_unmark(gf_sim *sim);
+gf_status gf_spot_unmark(gf_sim *sim, gf_work *w);
 
 /// Relaxes around c the particles gathered by gf_spot_apply (SPEC 1.3 relax()).
-gf_status gf_relax_apply(gf_sim *sim, const double c[3]);
+gf_status gf_relax_apply(gf_sim *sim, gf_work *w, const double c[3]);
 
 /// Standalone relax(c, r_e) (gathers first): for tests and global relaxation.
-gf_status gf_relax_at(gf_sim *sim, const double c[3]);
+gf_status gf_relax_at(gf_sim *sim, gf_work *w, const double c[3]);
 
 /// Rebuilds the neighbour lists. With `reorder`, exited particles are
 /// compacted away, the rest sorted by cell, and p0 reset to the positions;
@@ -134,22 +152,40 @@ void gf_nlist_drop(gf_sim *sim, uint32_t i);
 
 /// Removes particle i (below the exit plane) if it fell out of the orifice;
 /// true when it did.
-bool gf_sim_exit_slow(gf_sim *sim, uint32_t i);
+bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i);
 
 /// Removes particle i if it fell out of the orifice; true when it did.
-static inline bool gf_sim_exit_check(gf_sim *sim, uint32_t i)
+static inline bool gf_sim_exit_check(gf_sim *sim, gf_work *w, uint32_t i)
 {
-    return sim->p[i].z < sim->box.exit_z && gf_sim_exit_slow(sim, i);
+    return sim->p[i].z < sim->box.exit_z && gf_sim_exit_slow(sim, w, i);
 }
 
 /// Bookkeeping after the moves of one step, for the entries k < m of
 /// inside[] with moved[k] set: cells, and lists of those past their skin.
-gf_status gf_sim_track_moves(gf_sim *sim, size_t m, const uint8_t *moved);
+gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved);
 
 /// Allocates the particle arrays for n particles.
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n);
-/// Grows the scratch buffers to hold the gather of one step.
+/// Allocates a worker's scratch, sized for the gather of one step.
+gf_status gf_work_init(const gf_sim *sim, gf_work *w);
+void gf_work_free(gf_work *w);
+/// Makes the serial worker sim->w0 (scratch, sim->rng, sim->st).
 gf_status gf_sim_alloc_scratch(gf_sim *sim);
+
+/// The spatial fixed step (run.order = spatial, parallel.c): insertions,
+/// then every spot once, slab colour by slab colour, slabs of one colour on
+/// run.threads threads. The result does not depend on the thread count.
+gf_status gf_sim_spatial_step(gf_sim *sim);
+/// Colour phases so far (this process) that had two or more slabs to run side by side.
+uint64_t gf_par_shared_phases(const gf_sim *sim);
+/// Frees the parallel step's state.
+void gf_par_free(gf_sim *sim);
+/// Removes the spots flagged in dead[0, ns), keeping the rest in birth order.
+void gf_spots_compact(gf_sim *sim, const uint8_t *dead);
+/// A relaxation of the whole packing, timed into t_relax.
+gf_status gf_sim_global(gf_sim *sim);
+/// Inserts one spot (SPEC 1.3 insertion), drawing on sim->rng.
+gf_status gf_spot_insert(gf_sim *sim);
 /// Derived parameters and container from sim->cfg.
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
