@@ -15,7 +15,7 @@ static const char gf_usage[] =
     "  run --resume DIR [--set run.duration=T]  continue (or extend) a run from its checkpoint\n"
     "  pack [CONFIG] [--set k=v]... -o FILE  build the initial packing (.dump, .xyz or .csv)\n"
     "  config [CONFIG] [--set k=v]...        print the effective configuration as INI\n"
-    "  bench [--json] [--particles N] [--warmup T] [--window T] [--lga-only]\n"
+    "  bench [--json] [--particles N] [--warmup T] [--window T] [--event] [--no-large] [--lga-only]\n"
     "                                        time spot(), relax(), whole steps and LGA site updates\n"
     "  analyze [NAME] DIR [--set key=value]... [-o OUTDIR] [--no-plots] [--list]\n"
     "                                        the papers' statistics of a run: CSV, plots, summary.json\n"

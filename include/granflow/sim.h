@@ -83,6 +83,10 @@ GF_API gf_status gf_sim_particles(const gf_sim *sim, gf_packing *out);
 /// The exits so far, sorted by (time, id); `*n` receives the count. Owned by sim.
 GF_API const gf_exit *gf_sim_exits(const gf_sim *sim, size_t *n);
 
+/// Threads of the spatial fixed step (run.order = spatial); 0: every core.
+/// The results do not depend on it, so it may change at any time.
+GF_API void gf_sim_set_threads(gf_sim *sim, int threads);
+
 /// Switches per-call timing of spot() and relax() on or off (costs ~50 ns a call).
 GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 

@@ -33,6 +33,11 @@
 /// ~12 were seen in flow; more is reported as a packing that overlaps too much.
 #define GF_NL_CAP 16
 
+/// Most particle centres per d^3 a gather may hold (it sizes the per-thread
+/// scratch): random close packing has 1.2, and relax() keeps pairs >= ~0.98 d
+/// apart, so 4 is never reached by a packing the engine accepts; beyond it a
+/// step fails with a clear error rather than writing past its scratch.
+#define GF_GATHER_DENSITY 4.0
 /// Full list rebuilds (compacting exited particles away and re-sorting the
 /// rest by cell, for memory locality) come every run.reorder_interval events
 /// (default 1,000,000). Between them lists are kept exact by per-particle

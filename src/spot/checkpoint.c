@@ -306,6 +306,9 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     sim->n_alive = counts[1];
     sim->n_initial = counts[2];
     sim->ns = sim->ns_cap = counts[3];
+    sim->nexit = 0;
+    if (!gf_sim_exits_reserve(sim, counts[4]))
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     sim->nexit = counts[4];
     sim->sx = GF_NEW(double, sim->ns_cap);
     sim->sy = GF_NEW(double, sim->ns_cap);

@@ -2,6 +2,7 @@
 // The microscopic mechanism: spot() and relax() (2009 paper Sec. 2; thesis
 // Sec. 3.4; SPEC 1.3). These are the hot loops of the whole program.
 #include <math.h>
+#include <stdint.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
@@ -36,6 +37,11 @@ static size_t gf_gather(const gf_sim *sim, gf_work *w, const double c[3])
                 size_t cell = row + (size_t)cx;
                 const uint32_t *s = g->slot + cell * GF_CELL_CAP;
                 uint32_t cnt = g->count[cell];
+                if (m + cnt > w->scratch_cap) {
+                    gf_error_set(GF_ERR_STATE, "more than %zu particle centres within %g d of (%g, %g, %g): the "
+                                 "packing overlaps far too much", w->scratch_cap - GF_CELL_CAP, sim->re, c[0], c[1], c[2]);
+                    return SIZE_MAX;
+                }
                 // Branch-free: every candidate is written, and kept by
                 // advancing m (~40% are kept: a branch would mispredict).
                 for (uint32_t k = 0; k < cnt; k++) {
@@ -108,6 +114,7 @@ static int gf_wall_mirrors(const gf_sim *sim, const double c[3], double m[4][3])
 long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u0[3])
 {
     size_t m = gf_gather(sim, w, c);
+    if (m == SIZE_MAX) return -1;
     long moved = 0;
     gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
     uint32_t *restrict inside = w->inside;
@@ -265,6 +272,7 @@ gf_status gf_relax_apply(gf_sim *sim, gf_work *w, const double c[3])
 gf_status gf_relax_at(gf_sim *sim, gf_work *w, const double c[3])
 {
     size_t m = gf_gather(sim, w, c);
+    if (m == SIZE_MAX) return GF_ERR_STATE;
     for (size_t k = 0; k < m; k++) w->in_ball[k] = 0; // nothing moved yet
     gf_mark_inside(sim, w, m);
     return gf_relax_apply(sim, w, c);

@@ -232,7 +232,6 @@ static void gf_par_slab(gf_sim *sim, gf_par *q, gf_work *w, gf_slab *sl, size_t 
         bool deleted;
         long ball;
         gf_status st = gf_spot_step(sim, w, s, &sim->scount[k], &deleted, &ball);
-        if (st == GF_OK && w->exit_failed) st = gf_error_set(GF_ERR_NOMEM, "out of memory for the exits of a step");
         if (st != GF_OK) {
             sl->status = st;
             snprintf(sl->err, sizeof sl->err, "%s", gf_last_error());
@@ -268,9 +267,11 @@ static int gf_par_cmp_exit(const void *a, const void *b)
 
 // The exits the workers found this step, appended and sorted by id (they
 // share the step's time), as the serial engine keeps them.
-static void gf_par_merge_exits(gf_sim *sim, gf_par *q)
+static gf_status gf_par_merge_exits(gf_sim *sim, gf_par *q)
 {
-    size_t first = sim->nexit;
+    size_t first = sim->nexit, total = 0;
+    for (int t = 0; t < q->threads; t++) total += q->work[t].nexit;
+    if (!gf_sim_exits_reserve(sim, total)) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu exits", total);
     for (int t = 0; t < q->threads; t++) {
         gf_work *w = &q->work[t];
         memcpy(sim->exits + sim->nexit, w->exits, w->nexit * sizeof(gf_exit));
@@ -279,6 +280,7 @@ static void gf_par_merge_exits(gf_sim *sim, gf_par *q)
         w->nexit = 0;
     }
     qsort(sim->exits + first, sim->nexit - first, sizeof(gf_exit), gf_par_cmp_exit);
+    return GF_OK;
 }
 
 uint64_t gf_par_shared_phases(const gf_sim *sim) { return sim->par ? sim->par->shared_phases : 0; }
@@ -347,7 +349,8 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
     sim->grid.lazy_top = false;
     gf_grid_recompute_top(&sim->grid);
     for (size_t b = 0; b < q->nslab; b++) gf_par_add(&sim->st, &q->slab[b].st);
-    gf_par_merge_exits(sim, q);
+    gf_status se = gf_par_merge_exits(sim, q);
+    if (st == GF_OK) st = se;
     if (st != GF_OK) return st;
     gf_spots_compact(sim, q->dead);
     // Method 3: the whole packing every k steps (every k / mu).

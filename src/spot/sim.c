@@ -37,19 +37,30 @@ gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
     sim->id = GF_NEW(int64_t, n);
     sim->layer = GF_NEW(int32_t, n);
     sim->alive = GF_NEW(uint8_t, n);
-    sim->exit_cap = n;
     sim->mark = GF_NEW(uint32_t, n);
-    sim->exits = GF_NEW(gf_exit, n);
-    if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->exits || !sim->mark)
+    if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->mark)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu particles", n);
     return GF_OK;
 }
 
+bool gf_sim_exits_reserve(gf_sim *sim, size_t extra)
+{
+    if (sim->nexit + extra <= sim->exit_cap) return true;
+    size_t cap = sim->exit_cap ? sim->exit_cap + sim->exit_cap / 2 : 1024;
+    if (cap < sim->nexit + extra) cap = sim->nexit + extra;
+    gf_exit *x = gf_realloc(sim->exits, sim->exit_cap * sizeof(gf_exit), cap * sizeof(gf_exit));
+    if (!x) return false;
+    sim->exits = x;
+    sim->exit_cap = cap;
+    return true;
+}
+
 gf_status gf_work_init(const gf_sim *sim, gf_work *w)
 {
-    // The gather of one step scans at most this many cells of GF_CELL_CAP slots.
-    size_t span = (size_t)ceil(2.0 * sim->re / sim->grid.h) + 2;
-    size_t cap = span * span * span * GF_CELL_CAP;
+    // A gather keeps the particles within r_e: GF_GATHER_DENSITY per d^3 of
+    // the ball of r_e + 1 at most (gf_gather checks), and never more than all.
+    double r = sim->re + 1.0;
+    size_t cap = (size_t)ceil(GF_GATHER_DENSITY * 4.0 / 3.0 * 3.14159265358979 * r * r * r) + GF_CELL_CAP;
     if (cap > sim->cap) cap = sim->cap ? sim->cap : 1;
     w->scratch_cap = cap;
     w->inside = GF_NEW(uint32_t, cap);
@@ -182,6 +193,10 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
     } else {
         // Exits of one step share its time; keep them ordered by id so the list
         // does not depend on the order particles were found in.
+        if (!gf_sim_exits_reserve(sim, 1)) {
+            w->exit_failed = true;
+            return false;
+        }
         size_t k = sim->nexit++;
         while (k > 0 && sim->exits[k - 1].time == sim->t && sim->exits[k - 1].id > sim->id[i]) {
             sim->exits[k] = sim->exits[k - 1];
@@ -418,6 +433,7 @@ gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bo
         if (st != GF_OK) return st;
         w->st->relax_calls++;
     }
+    if (w->exit_failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
     s[0] = n[0];
     s[1] = n[1];
     s[2] = n[2];
@@ -462,6 +478,7 @@ gf_status gf_sim_global(gf_sim *sim)
     double t0 = gf_clock_now();
     gf_status st = gf_relax_global(sim);
     sim->st.relax_seconds += gf_clock_now() - t0;
+    if (st == GF_OK && sim->w0.exit_failed) st = gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
     return st;
 }
 
@@ -639,6 +656,8 @@ gf_sim_stats gf_sim_get_stats(const gf_sim *sim)
 const gf_config *gf_sim_config(const gf_sim *sim) { return &sim->cfg; }
 
 void gf_sim_set_timing(gf_sim *sim, int on) { sim->timing = on != 0; }
+
+void gf_sim_set_threads(gf_sim *sim, int threads) { sim->cfg.run_threads = threads > 0 ? threads : 0; }
 
 typedef struct gf_id_index {
     int64_t id;

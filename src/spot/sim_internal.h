@@ -166,6 +166,8 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
 
 /// Allocates the particle arrays for n particles.
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n);
+/// Room in sim->exits for `extra` more; false when out of memory.
+bool gf_sim_exits_reserve(gf_sim *sim, size_t extra);
 /// Allocates a worker's scratch, sized for the gather of one step.
 gf_status gf_work_init(const gf_sim *sim, gf_work *w);
 void gf_work_free(gf_work *w);
