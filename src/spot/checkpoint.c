@@ -15,7 +15,7 @@
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
-#define GF_CKPT_VERSION 2u
+#define GF_CKPT_VERSION 3u
 #define GF_CKPT_BOM 0x01020304u
 
 typedef struct gf_buf {
@@ -119,7 +119,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     GF_PUT(&b, sim->nl_built_at);
     GF_PUT(&b, sim->fstep);
     gf_put(&b, sim->p, sizeof(gf_pos) * sim->n);
-    gf_put(&b, sim->p0, sizeof(gf_pos) * sim->n);
+    gf_put(&b, sim->p0, sizeof(gf_ref) * sim->n);
     gf_put(&b, sim->id, sizeof(int64_t) * sim->n);
     gf_put(&b, sim->layer, sizeof(int32_t) * sim->n);
     gf_put(&b, sim->alive, sizeof(uint8_t) * sim->n);
@@ -318,7 +318,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount))
         return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     gf_get(&r, sim->p, sizeof(gf_pos) * n);
-    gf_get(&r, sim->p0, sizeof(gf_pos) * n);
+    gf_get(&r, sim->p0, sizeof(gf_ref) * n);
     gf_get(&r, sim->id, sizeof(int64_t) * n);
     gf_get(&r, sim->layer, sizeof(int32_t) * n);
     gf_get(&r, sim->alive, sizeof(uint8_t) * n);

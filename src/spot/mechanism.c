@@ -64,9 +64,11 @@ static size_t gf_gather(const gf_sim *sim, gf_work *w, const double c[3])
 static void gf_mark_inside(gf_sim *sim, gf_work *w, size_t m)
 {
     const uint32_t *restrict inside = w->inside;
-    const gf_pos *restrict p = sim->p, *restrict p0 = sim->p0;
+    const gf_pos *restrict p = sim->p;
+    const gf_ref *restrict p0 = sim->p0;
     const uint32_t *restrict cell_of = sim->grid.cell_of;
-    gf_pos *restrict ip = w->ip, *restrict ip0 = w->ip0;
+    gf_pos *restrict ip = w->ip;
+    gf_ref *restrict ip0 = w->ip0;
     uint32_t *restrict mark = sim->mark, *restrict icell = w->icell;
     for (size_t k = 0; k < m; k++) {
         uint32_t i = inside[k];
@@ -331,8 +333,9 @@ gf_status gf_relax_global(gf_sim *sim)
     }
     for (size_t k = 0; st == GF_OK && k < nmoved; k++) {
         uint32_t i = moved[k];
-        const gf_pos *q = &p[i], *a = &sim->p0[i];
-        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
+        const gf_pos *q = &p[i];
+        const gf_ref *a = &sim->p0[i];
+        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->h - GF_SKIN_SLACK;
         if (dx * dx + dy * dy + dz * dz > lim * lim) st = gf_nlist_refresh(sim, i);
     }
     if (moved) GF_DELETE(moved, n ? n : 1);

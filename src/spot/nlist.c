@@ -26,7 +26,7 @@ static gf_status gf_nlist_permute(gf_sim *sim, const uint32_t *order, size_t m)
         GF_DELETE(tmp, m ? m : 1);                             \
     } while (0)
     GF_PERMUTE(gf_pos, p);
-    GF_PERMUTE(gf_pos, p0);
+    GF_PERMUTE(gf_ref, p0);
     GF_PERMUTE(int64_t, id);
     GF_PERMUTE(int32_t, layer);
 #undef GF_PERMUTE
@@ -83,9 +83,9 @@ static void gf_sort_u32(uint32_t *a, size_t n)
 // of i and j always agree, whoever computed them.
 static inline bool gf_nlist_listed(const gf_sim *sim, uint32_t i, uint32_t j)
 {
-    const gf_pos *a = &sim->p0[i], *b = &sim->p0[j];
-    double dx = a->x - b->x, dy = a->y - b->y, dz = a->z - b->z;
-    double cut = (sim->p[i].r + sim->p[j].r) + (a->r + b->r);
+    const gf_ref *a = &sim->p0[i], *b = &sim->p0[j];
+    double dx = (double)a->x - b->x, dy = (double)a->y - b->y, dz = (double)a->z - b->z;
+    double cut = (sim->p[i].r + sim->p[j].r) + ((double)a->h + b->h);
     return dx * dx + dy * dy + dz * dz < cut * cut;
 }
 
@@ -104,9 +104,10 @@ static gf_status gf_nlist_overflow(const gf_sim *sim, uint32_t i)
 static gf_status gf_nlist_find(gf_sim *sim, uint32_t i)
 {
     const gf_grid *g = &sim->grid;
-    const gf_pos *a = &sim->p0[i];
+    const gf_ref *a = &sim->p0[i];
     const double c[3] = {a->x, a->y, a->z};
-    double reach = sim->p[i].r + sim->rmax + a->r + 2.0 * sim->hmax + GF_SKIN_SLACK;
+    // + the rounding of the float references (~1e-5 d at z ~ 100)
+    double reach = sim->p[i].r + sim->rmax + a->h + 2.0 * sim->hmax + GF_SKIN_SLACK + 1e-3;
     int lo[3], hi[3];
     gf_grid_range(g, c, reach, lo, hi);
     uint32_t *row = gf_nlist_row(sim, i), n = 0;
@@ -163,9 +164,9 @@ void gf_nlist_drop(gf_sim *sim, uint32_t i)
 gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i)
 {
     gf_nlist_drop(sim, i);
-    sim->p0[i].x = sim->p[i].x;
-    sim->p0[i].y = sim->p[i].y;
-    sim->p0[i].z = sim->p[i].z;
+    sim->p0[i].x = (float)sim->p[i].x;
+    sim->p0[i].y = (float)sim->p[i].y;
+    sim->p0[i].z = (float)sim->p[i].z;
     gf_status st = gf_nlist_find(sim, i);
     if (st != GF_OK) return st;
     const uint32_t *row = gf_nlist_row(sim, i);
@@ -178,7 +179,7 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
 {
     gf_status st;
     if (reorder) {
-        for (size_t i = 0; i < sim->n; i++) sim->p0[i].r = GF_SKIN;
+        for (size_t i = 0; i < sim->n; i++) sim->p0[i].h = (float)GF_SKIN;
         if ((st = gf_nlist_reorder(sim)) != GF_OK) return st;
     }
     gf_grid *g = &sim->grid;
@@ -189,15 +190,15 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
             if (!sim->alive[i]) continue;
             st = gf_grid_insert(g, (uint32_t)i, gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z));
             if (st != GF_OK) return st;
-            sim->p0[i].x = sim->p[i].x;
-            sim->p0[i].y = sim->p[i].y;
-            sim->p0[i].z = sim->p[i].z;
+            sim->p0[i].x = (float)sim->p[i].x;
+            sim->p0[i].y = (float)sim->p[i].y;
+            sim->p0[i].z = (float)sim->p[i].z;
         }
         sim->nl_built_at = sim->st.events;
     }
     sim->hmax = 0.0;
     for (size_t i = 0; i < sim->n; i++)
-        if (sim->alive[i] && sim->p0[i].r > sim->hmax) sim->hmax = sim->p0[i].r;
+        if (sim->alive[i] && sim->p0[i].h > sim->hmax) sim->hmax = sim->p0[i].h;
     if (!sim->nl) {
         sim->nl = GF_NEW(uint32_t, sim->cap * GF_NL_CAP);
         if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");

@@ -216,7 +216,6 @@ static void gf_par_slab(gf_sim *sim, gf_par *q, gf_work *w, gf_slab *sl, size_t 
 {
     gf_rng rng;
     gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
-    if (!getenv("GF_NOSHUF"))
     for (size_t k = sl->end - sl->first; k > 1; k--) { // Fisher-Yates
         size_t j = (size_t)gf_rng_below(&rng, k);
         uint32_t tmp = q->order[sl->first + k - 1];

@@ -33,7 +33,7 @@ gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
 {
     sim->cap = n;
     sim->p = GF_NEW(gf_pos, n);
-    sim->p0 = GF_NEW(gf_pos, n);
+    sim->p0 = GF_NEW(gf_ref, n);
     sim->id = GF_NEW(int64_t, n);
     sim->layer = GF_NEW(int32_t, n);
     sim->alive = GF_NEW(uint8_t, n);
@@ -68,7 +68,7 @@ gf_status gf_work_init(const gf_sim *sim, gf_work *w)
     w->disp = gf_alloc(sizeof(double[3]) * cap);
     w->cross = GF_NEW(uint32_t, cap);
     w->ip = GF_NEW(gf_pos, cap);
-    w->ip0 = GF_NEW(gf_pos, cap);
+    w->ip0 = GF_NEW(gf_ref, cap);
     w->icell = GF_NEW(uint32_t, cap);
     if (!w->inside || !w->in_ball || !w->disp || !w->cross || !w->ip || !w->ip0 || !w->icell)
         return gf_error_set(GF_ERR_NOMEM, "out of memory");
@@ -215,7 +215,8 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved)
 {
     const uint32_t *inside = w->inside, *icell = w->icell;
-    const gf_pos *p = sim->p, *ip0 = w->ip0;
+    const gf_pos *p = sim->p;
+    const gf_ref *ip0 = w->ip0;
     gf_grid *g = &sim->grid;
     uint32_t *cross = w->cross;
     size_t nc = 0;
@@ -225,8 +226,9 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
     for (size_t k = 0; k < m; k++) {
         if (!moved[k]) continue;
         uint32_t i = inside[k];
-        const gf_pos *q = &p[i], *a = &ip0[k];
-        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->r - GF_SKIN_SLACK;
+        const gf_pos *q = &p[i];
+        const gf_ref *a = &ip0[k];
+        double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->h - GF_SKIN_SLACK;
         cross[nc] = i;
         nc += dx * dx + dy * dy + dz * dz > lim * lim;
         uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);

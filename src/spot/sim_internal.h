@@ -19,6 +19,14 @@ typedef struct gf_pos {
     double x, y, z, r;
 } gf_pos;
 
+/// A particle's neighbour-list reference: where it was when its row was last
+/// made, and its skin h. Single precision (half the bytes of a gf_pos): it
+/// only decides which pairs are listed and when a row is redone, and every
+/// such test reads these stored values, so the rule holds exactly as written.
+typedef struct gf_ref {
+    float x, y, z, h;
+} gf_ref;
+
 /// What one thread needs to run spot steps: scratch for one gather, the
 /// random stream and the counters the steps draw on and add to, and, in the
 /// parallel step, the exits it found (merged after each phase).
@@ -28,7 +36,7 @@ typedef struct gf_work {
     double (*disp)[3];  ///< relax displacements of the inside particles
     uint32_t *cross;    ///< particles that went past their skin this step
     gf_pos *ip;         ///< per inside entry: its position (after spot())
-    gf_pos *ip0;        ///< per inside entry: its p0
+    gf_ref *ip0;        ///< per inside entry: its p0
     uint32_t *icell;    ///< per inside entry: its grid cell
     size_t scratch_cap;
     size_t scratch_used; ///< entries of inside[] filled by the last gather
@@ -49,7 +57,7 @@ struct gf_sim {
     // Particles. Entries [0, n) are live or parked (exited, awaiting compaction).
     size_t n, cap;
     gf_pos *p;        ///< hot: position and radius
-    gf_pos *p0;       ///< position at the last neighbour-list build; .r holds the particle's skin h
+    gf_ref *p0;       ///< neighbour-list reference position and skin
     int64_t *id;      ///< cold: stable id
     int32_t *layer;   ///< cold: initial-layer tag
     uint8_t *alive;   ///< 1 while in the container
