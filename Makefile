@@ -9,7 +9,7 @@ RUN_ENGINE ?= --set run.mode=fixed --set run.order=spatial --set run.threads=0
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps build build-san run test test-fast test-san bench reproduce clean
+.PHONY: all deps build build-san run test test-fast test-san bench bench-dem reproduce clean
 
 all: build
 
@@ -47,6 +47,11 @@ test-san: build-san
 
 bench: build
 	./$(BUILD)/granflow bench
+
+# LAMMPS on the same silo and cores, for the side-by-side wall time per tau
+# (docs/performance.md); about 4 minutes. Not part of `make bench`.
+bench-dem: build
+	bash scripts/bench-dem.sh ./$(BUILD)/granflow $(BUILD)/bench-dem
 
 # Every variant of the 2009 paper (examples/fig*.ini), shortened to fit a
 # 2-core machine in well under an hour (two runs at a time), measured, drawn
