@@ -48,7 +48,7 @@ static outcome run_threads(int64_t threads)
     const gf_exit *e = gf_sim_exits(sim, &o.nex);
     o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
     assert_non_null(o.ex);
-    memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
     gf_sim_destroy(sim);
     return o;
 }

@@ -38,7 +38,7 @@ static void gf_put(gf_buf *b, const void *src, size_t n)
         b->data = q;
         b->cap = cap;
     }
-    memcpy(b->data + b->len, src, n);
+    if (n) memcpy(b->data + b->len, src, n); // src may be NULL when n = 0 (no exits yet)
     b->len += n;
 }
 
@@ -54,10 +54,10 @@ static void gf_get(gf_rd *r, void *dst, size_t n)
 {
     if (r->bad || n > r->len - r->pos) {
         r->bad = true;
-        memset(dst, 0, n);
+        if (n) memset(dst, 0, n);
         return;
     }
-    memcpy(dst, r->data + r->pos, n);
+    if (n) memcpy(dst, r->data + r->pos, n);
     r->pos += n;
 }
 

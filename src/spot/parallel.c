@@ -273,12 +273,13 @@ static gf_status gf_par_merge_exits(gf_sim *sim, gf_par *q)
     if (!gf_sim_exits_reserve(sim, total)) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu exits", total);
     for (int t = 0; t < q->threads; t++) {
         gf_work *w = &q->work[t];
+        if (w->nexit == 0) continue;
         memcpy(sim->exits + sim->nexit, w->exits, w->nexit * sizeof(gf_exit));
         sim->nexit += w->nexit;
         sim->n_alive -= w->nexit;
         w->nexit = 0;
     }
-    qsort(sim->exits + first, sim->nexit - first, sizeof(gf_exit), gf_par_cmp_exit);
+    if (sim->nexit > first) qsort(sim->exits + first, sim->nexit - first, sizeof(gf_exit), gf_par_cmp_exit);
     return GF_OK;
 }
 
