@@ -60,24 +60,17 @@ static size_t gf_gather(const gf_sim *sim, gf_work *w, const double c[3])
 
 // Numbers the inside particles (mark = position + 1) so relax() can tell an
 // inside neighbour from a shell one with one load, and copies their
-// positions (after spot()), p0 and cells next to each other.
+// positions (after spot()) next to each other.
 static void gf_mark_inside(gf_sim *sim, gf_work *w, size_t m)
 {
     const uint32_t *restrict inside = w->inside;
     const gf_pos *restrict p = sim->p;
-    const gf_ref *restrict p0 = sim->p0;
-    const uint32_t *restrict cell_of = sim->grid.cell_of;
     gf_pos *restrict ip = w->ip;
-    gf_ref *restrict ip0 = w->ip0;
-    uint32_t *restrict mark = sim->mark, *restrict icell = w->icell;
+    uint32_t *restrict mark = sim->mark;
     for (size_t k = 0; k < m; k++) {
         uint32_t i = inside[k];
         mark[i] = (uint32_t)k + 1;
         ip[k] = p[i];
-        // For gf_sim_track_moves: fetched here, in a loop of independent
-        // loads, they arrive in parallel while relax() computes.
-        ip0[k] = p0[i];
-        icell[k] = cell_of[i];
     }
     w->scratch_used = m;
 }

@@ -68,9 +68,7 @@ gf_status gf_work_init(const gf_sim *sim, gf_work *w)
     w->disp = gf_alloc(sizeof(double[3]) * cap);
     w->cross = GF_NEW(uint32_t, cap);
     w->ip = GF_NEW(gf_pos, cap);
-    w->ip0 = GF_NEW(gf_ref, cap);
-    w->icell = GF_NEW(uint32_t, cap);
-    if (!w->inside || !w->in_ball || !w->disp || !w->cross || !w->ip || !w->ip0 || !w->icell)
+    if (!w->inside || !w->in_ball || !w->disp || !w->cross || !w->ip)
         return gf_error_set(GF_ERR_NOMEM, "out of memory");
     return GF_OK;
 }
@@ -81,8 +79,6 @@ void gf_work_free(gf_work *w)
     GF_DELETE(w->in_ball, w->scratch_cap);
     GF_DELETE(w->cross, w->scratch_cap);
     GF_DELETE(w->ip, w->scratch_cap);
-    GF_DELETE(w->ip0, w->scratch_cap);
-    GF_DELETE(w->icell, w->scratch_cap);
     gf_free(w->disp, sizeof(double[3]) * w->scratch_cap);
     GF_DELETE(w->exits, w->exit_cap);
     *w = (gf_work){0};
@@ -214,25 +210,23 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 
 gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved)
 {
-    const uint32_t *inside = w->inside, *icell = w->icell;
+    const uint32_t *inside = w->inside;
     const gf_pos *p = sim->p;
-    const gf_ref *ip0 = w->ip0;
     gf_grid *g = &sim->grid;
     uint32_t *cross = w->cross;
     size_t nc = 0;
     // Cells first, so that the refreshes below search a grid that is current.
-    // (Exited particles are not flagged in moved[]; p0 and the cells were
-    // copied by the gather, and cannot have changed since for these.)
+    // (Exited particles are not flagged in moved[]; they left the grid.)
     for (size_t k = 0; k < m; k++) {
         if (!moved[k]) continue;
         uint32_t i = inside[k];
         const gf_pos *q = &p[i];
-        const gf_ref *a = &ip0[k];
+        const gf_ref *a = &sim->p0[i];
         double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->h - GF_SKIN_SLACK;
         cross[nc] = i;
         nc += dx * dx + dy * dy + dz * dz > lim * lim;
         uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);
-        if (c != icell[k]) {
+        if (c != g->cell_of[i]) {
             gf_grid_remove(g, i);
             gf_status st = gf_grid_insert(g, i, c);
             if (st != GF_OK) return st;

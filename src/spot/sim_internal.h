@@ -36,8 +36,6 @@ typedef struct gf_work {
     double (*disp)[3];  ///< relax displacements of the inside particles
     uint32_t *cross;    ///< particles that went past their skin this step
     gf_pos *ip;         ///< per inside entry: its position (after spot())
-    gf_ref *ip0;        ///< per inside entry: its p0
-    uint32_t *icell;    ///< per inside entry: its grid cell
     size_t scratch_cap;
     size_t scratch_used; ///< entries of inside[] filled by the last gather
 
