@@ -122,6 +122,14 @@ bool gf_test_same_file(const char *a, const char *b)
     return same;
 }
 
+bool gf_test_same_snapshot(const char *d1, const char *d2, int k)
+{
+    char a[1024], b[1024];
+    snprintf(a, sizeof a, "%s/snapshots/snap_%06d.dump", d1, k);
+    snprintf(b, sizeof b, "%s/snapshots/snap_%06d.dump", d2, k);
+    return gf_test_same_file(a, b);
+}
+
 gf_sim *gf_test_generated_sim(const gf_config *c)
 {
     gf_packing pk = {0};

@@ -34,6 +34,9 @@ char *gf_test_read_file(const char *path, size_t *len);
 /// True when both files exist and hold the same bytes.
 bool gf_test_same_file(const char *a, const char *b);
 
+/// True when snapshot k (snapshots/snap_%06d.dump) of run directories d1 and d2 is the same bytes.
+bool gf_test_same_snapshot(const char *d1, const char *d2, int k);
+
 struct gf_sim;
 struct gf_config;
 /// The papers' silo config with another width, particle count and seed (validated).

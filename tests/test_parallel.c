@@ -94,14 +94,6 @@ static void thread_count_does_not_change_the_result(void **state)
     free_outcome(&o4);
 }
 
-static bool same_snapshot(const char *d1, const char *d2, int k)
-{
-    char a[1024], b[1024];
-    snprintf(a, sizeof a, "%s/snapshots/snap_%06d.dump", d1, k);
-    snprintf(b, sizeof b, "%s/snapshots/snap_%06d.dump", d2, k);
-    return gf_test_same_file(a, b);
-}
-
 // A run stopped at 4.1 tau with 1 thread and resumed with 2 writes the same
 // final snapshot (byte for byte) as one run straight through with 4.
 static void resume_under_another_thread_count(void **state)
@@ -118,8 +110,8 @@ static void resume_under_another_thread_count(void **state)
     assert_int_equal(gf_run_dir(&c1, &o, NULL), GF_OK);
     gf_run_opts r = {.dir = part, .resume = 1, .force = 1};
     assert_int_equal(gf_run_dir(&c2, &r, NULL), GF_OK);
-    assert_true(same_snapshot(whole, part, 1));
-    assert_true(same_snapshot(whole, part, 2));
+    assert_true(gf_test_same_snapshot(whole, part, 1));
+    assert_true(gf_test_same_snapshot(whole, part, 2));
 }
 
 static const struct CMUnitTest tests[] = {

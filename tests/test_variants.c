@@ -54,14 +54,6 @@ static void run_dir(const gf_config *c, const char *dir)
 }
 
 
-static bool same_snapshot(const char *d1, const char *d2, int k)
-{
-    char a[1024], b[1024];
-    snprintf(a, sizeof a, "%s/snapshots/snap_%06d.dump", d1, k);
-    snprintf(b, sizeof b, "%s/snapshots/snap_%06d.dump", d2, k);
-    return gf_test_same_file(a, b);
-}
-
 // Fixed-timestep runs are deterministic for a seed whatever the order, and
 // the two orders do differ; a fixed run interrupted and resumed (with the
 // counter method, whose per-spot counters live in the checkpoint) ends the
@@ -87,9 +79,9 @@ static void fixed_mode_is_deterministic_in_both_orders(void **state)
     run_dir(&c, d[1]);
     run_dir(&n, d[2]);
     run_dir(&n, d[3]);
-    assert_true(same_snapshot(d[0], d[1], 2));
-    assert_true(same_snapshot(d[2], d[3], 2));
-    assert_false(same_snapshot(d[0], d[2], 2));
+    assert_true(gf_test_same_snapshot(d[0], d[1], 2));
+    assert_true(gf_test_same_snapshot(d[2], d[3], 2));
+    assert_false(gf_test_same_snapshot(d[0], d[2], 2));
     // Resume: stop at 1.3 tau (between snapshots), then go on to 2.
     gf_config half = n;
     half.run_duration = 1.3;
@@ -98,7 +90,7 @@ static void fixed_mode_is_deterministic_in_both_orders(void **state)
     run_dir(&half, part);
     gf_run_opts o = {.dir = part, .resume = 1, .force = 1};
     assert_int_equal(gf_run_dir(&n, &o, NULL), GF_OK);
-    assert_true(same_snapshot(d[2], part, 2));
+    assert_true(gf_test_same_snapshot(d[2], part, 2));
 }
 
 // Fig. 4 / Sec. 2.1: fixed (all three orders) and event modes drain at the same rate. Counts

@@ -124,9 +124,11 @@ void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int
 
 double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride)
 {
-    int cx = gf_grid_axis(x, g->ox, g->inv_h, g->nx);
-    int cy = gf_grid_axis(y, g->oy, g->inv_h, g->ny);
-    uint32_t col = (uint32_t)(cy * g->nx + cx);
+    return gf_grid_column_top_at(g, gf_grid_column(g, x, y), z, stride);
+}
+
+double gf_grid_column_top_at(const gf_grid *g, uint32_t col, const double *z, size_t stride)
+{
     int32_t cz = g->top[col];
     if (cz < 0) return -INFINITY;
     uint32_t c = (uint32_t)cz * (uint32_t)g->nx * (uint32_t)g->ny + col;

@@ -91,5 +91,7 @@ void gf_grid_recompute_top(gf_grid *g);
 /// Largest z among particles in the column of cells containing (x, y), or
 /// -INFINITY when the column is empty. `z` is the particles' z array, stride `stride`.
 double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride);
+/// The same for column `col` (cx + nx cy).
+double gf_grid_column_top_at(const gf_grid *g, uint32_t col, const double *z, size_t stride);
 
 #endif

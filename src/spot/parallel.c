@@ -168,18 +168,8 @@ static gf_status gf_par_spots(gf_par *q, size_t ns)
 // The removal test's column tops, as gf_grid_column_top would answer now.
 static void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol)
 {
-    const gf_grid *g = &sim->grid;
-    for (size_t col = 0; col < ncol; col++) {
-        int32_t cz = g->top[col];
-        double best = -INFINITY;
-        if (cz >= 0) {
-            size_t c = (size_t)cz * ncol + col;
-            const uint32_t *s = g->slot + c * GF_CELL_CAP;
-            for (uint32_t k = 0; k < g->count[c]; k++)
-                if (sim->p[s[k]].z > best) best = sim->p[s[k]].z;
-        }
-        coltop[col] = best;
-    }
+    for (size_t col = 0; col < ncol; col++)
+        coltop[col] = gf_grid_column_top_at(&sim->grid, (uint32_t)col, &sim->p[0].z, 4);
 }
 
 // Spots sorted by (cell, index) with a counting sort over the cells; cells
@@ -287,17 +277,10 @@ uint64_t gf_par_shared_phases(const gf_sim *sim) { return sim->par ? sim->par->s
 
 gf_status gf_sim_spatial_step(gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
     gf_status st = gf_par_make(sim);
     if (st != GF_OK) return st;
     gf_par *q = sim->par;
-    sim->t = sim->t_pending;
-    sim->pending = false;
-    sim->fstep++;
-    sim->st.events++;
-    uint64_t nins = gf_rng_poisson(&sim->rng, c->spot_insertion_rate / c->spot_move_rate);
-    for (uint64_t k = 0; k < nins; k++)
-        if ((st = gf_spot_insert(sim)) != GF_OK) return st;
+    if ((st = gf_sim_fixed_begin(sim)) != GF_OK) return st;
     const size_t ns = sim->ns;
     if ((st = gf_par_spots(q, ns)) != GF_OK) return st;
     memset(q->dead, 0, ns);
@@ -353,8 +336,5 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
     if (st == GF_OK) st = se;
     if (st != GF_OK) return st;
     gf_spots_compact(sim, q->dead);
-    // Method 3: the whole packing every k steps (every k / mu).
-    if (c->relax_method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->relax_k) == 0)
-        st = gf_sim_global(sim);
-    return st;
+    return gf_sim_fixed_end(sim);
 }

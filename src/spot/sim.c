@@ -498,7 +498,7 @@ static double gf_sim_next_time(const gf_sim *sim)
 // Poisson(lambda / mu) spots, then move every spot once, in a fresh random
 // order or newest first. Spots removed during the step are compacted away
 // afterwards, keeping the array in birth order.
-static gf_status gf_sim_fixed_step(gf_sim *sim)
+gf_status gf_sim_fixed_begin(gf_sim *sim)
 {
     const gf_config *c = &sim->cfg;
     sim->t = sim->t_pending;
@@ -508,6 +508,22 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
     gf_status st = GF_OK;
     uint64_t nins = gf_rng_poisson(&sim->rng, c->spot_insertion_rate / c->spot_move_rate);
     for (uint64_t k = 0; k < nins && st == GF_OK; k++) st = gf_spot_insert(sim);
+    return st;
+}
+
+gf_status gf_sim_fixed_end(gf_sim *sim)
+{
+    // Method 3: the whole packing every k steps (every k / mu).
+    const gf_config *c = &sim->cfg;
+    if (c->relax_method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->relax_k) == 0)
+        return gf_sim_global(sim);
+    return GF_OK;
+}
+
+static gf_status gf_sim_fixed_step(gf_sim *sim)
+{
+    const gf_config *c = &sim->cfg;
+    gf_status st = gf_sim_fixed_begin(sim);
     if (st != GF_OK) return st;
     size_t ns = sim->ns, cap = ns ? ns : 1;
     uint32_t *order = GF_NEW(uint32_t, cap);
@@ -538,9 +554,7 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
     if (st == GF_OK) gf_spots_compact(sim, dead);
     if (order) GF_DELETE(order, cap);
     if (dead) GF_DELETE(dead, cap);
-    // Method 3: the whole packing every k steps (every k / mu).
-    if (st == GF_OK && c->relax_method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->relax_k) == 0)
-        st = gf_sim_global(sim);
+    if (st == GF_OK) st = gf_sim_fixed_end(sim);
     return st;
 }
 

@@ -188,6 +188,10 @@ gf_status gf_sim_spatial_step(gf_sim *sim);
 uint64_t gf_par_shared_phases(const gf_sim *sim);
 /// Frees the parallel step's state.
 void gf_par_free(gf_sim *sim);
+/// A fixed step's opening (clock, counters, Poisson(lambda / mu) insertions)
+/// and closing (relax.method = global: the whole packing every k steps).
+gf_status gf_sim_fixed_begin(gf_sim *sim);
+gf_status gf_sim_fixed_end(gf_sim *sim);
 /// Removes the spots flagged in dead[0, ns), keeping the rest in birth order.
 void gf_spots_compact(gf_sim *sim, const uint8_t *dead);
 /// A relaxation of the whole packing, timed into t_relax.
