@@ -81,6 +81,46 @@ static void relax_pair_both_inside(void **state)
     gf_sim_destroy(sim);
 }
 
+static void relax_unequal_radii(void **state)
+{
+    (void)state;
+    // Radii 0.7 and 0.5 with centres 1.0 apart: contact 1.2, overlap 0.2, both
+    // inside r_e, so each moves alpha * 0.2 / 2 = 0.08 apart. A third sphere
+    // of radius 0.5 sits 1.05 beyond the second, within its neighbour list
+    // but not in contact (1.0), so it stays; it would not if the contact
+    // distance were taken from one radius for all.
+    gf_config c = small_box();
+    gf_packing pk = {0};
+    assert_int_equal(gf_packing_push(&pk, 1, 1, -0.5, 0, 10, 0.7), GF_OK);
+    assert_int_equal(gf_packing_push(&pk, 2, 1, 0.5, 0, 10, 0.5), GF_OK);
+    assert_int_equal(gf_packing_push(&pk, 3, 1, 1.55, 0, 10, 0.5), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
+    gf_packing_free(&pk);
+    const double centre[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, &sim->w0, centre), GF_OK);
+    gf_assert_near(by_id(sim, 1)->x, -0.58, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, 0.58, 1e-12);
+    gf_assert_near(by_id(sim, 3)->x, 1.55, 0.0);
+    gf_sim_destroy(sim);
+}
+
+static void relax_coincident_centres_do_not_push(void **state)
+{
+    (void)state;
+    // Two centres at the same point have no direction to push along: relax()
+    // leaves them (and produces no NaN); a third sphere 0.9 away pushes both.
+    const double pos[][3] = {{0, 0, 10}, {0, 0, 10}, {0.9, 0, 10}};
+    gf_sim *sim = make_sim(pos, 3);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
+    // Each of ids 1 and 2 is pushed by id 3 alone: alpha * 0.1 / 2 = 0.04.
+    gf_assert_near(by_id(sim, 1)->x, -0.04, 1e-12);
+    gf_assert_near(by_id(sim, 2)->x, -0.04, 1e-12);
+    gf_assert_near(by_id(sim, 3)->x, 0.98, 1e-12);
+    gf_sim_destroy(sim);
+}
+
 static void relax_pair_inside_and_shell(void **state)
 {
     (void)state;
@@ -278,6 +318,8 @@ static void counter_method_relaxes_every_kth_move(void **state)
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(spot_moves_exactly_the_ball),
     cmocka_unit_test(relax_pair_both_inside),
+    cmocka_unit_test(relax_unequal_radii),
+    cmocka_unit_test(relax_coincident_centres_do_not_push),
     cmocka_unit_test(relax_pair_inside_and_shell),
     cmocka_unit_test(relax_ignores_pairs_outside),
     cmocka_unit_test(relax_wall_and_base),

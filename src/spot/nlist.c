@@ -197,8 +197,15 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
         sim->nl_built_at = sim->st.events;
     }
     sim->hmax = 0.0;
-    for (size_t i = 0; i < sim->n; i++)
-        if (sim->alive[i] && sim->p0[i].h > sim->hmax) sim->hmax = sim->p0[i].h;
+    double r = -1.0;
+    bool mono = true;
+    for (size_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i]) continue;
+        if (sim->p0[i].h > sim->hmax) sim->hmax = sim->p0[i].h;
+        if (r < 0.0) r = sim->p[i].r;
+        mono = mono && sim->p[i].r == r;
+    }
+    sim->contact2 = mono && r > 0.0 ? 4.0 * r * r : 0.0;
     if (!sim->nl) {
         sim->nl = GF_NEW(uint32_t, sim->cap * GF_NL_CAP);
         if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");

@@ -61,6 +61,7 @@ struct gf_sim {
     uint8_t *alive;   ///< 1 while in the container
     size_t n_alive, n_initial;
     double rmax;      ///< largest radius
+    double contact2;  ///< (2 r)^2 when every live particle has radius r, else 0 (derived at every list build)
 
     gf_grid grid;
     double grid_ztop; ///< top of the grid, fixed at creation (cell order depends on it)
