@@ -19,16 +19,23 @@ static gf_config small_box(void)
     return c;
 }
 
-static gf_sim *make_sim_cfg(const gf_config *cfg, const double (*pos)[3], size_t n)
+// Particles with ids 1..n at pos[], of radius r[i] (0.5 when r is NULL).
+static gf_sim *make_sim_radii(const gf_config *cfg, const double (*pos)[3], const double *r, size_t n)
 {
     gf_config c = *cfg;
     gf_packing pk = {0};
     for (size_t i = 0; i < n; i++)
-        assert_int_equal(gf_packing_push(&pk, (int64_t)i + 1, 1, pos[i][0], pos[i][1], pos[i][2], 0.5), GF_OK);
+        assert_int_equal(gf_packing_push(&pk, (int64_t)i + 1, 1, pos[i][0], pos[i][1], pos[i][2], r ? r[i] : 0.5),
+                         GF_OK);
     gf_sim *sim = NULL;
     assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
     gf_packing_free(&pk);
     return sim;
+}
+
+static gf_sim *make_sim_cfg(const gf_config *cfg, const double (*pos)[3], size_t n)
+{
+    return make_sim_radii(cfg, pos, NULL, n);
 }
 
 static gf_sim *make_sim(const double (*pos)[3], size_t n)
@@ -89,16 +96,11 @@ static void relax_unequal_radii(void **state)
     // of radius 0.5 sits 1.05 beyond the second, within its neighbour list
     // but not in contact (1.0), so it stays; it would not if the contact
     // distance were taken from one radius for all.
-    gf_config c = small_box();
-    gf_packing pk = {0};
-    assert_int_equal(gf_packing_push(&pk, 1, 1, -0.5, 0, 10, 0.7), GF_OK);
-    assert_int_equal(gf_packing_push(&pk, 2, 1, 0.5, 0, 10, 0.5), GF_OK);
-    assert_int_equal(gf_packing_push(&pk, 3, 1, 1.55, 0, 10, 0.5), GF_OK);
-    gf_sim *sim = NULL;
-    assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
-    gf_packing_free(&pk);
-    const double centre[3] = {0, 0, 10};
-    assert_int_equal(gf_relax_at(sim, &sim->w0, centre), GF_OK);
+    gf_config cfg = small_box();
+    const double pos[][3] = {{-0.5, 0, 10}, {0.5, 0, 10}, {1.55, 0, 10}}, r[] = {0.7, 0.5, 0.5};
+    gf_sim *sim = make_sim_radii(&cfg, pos, r, 3);
+    const double c[3] = {0, 0, 10};
+    assert_int_equal(gf_relax_at(sim, &sim->w0, c), GF_OK);
     gf_assert_near(by_id(sim, 1)->x, -0.58, 1e-12);
     gf_assert_near(by_id(sim, 2)->x, 0.58, 1e-12);
     gf_assert_near(by_id(sim, 3)->x, 1.55, 0.0);
