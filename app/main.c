@@ -41,9 +41,16 @@ static const char gf_usage[] =
     "            3 malformed data file, 130 interrupted (checkpoint written)\n"
     "SIGINT/SIGTERM during a run write a checkpoint; resume with --resume DIR.\n";
 
+// The library never prints its warnings: the CLI does, naming the command.
+static void gf_print_warning(void *ctx, const char *message)
+{
+    fprintf(stderr, "granflow %s: warning: %s\n", (const char *)ctx, message);
+}
+
 int main(int argc, char **argv)
 {
     const char *cmd = argc > 1 ? argv[1] : "help";
+    gf_set_warning_fn(gf_print_warning, (void *)cmd);
     if (!strcmp(cmd, "run")) return gf_cmd_run(argc - 2, argv + 2);
     if (!strcmp(cmd, "pack")) return gf_cmd_pack(argc - 2, argv + 2);
     if (!strcmp(cmd, "config")) return gf_cmd_config(argc - 2, argv + 2);

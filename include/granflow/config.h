@@ -181,6 +181,33 @@ GF_API gf_status gf_config_validate(gf_config *cfg);
 /// to the same values (numbers printed with round-trip precision).
 GF_API gf_status gf_config_write(const gf_config *cfg, FILE *out);
 
+// ---- by name: what bindings use (no dependence on the struct's layout) -----
+
+/// A heap config holding the defaults (gf_config_default), or NULL (out of memory).
+GF_API gf_config *gf_config_create(void);
+/// Frees a config from gf_config_create (NULL is fine).
+GF_API void gf_config_destroy(gf_config *cfg);
+/// Copies every key of `src` into `dst`.
+GF_API gf_status gf_config_copy(gf_config *dst, const gf_config *src);
+
+/// Sets key `key` ("section.name", e.g. "spot.radius") from its INI text
+/// ("2.6", "slit", "auto", a path); the value is checked exactly as in a file.
+GF_API gf_status gf_config_set_key(gf_config *cfg, const char *key, const char *value);
+
+/// Writes the value of `key` as the INI file spells it (round-trip number,
+/// enum name, `auto`, path) into `buf` of `size` bytes (GF_PATH_MAX + 64 is
+/// always enough). GF_ERR_PARAM for an unknown key or a short buffer.
+GF_API gf_status gf_config_get_key(const gf_config *cfg, const char *key, char *buf, size_t size);
+
+/// Number of keys; key i (0 <= i < count, file order) is named by gf_config_key_name.
+GF_API size_t gf_config_key_count(void);
+/// Writes "section.name" of key `i` into `buf`.
+GF_API gf_status gf_config_key_name(size_t i, char *buf, size_t size);
+/// One line saying what key `i` means (NULL when out of range).
+GF_API const char *gf_config_key_doc(size_t i);
+/// The default of key `i` as the INI file writes it (NULL when out of range).
+GF_API const char *gf_config_key_default(size_t i);
+
 /// Writes the configuration to `path` atomically (temporary file + rename).
 GF_API gf_status gf_config_save(const gf_config *cfg, const char *path);
 

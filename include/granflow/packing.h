@@ -80,6 +80,11 @@ typedef struct gf_packing_import_report {
 /// or when no particle is left.
 GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
 
+/// The initial packing of a run of `cfg`: packing.file imported
+/// (gf_packing_import; `rep`, may be NULL, gets its counts), else generated
+/// (gf_packing_generate; `rep` zeroed).
+GF_API gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
+
 /// Writes a packing (LAMMPS dump with `id type x y z radius`, XYZ or CSV) atomically.
 GF_API gf_status gf_packing_write(const gf_packing *p, const char *path, gf_packing_format format,
                                   const gf_config *cfg);

@@ -90,6 +90,38 @@ GF_API void gf_sim_set_threads(gf_sim *sim, int threads);
 /// Switches per-call timing of spot() and relax() on or off (costs ~50 ns a call).
 GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 
+// ---- flat arrays and named numbers: what bindings use ------------------------
+
+/// Creates a simulation of the packing `cfg` asks for (packing.file imported,
+/// else generated; see gf_packing_for_config). `cfg` is validated on a copy.
+/// Dropped particles of an import are reported through gf_warning().
+GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out);
+
+/// Particles still in the container.
+GF_API size_t gf_sim_particle_count(const gf_sim *sim);
+
+/// Copies the particles still in the container, sorted by id: `id[i]`,
+/// `layer[i]` (initial-layer tag), `xyz[3i..3i+2]` (centre, d), `radius[i]`;
+/// any array may be NULL. GF_ERR_PARAM when more than `cap` particles remain.
+/// `*n` (may be NULL) receives the count.
+GF_API gf_status gf_sim_copy_particles(const gf_sim *sim, int64_t *id, int32_t *layer, double *xyz,
+                                       double *radius, size_t cap, size_t *n);
+
+/// Number of particles that have left so far.
+GF_API size_t gf_sim_exit_count(const gf_sim *sim);
+
+/// Copies the exits, sorted by (time, id): `id[i]`, `txy[3i..3i+2]` = time
+/// (tau), x, y (d) where it crossed; either may be NULL. GF_ERR_PARAM when
+/// more than `cap`.
+GF_API gf_status gf_sim_copy_exits(const gf_sim *sim, int64_t *id, double *txy, size_t cap, size_t *n);
+
+/// One counter of gf_sim_stats by its member name ("time", "spot_moves",
+/// ...) as a double; NaN for an unknown name.
+GF_API double gf_sim_stat(const gf_sim *sim, const char *name);
+/// Number of counters; counter i is named gf_sim_stat_name(i) (NULL when out of range).
+GF_API size_t gf_sim_stat_count(void);
+GF_API const char *gf_sim_stat_name(size_t i);
+
 /// Writes a checkpoint (versioned header, CRC-32, written then renamed).
 GF_API gf_status gf_sim_save(const gf_sim *sim, const char *path);
 /// Restores a checkpoint. `cfg` may differ from the saved one only in [run]

@@ -172,8 +172,8 @@ static gf_status gf_write_plot(const char *outdir, const char *name, const gf_me
     if (*gnuplot_state == 1) return GF_OK; // known missing: said once
     int r = gf_gnuplot_run(outdir, gp);
     if (r == 1) {
-        fprintf(stderr, "granflow analyze: warning: gnuplot not found, plots not drawn (scripts/deps.sh installs it; "
-                        "the .gp scripts are in %s)\n", outdir);
+        gf_warn("gnuplot not found, plots not drawn (scripts/deps.sh installs it; the .gp scripts are in %s)",
+                outdir);
         *gnuplot_state = 1;
     } else if (r < 0) {
         return gf_error_set(GF_ERR_IO, "gnuplot failed on %s", path);
@@ -226,7 +226,7 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
         } else {
             // One measurement that cannot be made (no exits, too few frames)
             // does not stop the others; the reason goes into summary.json.
-            fprintf(stderr, "granflow analyze: warning: %s skipped: %s\n", d->name, gf_last_error());
+            gf_warn("%s skipped: %s", d->name, gf_last_error());
             gf_summary_text(sum, note, gf_last_error());
         }
         gf_measure_free(&out);

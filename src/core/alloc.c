@@ -4,7 +4,6 @@
 #include "granflow/core.h"
 
 #include <stdatomic.h>
-#include <stdlib.h>
 #include <string.h>
 
 static atomic_size_t gf_bytes;
@@ -12,8 +11,9 @@ static atomic_size_t gf_bytes;
 void *gf_alloc(size_t size)
 {
     if (size == 0) return NULL;
+    // Whole cache lines, zeroed to the end, whatever allocator is installed.
     size_t rounded = (size + 63) & ~(size_t)63;
-    void *p = aligned_alloc(64, rounded);
+    void *p = gf_hook_alloc(rounded, 64);
     if (!p) return NULL;
     memset(p, 0, rounded);
     atomic_fetch_add(&gf_bytes, size);
@@ -24,7 +24,7 @@ void gf_free(void *p, size_t size)
 {
     if (!p) return;
     atomic_fetch_sub(&gf_bytes, size);
-    free(p);
+    gf_hook_free(p, (size + 63) & ~(size_t)63);
 }
 
 void *gf_realloc(void *p, size_t old_size, size_t new_size)

@@ -13,6 +13,10 @@ void gf_free(void *p, size_t size);
 /// Grows or shrinks a block, keeping min(old, new) bytes and zeroing the rest.
 void *gf_realloc(void *p, size_t old_size, size_t new_size);
 
+/// The allocator set by gf_set_allocator (default aligned_alloc/free), unzeroed, uncounted.
+void *gf_hook_alloc(size_t size, size_t alignment);
+void gf_hook_free(void *block, size_t size);
+
 /// Typed helpers: n elements of type T.
 #define GF_NEW(T, n) ((T *)gf_alloc(sizeof(T) * (size_t)(n)))
 #define GF_DELETE(p, n) gf_free((p), sizeof(*(p)) * (size_t)(n))

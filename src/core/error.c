@@ -33,4 +33,4 @@ const char *gf_status_str(gf_status status)
     return "unknown status";
 }
 
-const char *gf_version(void) { return "0.1.0"; }
+const char *gf_version(void) { return GF_VERSION_STRING; }

@@ -12,10 +12,16 @@ gf_status gf_error_set(gf_status status, const char *fmt, ...)
 /// Clears the thread's last-error message.
 void gf_error_clear(void);
 
+/// Records a warning for gf_warning() and passes it to the gf_set_warning_fn
+/// callback; never prints. No trailing newline, no program name.
+void gf_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/// Calls the gf_set_assert_fn hook (default: print, abort).
+void gf_assert_fail(const char *condition, const char *file, int line);
+
 #ifndef NDEBUG
-#include <assert.h>
 /// Misuse of an internal API (a bug), never bad user input.
-#define GF_ASSERT(c) assert(c)
+#define GF_ASSERT(c) ((c) ? (void)0 : gf_assert_fail(#c, __FILE__, __LINE__))
 #else
 #define GF_ASSERT(c) ((void)0)
 #endif

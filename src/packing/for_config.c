@@ -1,0 +1,10 @@
+// SPDX-License-Identifier: MIT
+// The initial packing a config asks for: packing.file imported, else generated.
+#include "granflow/packing.h"
+
+gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep)
+{
+    if (rep) *rep = (gf_packing_import_report){0};
+    if (!cfg->packing_file[0]) return gf_packing_generate(cfg, out);
+    return gf_packing_import(cfg, out, rep);
+}

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// The simulation as flat arrays and named numbers, for bindings (Python's
+// ctypes) that must not depend on struct layouts.
+#include "granflow/sim.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+
+gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out)
+{
+    if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "gf_sim_create_from_config: NULL argument");
+    *out = NULL;
+    gf_config c = *cfg;
+    gf_status st = gf_config_validate(&c);
+    if (st != GF_OK) return st;
+    gf_packing pk = {0};
+    gf_packing_import_report rep;
+    st = gf_packing_for_config(&c, &pk, &rep);
+    if (st == GF_OK && (rep.other_types || rep.below_base))
+        gf_warn("%s: %zu of %zu particles kept (%zu below the base counted as exited, %zu of other atom types dropped)",
+                c.packing_file, pk.n, rep.read, rep.below_base, rep.other_types);
+    if (st == GF_OK) st = gf_sim_create(&c, &pk, out);
+    gf_packing_free(&pk);
+    return st;
+}
+
+size_t gf_sim_particle_count(const gf_sim *sim) { return gf_sim_get_stats(sim).particles_remaining; }
+
+gf_status gf_sim_copy_particles(const gf_sim *sim, int64_t *id, int32_t *layer, double *xyz, double *radius,
+                                size_t cap, size_t *n)
+{
+    gf_packing pk = {0};
+    gf_status st = gf_sim_particles(sim, &pk);
+    if (st == GF_OK && pk.n > cap)
+        st = gf_error_set(GF_ERR_PARAM, "gf_sim_copy_particles: %zu particles, room for %zu", pk.n, cap);
+    if (st == GF_OK) {
+        for (size_t i = 0; i < pk.n; i++) {
+            if (id) id[i] = pk.id[i];
+            if (layer) layer[i] = pk.layer[i];
+            if (radius) radius[i] = pk.r[i];
+            if (xyz) {
+                xyz[3 * i] = pk.x[i];
+                xyz[3 * i + 1] = pk.y[i];
+                xyz[3 * i + 2] = pk.z[i];
+            }
+        }
+        if (n) *n = pk.n;
+    }
+    gf_packing_free(&pk);
+    return st;
+}
+
+size_t gf_sim_exit_count(const gf_sim *sim)
+{
+    size_t n;
+    gf_sim_exits(sim, &n);
+    return n;
+}
+
+gf_status gf_sim_copy_exits(const gf_sim *sim, int64_t *id, double *txy, size_t cap, size_t *n)
+{
+    size_t m;
+    const gf_exit *e = gf_sim_exits(sim, &m);
+    if (m > cap) return gf_error_set(GF_ERR_PARAM, "gf_sim_copy_exits: %zu exits, room for %zu", m, cap);
+    for (size_t i = 0; i < m; i++) {
+        if (id) id[i] = e[i].id;
+        if (txy) {
+            txy[3 * i] = e[i].time;
+            txy[3 * i + 1] = e[i].x;
+            txy[3 * i + 2] = e[i].y;
+        }
+    }
+    if (n) *n = m;
+    return GF_OK;
+}
+
+// Every member of gf_sim_stats, by name (the order of the struct).
+#define GF_STATS(X)                                                                                     \
+    X(time) X(particles_initial) X(particles_remaining) X(particles_exited) X(spots_active)             \
+    X(spots_inserted) X(spots_deleted) X(spot_moves) X(relax_calls) X(global_relaxations) X(events)     \
+    X(nlist_builds) X(spot_seconds) X(relax_seconds) X(spot_dz) X(relax_dz)
+
+static const char *const gf_stat_names[] = {
+#define GF_STAT_NAME(m) #m,
+    GF_STATS(GF_STAT_NAME)
+#undef GF_STAT_NAME
+};
+
+double gf_sim_stat(const gf_sim *sim, const char *name)
+{
+    if (!sim || !name) return NAN;
+    gf_sim_stats s = gf_sim_get_stats(sim);
+#define GF_STAT_GET(m) if (!strcmp(name, #m)) return (double)s.m;
+    GF_STATS(GF_STAT_GET)
+#undef GF_STAT_GET
+    return NAN;
+}
+
+size_t gf_sim_stat_count(void) { return sizeof gf_stat_names / sizeof gf_stat_names[0]; }
+
+const char *gf_sim_stat_name(size_t i) { return i < gf_sim_stat_count() ? gf_stat_names[i] : NULL; }

@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: MIT
+// The embedding API: config keys by name, warnings, allocator and assert
+// hooks, the version, and a simulation read through flat arrays.
+#include "support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "config/keys.h"
+#include "core/alloc.h"
+#include "core/error.h"
+#include "granflow/granflow.h"
+
+// A valid value of key k other than its default, as INI text (from the
+// table's type and range; the public API then has to accept it).
+static void other_value(const gf_key *k, char *buf, size_t n)
+{
+    switch (k->type) {
+    case GF_KEY_ENUM: {
+        size_t m = 0;
+        while (k->names[m]) m++;
+        snprintf(buf, n, "%s", strcmp(k->names[m - 1], k->def) ? k->names[m - 1] : k->names[0]);
+        return;
+    }
+    case GF_KEY_PATH: snprintf(buf, n, "/tmp/a dir/%s.dump", k->name); return;
+    case GF_KEY_UINT64: snprintf(buf, n, "18446744073709551557"); return;
+    case GF_KEY_DOUBLE:
+    case GF_KEY_AUTO:
+    case GF_KEY_INT64: break;
+    }
+    double lo = k->min, hi = k->max, v;
+    if (isfinite(lo) && isfinite(hi)) v = lo + 0.375 * (hi - lo);
+    else if (isfinite(lo)) v = lo + 1.375;
+    else if (isfinite(hi)) v = hi - 1.375;
+    else v = -3.125;
+    if (k->type == GF_KEY_INT64) {
+        v = floor(v) + (v == floor(v) ? 1 : 0);
+        if (!strcmp(k->def, "1") && v == 1) v = 2;
+        snprintf(buf, n, "%.0f", v);
+    } else {
+        gf_keys_format_double(v, buf, n);
+    }
+    GF_ASSERT(strcmp(buf, k->def) != 0);
+}
+
+static void config_get_set_round_trip_every_key(void **state)
+{
+    (void)state;
+    gf_config *cfg = gf_config_create();
+    assert_non_null(cfg);
+    const size_t nkeys = gf_config_key_count();
+    assert_int_equal(nkeys, gf_keys_count);
+    char name[128], got[GF_PATH_MAX + 64], want[GF_PATH_MAX + 64];
+    for (size_t i = 0; i < nkeys; i++) {
+        assert_int_equal(gf_config_key_name(i, name, sizeof name), GF_OK);
+        assert_non_null(gf_config_key_doc(i));
+        // The default reads back as the table spells it.
+        assert_int_equal(gf_config_get_key(cfg, name, got, sizeof got), GF_OK);
+        assert_string_equal(got, gf_config_key_default(i));
+        // Another valid value goes in and comes back the same text.
+        other_value(&gf_keys[i], want, sizeof want);
+        if (gf_config_set_key(cfg, name, want) != GF_OK) fail_msg("%s = %s: %s", name, want, gf_last_error());
+        assert_int_equal(gf_config_get_key(cfg, name, got, sizeof got), GF_OK);
+        if (strcmp(got, want)) fail_msg("%s: set %s, got %s", name, want, got);
+    }
+    // Every field changed: none of the keys reads its default any more, and a
+    // second config set key by key from the first reads back identically.
+    gf_config *copy = gf_config_create();
+    for (size_t i = 0; i < nkeys; i++) {
+        assert_int_equal(gf_config_key_name(i, name, sizeof name), GF_OK);
+        assert_int_equal(gf_config_get_key(cfg, name, got, sizeof got), GF_OK);
+        assert_string_not_equal(got, gf_config_key_default(i));
+        assert_int_equal(gf_config_set_key(copy, name, got), GF_OK);
+    }
+    assert_memory_equal(cfg, copy, sizeof *cfg);
+    gf_config_destroy(copy);
+    gf_config_destroy(cfg);
+}
+
+static void config_by_name_errors(void **state)
+{
+    (void)state;
+    gf_config *cfg = gf_config_create();
+    char buf[64];
+    assert_int_equal(gf_config_set_key(cfg, "spot.radius", "2.6"), GF_OK);
+    assert_int_equal(gf_config_set_key(cfg, "spot.radius", "abc"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "spot.radius"));
+    assert_int_equal(gf_config_set_key(cfg, "spot.radius", "-1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "out of range"));
+    assert_int_equal(gf_config_get_key(cfg, "spot.radius", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, "2.6"); // failed sets left it alone
+    assert_int_equal(gf_config_set_key(cfg, "spot.radus", "1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "keys of [spot]"));
+    assert_int_equal(gf_config_set_key(cfg, "nosuch.key", "1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "sections:"));
+    assert_int_equal(gf_config_get_key(cfg, "radius", buf, sizeof buf), GF_ERR_PARAM);
+    assert_int_equal(gf_config_get_key(cfg, "spot.radius", buf, 3), GF_ERR_PARAM); // "2.6" needs 4
+    assert_int_equal(gf_config_key_name(gf_config_key_count(), buf, sizeof buf), GF_ERR_PARAM);
+    assert_null(gf_config_key_doc(gf_config_key_count()));
+    gf_config_destroy(cfg);
+}
+
+static void version_from_cmake(void **state)
+{
+    (void)state;
+    char v[32];
+    snprintf(v, sizeof v, "%d.%d.%d", GF_VERSION_MAJOR, GF_VERSION_MINOR, GF_VERSION_PATCH);
+    assert_string_equal(gf_version(), v);
+    assert_string_equal(gf_version(), GF_VERSION_STRING);
+}
+
+typedef struct seen {
+    int calls;
+    char last[256];
+} seen;
+
+static void record_warning(void *ctx, const char *message)
+{
+    seen *s = ctx;
+    s->calls++;
+    snprintf(s->last, sizeof s->last, "%s", message);
+}
+
+static void warnings_are_kept_and_passed_on(void **state)
+{
+    (void)state;
+    gf_warnings_clear();
+    assert_int_equal(gf_warning_count(), 0);
+    assert_null(gf_warning(0));
+    seen s = {0};
+    gf_set_warning_fn(record_warning, &s);
+    for (int i = 0; i < GF_WARNINGS_KEPT + 5; i++) gf_warn("warning %d", i);
+    gf_set_warning_fn(NULL, NULL);
+    gf_warn("unheard");
+    assert_int_equal(s.calls, GF_WARNINGS_KEPT + 5);
+    assert_string_equal(s.last, "warning 36");
+    // The newest GF_WARNINGS_KEPT, oldest first.
+    assert_int_equal(gf_warning_count(), GF_WARNINGS_KEPT);
+    char want[32];
+    snprintf(want, sizeof want, "warning %d", GF_WARNINGS_KEPT + 5 - (GF_WARNINGS_KEPT - 1));
+    assert_string_equal(gf_warning(0), want);
+    assert_string_equal(gf_warning(GF_WARNINGS_KEPT - 1), "unheard");
+    gf_warnings_clear();
+    assert_int_equal(gf_warning_count(), 0);
+}
+
+static size_t hook_blocks, hook_bytes;
+
+static void *counting_alloc(size_t size, size_t alignment)
+{
+    hook_blocks++;
+    hook_bytes += size;
+    return aligned_alloc(alignment, size);
+}
+
+static void counting_free(void *block, size_t size)
+{
+    hook_blocks--;
+    hook_bytes -= size;
+    free(block);
+}
+
+static void allocator_hook_sees_every_block(void **state)
+{
+    (void)state;
+    gf_set_allocator(counting_alloc, counting_free);
+    gf_config c = gf_test_silo_config(10, 300, 3);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create_from_config(&c, &sim), GF_OK);
+    assert_true(hook_blocks > 0);
+    // Every byte granflow counts went through the hook (rounded to cache lines).
+    assert_true(hook_bytes >= gf_bytes_allocated());
+    assert_true(hook_bytes < gf_bytes_allocated() + 64 * hook_blocks);
+    for (int i = 0; i < 200; i++) assert_int_equal(gf_sim_step(sim), GF_OK);
+    gf_sim_destroy(sim);
+    assert_int_equal(hook_blocks, 0);
+    assert_int_equal(hook_bytes, 0);
+    gf_set_allocator(NULL, NULL);
+}
+
+static int assert_calls;
+
+static int soft_assert(const char *condition, const char *file, int line)
+{
+    (void)file;
+    assert_string_equal(condition, "1 == 2");
+    assert_int_equal(line, 42);
+    assert_calls++;
+    return 0; // continue
+}
+
+static void assert_hook_is_called(void **state)
+{
+    (void)state;
+    gf_set_assert_fn(soft_assert);
+    gf_assert_fail("1 == 2", __FILE__, 42);
+    gf_set_assert_fn(NULL);
+    assert_int_equal(assert_calls, 1);
+}
+
+// A small silo through the flat-array API: the particles plus the exits are
+// the initial particles, ids sorted and unique, and the counters agree.
+static void sim_arrays_account_for_every_particle(void **state)
+{
+    (void)state;
+    gf_config *cfg = gf_config_create();
+    const char *sets[][2] = {{"container.width", "10"}, {"container.depth", "6"}, {"container.orifice_diameter", "5"},
+                             {"packing.particles", "1500"}, {"run.seed", "7"}};
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        assert_int_equal(gf_config_set_key(cfg, sets[i][0], sets[i][1]), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create_from_config(cfg, &sim), GF_OK);
+    gf_config_destroy(cfg);
+    const size_t n0 = gf_sim_particle_count(sim);
+    assert_int_equal(n0, 1500);
+    assert_int_equal(gf_sim_run(sim, 3.0, NULL), GF_OK);
+    assert_true(gf_sim_stat(sim, "time") >= 3.0);
+    assert_true(isnan(gf_sim_stat(sim, "no_such_counter")));
+    const size_t n = gf_sim_particle_count(sim), ne = gf_sim_exit_count(sim);
+    assert_true(ne > 0);
+    assert_int_equal(n + ne, n0);
+    assert_int_equal((size_t)gf_sim_stat(sim, "particles_exited"), ne);
+    int64_t *id = calloc(n, sizeof *id), *eid = calloc(ne, sizeof *eid);
+    double *xyz = calloc(3 * n, sizeof *xyz), *txy = calloc(3 * ne, sizeof *txy);
+    size_t got;
+    assert_int_equal(gf_sim_copy_particles(sim, id, NULL, xyz, NULL, n - 1, &got), GF_ERR_PARAM);
+    assert_int_equal(gf_sim_copy_particles(sim, id, NULL, xyz, NULL, n, &got), GF_OK);
+    assert_int_equal(got, n);
+    assert_int_equal(gf_sim_copy_exits(sim, eid, txy, ne, &got), GF_OK);
+    assert_int_equal(got, ne);
+    for (size_t i = 1; i < n; i++) assert_true(id[i] > id[i - 1]);
+    for (size_t i = 0; i < n; i++) assert_true(xyz[3 * i + 2] > -0.5 && fabs(xyz[3 * i]) <= 5);
+    for (size_t i = 0; i < ne; i++) {
+        assert_true(txy[3 * i] > 0 && txy[3 * i] <= gf_sim_stat(sim, "time"));
+        assert_true(hypot(txy[3 * i + 1], txy[3 * i + 2]) <= 2.5 + 0.5); // through the orifice
+        if (i) assert_true(txy[3 * i] >= txy[3 * (i - 1)]);
+    }
+    // No id is both inside and gone; together they are 1..n0.
+    char *mark = calloc(n0 + 1, 1);
+    for (size_t i = 0; i < n; i++) mark[id[i]]++;
+    for (size_t i = 0; i < ne; i++) mark[eid[i]]++;
+    for (size_t i = 1; i <= n0; i++) assert_int_equal(mark[i], 1);
+    for (size_t i = 0; i < gf_sim_stat_count(); i++) assert_false(isnan(gf_sim_stat(sim, gf_sim_stat_name(i))));
+    assert_null(gf_sim_stat_name(gf_sim_stat_count()));
+    free(mark);
+    free(id);
+    free(eid);
+    free(xyz);
+    free(txy);
+    gf_sim_destroy(sim);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(config_get_set_round_trip_every_key),
+    cmocka_unit_test(config_by_name_errors),
+    cmocka_unit_test(version_from_cmake),
+    cmocka_unit_test(warnings_are_kept_and_passed_on),
+    cmocka_unit_test(allocator_hook_sees_every_block),
+    cmocka_unit_test(assert_hook_is_called),
+    cmocka_unit_test(sim_arrays_account_for_every_particle),
+};
+
+GF_TEST_MAIN("embed", tests)
