@@ -1,0 +1,122 @@
+# SPDX-License-Identifier: MIT
+"""Loading libgranflow and declaring the C functions the package calls.
+
+Only functions that take handles, strings, numbers and flat arrays are used,
+so nothing here depends on the layout of a granflow struct.
+"""
+import ctypes
+import ctypes.util
+import os
+from pathlib import Path
+
+_HERE = Path(__file__).resolve().parent
+
+
+class GranflowError(RuntimeError):
+    """A granflow call failed; `status` is the gf_status name, the text is gf_last_error()."""
+
+    def __init__(self, status, message):
+        super().__init__(f"{status}: {message}")
+        self.status = status
+        self.message = message
+
+
+def _candidates():
+    env = os.environ.get("GRANFLOW_LIB")
+    if env:
+        yield env
+        return
+    # A source checkout: python/granflow -> ../../build/libgranflow.so
+    yield str(_HERE.parent.parent / "build" / "libgranflow.so")
+    # An installed prefix: <prefix>/lib/pythonX/... or <prefix>/share/granflow/python/granflow
+    for up in (_HERE.parents[i] for i in range(1, min(5, len(_HERE.parents)))):
+        yield str(up / "lib" / "libgranflow.so")
+    found = ctypes.util.find_library("granflow")
+    if found:
+        yield found
+    yield "libgranflow.so.0"
+
+
+def _load():
+    errors = []
+    for path in _candidates():
+        if "/" in path and not os.path.exists(path):
+            continue
+        try:
+            return ctypes.CDLL(path), path
+        except OSError as e:
+            errors.append(f"{path}: {e}")
+    raise ImportError("granflow: libgranflow.so not found (set GRANFLOW_LIB to its path); tried: "
+                      + "; ".join(errors or ["nothing"]))
+
+
+lib, path = _load()
+
+c_char_p, c_size_t, c_int, c_double, c_void_p = (ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int,
+                                                 ctypes.c_double, ctypes.c_void_p)
+_pd = ctypes.POINTER(ctypes.c_double)
+_pi64 = ctypes.POINTER(ctypes.c_int64)
+_pi32 = ctypes.POINTER(ctypes.c_int32)
+_psize = ctypes.POINTER(ctypes.c_size_t)
+
+_SIGNATURES = {
+    # core
+    "gf_status_str": (c_char_p, [c_int]),
+    "gf_last_error": (c_char_p, []),
+    "gf_version": (c_char_p, []),
+    "gf_bytes_allocated": (c_size_t, []),
+    "gf_warning_count": (c_size_t, []),
+    "gf_warning": (c_char_p, [c_size_t]),
+    "gf_warnings_clear": (None, []),
+    # config by name
+    "gf_config_create": (c_void_p, []),
+    "gf_config_destroy": (None, [c_void_p]),
+    "gf_config_copy": (c_int, [c_void_p, c_void_p]),
+    "gf_config_set_key": (c_int, [c_void_p, c_char_p, c_char_p]),
+    "gf_config_get_key": (c_int, [c_void_p, c_char_p, c_char_p, c_size_t]),
+    "gf_config_key_count": (c_size_t, []),
+    "gf_config_key_name": (c_int, [c_size_t, c_char_p, c_size_t]),
+    "gf_config_key_doc": (c_char_p, [c_size_t]),
+    "gf_config_key_default": (c_char_p, [c_size_t]),
+    "gf_config_load": (c_int, [c_void_p, c_char_p]),
+    "gf_config_save": (c_int, [c_void_p, c_char_p]),
+    "gf_config_validate": (c_int, [c_void_p]),
+    # simulation
+    "gf_sim_create_from_config": (c_int, [c_void_p, ctypes.POINTER(c_void_p)]),
+    "gf_sim_destroy": (None, [c_void_p]),
+    "gf_sim_step": (c_int, [c_void_p]),
+    "gf_sim_run": (c_int, [c_void_p, c_double, c_void_p]),
+    "gf_sim_particle_count": (c_size_t, [c_void_p]),
+    "gf_sim_copy_particles": (c_int, [c_void_p, _pi64, _pi32, _pd, _pd, c_size_t, _psize]),
+    "gf_sim_exit_count": (c_size_t, [c_void_p]),
+    "gf_sim_copy_exits": (c_int, [c_void_p, _pi64, _pd, c_size_t, _psize]),
+    "gf_sim_stat": (c_double, [c_void_p, c_char_p]),
+    "gf_sim_stat_count": (c_size_t, []),
+    "gf_sim_stat_name": (c_char_p, [c_size_t]),
+    "gf_sim_set_threads": (None, [c_void_p, c_int]),
+    "gf_sim_save": (c_int, [c_void_p, c_char_p]),
+}
+
+for _name, (_res, _args) in _SIGNATURES.items():
+    _f = getattr(lib, _name)
+    _f.restype = _res
+    _f.argtypes = _args
+
+
+def check(status):
+    """Raises GranflowError for a non-zero gf_status."""
+    if status != 0:
+        raise GranflowError(lib.gf_status_str(status).decode(), lib.gf_last_error().decode())
+
+
+def enc(text):
+    return os.fsencode(text) if isinstance(text, os.PathLike) else str(text).encode()
+
+
+def warnings():
+    """The library's warnings of this thread since the last clear_warnings(), oldest first."""
+    return [lib.gf_warning(i).decode() for i in range(lib.gf_warning_count())]
+
+
+def clear_warnings():
+    lib.gf_warnings_clear()

@@ -1,0 +1,118 @@
+# SPDX-License-Identifier: MIT
+"""Reading what `granflow run`, `analyze`, `render`, `compare` and `report` write."""
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .config import Config
+
+
+def read_csv(path):
+    """A granflow CSV file (header line, then numbers; `nan` allowed) as a dict
+    of column name -> float64 numpy array, in file order."""
+    path = Path(path)
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    if data.size == 0:
+        data = np.empty((0, len(header)))
+    if data.shape[1] != len(header):
+        raise ValueError(f"{path}: {data.shape[1]} columns of numbers, {len(header)} names in the header")
+    return {name: data[:, i].copy() for i, name in enumerate(header)}
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def read_snapshot(path):
+    """One LAMMPS text dump as written by granflow: dict time (tau), step, box
+    (3 x 2, d), id (int64), type (int64; the layer tag) and xyz (n x 3, d)."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    out = {"time": None, "step": None}
+    i = 0
+    while i < len(lines):
+        item = lines[i]
+        if item.startswith("ITEM: TIMESTEP"):
+            out["step"] = int(lines[i + 1])
+            i += 2
+        elif item.startswith("ITEM: TIME"):
+            out["time"] = float(lines[i + 1])
+            i += 2
+        elif item.startswith("ITEM: NUMBER OF ATOMS"):
+            n = int(lines[i + 1])
+            i += 2
+        elif item.startswith("ITEM: BOX BOUNDS"):
+            out["box"] = np.array([[float(v) for v in lines[i + k].split()[:2]] for k in (1, 2, 3)])
+            i += 4
+        elif item.startswith("ITEM: ATOMS"):
+            cols = item.split()[2:]
+            rows = np.array([ln.split() for ln in lines[i + 1:i + 1 + n]], dtype=np.float64).reshape(n, len(cols))
+            col = {c: rows[:, k] for k, c in enumerate(cols)}
+            out["id"] = col["id"].astype(np.int64)
+            out["type"] = col["type"].astype(np.int64) if "type" in col else np.ones(n, np.int64)
+            out["xyz"] = np.column_stack([col["x"], col["y"], col["z"]])
+            break
+        else:
+            i += 1
+    if "xyz" not in out:
+        raise ValueError(f"{path}: no ITEM: ATOMS section")
+    return out
+
+
+class RunDir:
+    """A run directory: config.ini, summary.json, exits.csv, snapshots/, and,
+    when made, analysis/ (summary.json, CSV), render/ (PNG) and report.html."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        if not (self.path / "config.ini").exists():
+            raise FileNotFoundError(f"{self.path}: not a granflow run directory (no config.ini)")
+
+    @property
+    def config(self):
+        return Config(path=self.path / "config.ini")
+
+    @property
+    def summary(self):
+        """summary.json of the run (counters, status, wall time)."""
+        return read_json(self.path / "summary.json")
+
+    def exits(self):
+        """exits.csv: id, time (tau), x, y (d) of every particle that left."""
+        t = read_csv(self.path / "exits.csv")
+        t["id"] = t["id"].astype(np.int64)
+        return t
+
+    def snapshots(self):
+        """Paths of the snapshots, in time order."""
+        return sorted((self.path / "snapshots").glob("snap_*.dump"))
+
+    def snapshot(self, k):
+        """Snapshot k (index in snapshots()) as read_snapshot returns it."""
+        return read_snapshot(self.snapshots()[k])
+
+    @property
+    def analysis(self):
+        """analysis/summary.json (the headline numbers of `granflow analyze`), {} if not analysed."""
+        p = self.path / "analysis" / "summary.json"
+        return read_json(p) if p.exists() else {}
+
+    def tables(self):
+        """Names of the analysis CSV tables (outflow, velocity_field, ...)."""
+        return sorted(p.stem for p in (self.path / "analysis").glob("*.csv"))
+
+    def table(self, name):
+        """analysis/NAME.csv as a dict of numpy columns."""
+        return read_csv(self.path / "analysis" / f"{name}.csv")
+
+    def pictures(self):
+        """Every PNG the analysis and render steps drew."""
+        return sorted(self.path.glob("analysis/*.png")) + sorted(self.path.glob("render/*.png"))
+
+    def __repr__(self):
+        return f"RunDir({os.fspath(self.path)!r})"
