@@ -12,7 +12,7 @@
 #include "granflow/config.h"
 #include "granflow/core.h"
 #include "granflow/packing.h"
-#include "granflow/sim.h"
+#include "granflow/exit.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -177,6 +177,14 @@ GF_API gf_status gf_config_set(gf_config *cfg, const char *assignment, const cha
 /// = spot.radius) and checks cross-key constraints.
 GF_API gf_status gf_config_validate(gf_config *cfg);
 
+/// Most atom types `packing.types` may list.
+#define GF_PACKING_MAXTYPES 16
+
+/// Parses a `packing.types` list: integers >= 1 separated by commas and/or
+/// spaces, e.g. "1" or "1, 3". Empty text (or only spaces) means every type:
+/// *n = 0. GF_ERR_PARAM naming the bad item, or when more than `max` are given.
+GF_API gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t max, size_t *n);
+
 /// Writes the configuration as a valid INI file that gf_config_load reads back
 /// to the same values (numbers printed with round-trip precision).
 GF_API gf_status gf_config_write(const gf_config *cfg, FILE *out);

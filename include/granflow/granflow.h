@@ -5,6 +5,7 @@
 #include "granflow/config.h"
 #include "granflow/core.h"
 #include "granflow/dem.h"
+#include "granflow/exit.h"
 #include "granflow/lga.h"
 #include "granflow/packing.h"
 #include "granflow/render.h"

@@ -54,14 +54,6 @@ GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
 /// positive); files without ids get 1..N in file order. Missing radii = 0.5.
 GF_API gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out);
 
-/// Most atom types `packing.types` may list.
-#define GF_PACKING_MAXTYPES 16
-
-/// Parses a `packing.types` list: integers >= 1 separated by commas and/or
-/// spaces, e.g. "1" or "1, 3". Empty text (or only spaces) means every type:
-/// *n = 0. GF_ERR_PARAM naming the bad item, or when more than `max` are given.
-GF_API gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t max, size_t *n);
-
 /// What gf_packing_import read and dropped.
 typedef struct gf_packing_import_report {
     size_t read;        ///< particles in the frame read

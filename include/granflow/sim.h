@@ -10,6 +10,7 @@
 
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/exit.h"
 #include "granflow/packing.h"
 
 #ifdef __cplusplus
@@ -39,11 +40,6 @@ typedef struct gf_sim_stats {
     double relax_dz;             ///< sum of the z displacements relax() gave particles, d
 } gf_sim_stats;
 
-/// One particle that left: id, time (tau) and where it crossed (x, y).
-typedef struct gf_exit {
-    int64_t id;
-    double time, x, y;
-} gf_exit;
 
 /// What gf_sim_run calls while it runs. Every member may be NULL/0.
 typedef struct gf_run_hooks {

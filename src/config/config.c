@@ -2,7 +2,6 @@
 // gf_config: defaults from the key table, INI loading (libinih), `section.key=value`
 // overrides, cross-key validation, and writing the effective values back out.
 #include "granflow/config.h"
-#include "granflow/packing.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -6,7 +6,7 @@
 #include <stddef.h>
 
 #include "granflow/core.h"
-#include "granflow/sim.h"
+#include "granflow/exit.h"
 
 /// Reads `path` into a gf_alloc'ed array of exactly *n exits (NULL when there
 /// are none), sorted by time (then id). Malformed lines give GF_ERR_FORMAT

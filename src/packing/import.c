@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Importing packing.file as a run's initial packing: atom-type filter
 // (packing.types) and particles already below the base (SPEC 1.2, 1.8).
-#include <ctype.h>
-#include <errno.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,28 +11,6 @@
 #include "core/error.h"
 #include "granflow/packing.h"
 #include "io/packing_frames.h"
-
-gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t max, size_t *n)
-{
-    *n = 0;
-    if (!text) return GF_OK;
-    const char *p = text;
-    for (;;) {
-        while (*p == ' ' || *p == '\t' || *p == ',') p++;
-        if (!*p) return GF_OK;
-        const char *start = p;
-        while (*p && *p != ' ' && *p != '\t' && *p != ',') p++;
-        int len = (int)(p - start);
-        char *end;
-        errno = 0;
-        long v = strtol(start, &end, 10);
-        if (end != p || !isdigit((unsigned char)*start) || errno == ERANGE || v < 1 || v > INT32_MAX)
-            return gf_error_set(GF_ERR_PARAM, "'%.*s' is not an atom type (an integer >= 1)", len, start);
-        if (*n == max)
-            return gf_error_set(GF_ERR_PARAM, "more than %zu atom types", max);
-        types[(*n)++] = (int32_t)v;
-    }
-}
 
 /// The last frame of a LAMMPS dump, with whether it had a `type` column.
 typedef struct gf_import_last {

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// One particle leaving through the orifice: the record the engine produces
+// (gf_sim_exits), a run writes (exits.csv) and the analysis reads. Its own
+// header so that readers of exits need not include the engine's.
+#ifndef GRANFLOW_EXIT_H
+#define GRANFLOW_EXIT_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// One particle that left: id, time (tau) and where it crossed (x, y).
+typedef struct gf_exit {
+    int64_t id;
+    double time, x, y;
+} gf_exit;
+
+#ifdef __cplusplus
+}
+#endif
+#endif
