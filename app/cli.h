@@ -51,6 +51,7 @@ int gf_cmd_bench(int argc, char **argv);
 int gf_cmd_analyze(int argc, char **argv);
 int gf_cmd_render(int argc, char **argv);
 int gf_cmd_lga(int argc, char **argv);
+int gf_cmd_report(int argc, char **argv);
 /// Options shared by calibrate and compare: the DEM source and analysis options.
 typedef struct gf_demargs {
     const char *pos[4];

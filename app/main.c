@@ -29,6 +29,7 @@ static const char gf_usage[] =
     "                                        the two runs side by side: CSV, plots, pictures, summary.md\n"
     "  lga [CONFIG] [--set lga.k=v]... [-o DIR] [--force]\n"
     "                                        the 2D lattice-gas automaton: pile, channel or silo (maps, CSV)\n"
+    "  report DIR [-o FILE]                  one self-contained HTML page of a run (DIR/report.html)\n"
     "  help                                  this text\n"
     "\n"
     "options:\n"
@@ -61,6 +62,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "dem")) return gf_cmd_dem(argc - 2, argv + 2);
     if (!strcmp(cmd, "calibrate")) return gf_cmd_calibrate(argc - 2, argv + 2);
     if (!strcmp(cmd, "compare")) return gf_cmd_compare(argc - 2, argv + 2);
+    if (!strcmp(cmd, "report")) return gf_cmd_report(argc - 2, argv + 2);
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
         printf("granflow %s\n", gf_version());
         return GF_EXIT_OK;

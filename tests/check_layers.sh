@@ -22,7 +22,7 @@ declare -A layer=(
   [packing]=3
   [spot]=4
   [run]=5
-  [analysis]=6 [render]=6 [dem]=6 [lga]=6
+  [analysis]=6 [render]=6 [dem]=6 [lga]=6 [report]=6
   [app]=7
 )
 # Owner folder of each public header.
@@ -32,7 +32,7 @@ declare -A owner=(
   [packing.h]=packing
   [sim.h]=spot
   [run.h]=run
-  [analysis.h]=analysis [render.h]=render [dem.h]=dem [lga.h]=lga
+  [analysis.h]=analysis [render.h]=render [dem.h]=dem [lga.h]=lga [report.h]=report
   [granflow.h]=app
 )
 

@@ -9,6 +9,7 @@
 #include "granflow/lga.h"
 #include "granflow/packing.h"
 #include "granflow/render.h"
+#include "granflow/report.h"
 #include "granflow/run.h"
 #include "granflow/sim.h"
 #endif

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+#include "report/html.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+void gf_html_text(FILE *out, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", out); break;
+        case '<': fputs("&lt;", out); break;
+        case '>': fputs("&gt;", out); break;
+        case '"': fputs("&quot;", out); break;
+        default: fputc(*s, out);
+        }
+    }
+}
+
+gf_status gf_html_base64_file(FILE *out, const char *path)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    FILE *f = fopen(path, "rb");
+    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    unsigned char in[3 * 4096];
+    char enc[4 * 4096];
+    size_t n;
+    // Whole groups of 3 bytes per chunk, so only the file's end needs padding.
+    while ((n = fread(in, 1, sizeof in, f)) > 0) {
+        size_t w = 0;
+        for (size_t i = 0; i < n; i += 3) {
+            unsigned v = (unsigned)in[i] << 16 | (i + 1 < n ? (unsigned)in[i + 1] << 8 : 0) |
+                         (i + 2 < n ? in[i + 2] : 0);
+            enc[w++] = digits[v >> 18 & 63];
+            enc[w++] = digits[v >> 12 & 63];
+            enc[w++] = i + 1 < n ? digits[v >> 6 & 63] : '=';
+            enc[w++] = i + 2 < n ? digits[v & 63] : '=';
+        }
+        fwrite(enc, 1, w, out);
+        if (n < sizeof in) break;
+    }
+    int err = ferror(f);
+    fclose(f);
+    return err ? gf_error_set(GF_ERR_IO, "%s: read error", path) : GF_OK;
+}
+
+gf_status gf_html_image(FILE *out, const char *path, const char *alt)
+{
+    size_t n = strlen(path);
+    const char *mime = n > 4 && !strcmp(path + n - 4, ".svg") ? "image/svg+xml" : "image/png";
+    fprintf(out, "<img src=\"data:%s;base64,", mime);
+    gf_status st = gf_html_base64_file(out, path);
+    fputs("\" alt=\"", out);
+    gf_html_text(out, alt);
+    fputs("\">", out);
+    return st;
+}
+
+// Strips white space and one trailing comma; removes surrounding quotes.
+static char *gf_html_trim(char *s, bool unquote)
+{
+    while (*s == ' ' || *s == '\t') s++;
+    size_t n = strlen(s);
+    while (n && (s[n - 1] == '\n' || s[n - 1] == '\r' || s[n - 1] == ' ' || s[n - 1] == ',')) s[--n] = '\0';
+    if (unquote && n >= 2 && s[0] == '"' && s[n - 1] == '"') {
+        s[n - 1] = '\0';
+        s++;
+    }
+    return s;
+}
+
+bool gf_html_json_table(FILE *out, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return false;
+    fputs("<table class=\"kv\">\n", out);
+    char *line = NULL;
+    size_t cap = 0;
+    while (getline(&line, &cap, f) > 0) {
+        char *colon = strstr(line, "\":");
+        if (!colon) continue; // the braces
+        colon[1] = '\0';
+        char *key = gf_html_trim(line, true), *value = gf_html_trim(colon + 2, true);
+        fputs("<tr><th>", out);
+        gf_html_text(out, key);
+        fputs("</th><td>", out);
+        gf_html_text(out, strcmp(value, "null") ? value : "—");
+        fputs("</td></tr>\n", out);
+    }
+    free(line);
+    fclose(f);
+    fputs("</table>\n", out);
+    return true;
+}
+
+bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return false;
+    fputs("<table class=\"csv\">\n", out);
+    char *line = NULL;
+    size_t cap = 0, row = 0;
+    while (getline(&line, &cap, f) > 0 && row <= max_rows) {
+        const char *cell = row == 0 ? "th" : "td";
+        fputs("<tr>", out);
+        char *save = NULL;
+        for (char *tok = strtok_r(gf_html_trim(line, false), ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+            fprintf(out, "<%s>", cell);
+            gf_html_text(out, tok);
+            fprintf(out, "</%s>", cell);
+        }
+        fputs("</tr>\n", out);
+        row++;
+    }
+    free(line);
+    fclose(f);
+    fputs("</table>\n", out);
+    return true;
+}
+
+bool gf_html_pre_file(FILE *out, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return false;
+    fputs("<pre>", out);
+    char *line = NULL;
+    size_t cap = 0;
+    while (getline(&line, &cap, f) > 0) gf_html_text(out, line);
+    free(line);
+    fclose(f);
+    fputs("</pre>\n", out);
+    return true;
+}

@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: MIT
+// gf_report_write: a run directory as one self-contained HTML page.
+#include "granflow/report.h"
+
+#include <dirent.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "granflow/analysis.h"
+#include "report/html.h"
+
+#define GF_REPORT_PATH 4096
+
+static const char gf_report_css[] =
+    "body{font-family:'DejaVu Sans',sans-serif;margin:2em auto;max-width:1200px;color:#222;padding:0 1em}"
+    "h1{font-size:1.6em;border-bottom:2px solid #36c;padding-bottom:.2em}"
+    "h2{font-size:1.25em;margin-top:2em;color:#235}"
+    "table{border-collapse:collapse;margin:.5em 0;font-size:.9em}"
+    "th,td{border:1px solid #ccc;padding:.2em .6em;text-align:left}"
+    "table.kv th{background:#f3f5f9;font-weight:normal;font-family:monospace}"
+    "table.csv tr:first-child th{background:#e8edf7}"
+    ".cols{display:flex;flex-wrap:wrap;gap:1em}.cols>div{flex:1 1 45%;min-width:300px}"
+    ".figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(540px,1fr));gap:1em}"
+    "figure{margin:0}figure img{max-width:100%;border:1px solid #ddd}"
+    "figcaption{font-size:.85em;color:#555}"
+    "pre{background:#f6f6f6;padding:.8em;font-size:.8em;overflow-x:auto}"
+    ".meta{color:#666;font-size:.9em}";
+
+typedef struct gf_report {
+    FILE *out;
+    gf_report_info info;
+    gf_status st; // first image failure
+} gf_report;
+
+static bool gf_report_exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+static void gf_report_figure(gf_report *r, const char *path, const char *caption)
+{
+    fputs("<figure>", r->out);
+    gf_status st = gf_html_image(r->out, path, caption);
+    if (st != GF_OK && r->st == GF_OK) r->st = st;
+    fputs("<figcaption>", r->out);
+    gf_html_text(r->out, caption);
+    fputs("</figcaption></figure>\n", r->out);
+    r->info.images++;
+}
+
+static int gf_report_is_picture(const struct dirent *e)
+{
+    size_t n = strlen(e->d_name);
+    return n > 4 && (!strcmp(e->d_name + n - 4, ".png") || !strcmp(e->d_name + n - 4, ".svg"));
+}
+
+// Every picture of `sub` except those already shown (`skip`, by stem), sorted.
+static void gf_report_pictures(gf_report *r, const char *sub, const char *const *skip, size_t nskip)
+{
+    struct dirent **list;
+    int n = scandir(sub, &list, gf_report_is_picture, alphasort);
+    if (n < 0) return;
+    for (int i = 0; i < n; i++) {
+        bool shown = false;
+        for (size_t k = 0; k < nskip; k++) {
+            size_t len = strlen(skip[k]);
+            if (!strncmp(list[i]->d_name, skip[k], len) && list[i]->d_name[len] == '.') shown = true;
+        }
+        if (!shown) {
+            char path[GF_REPORT_PATH];
+            snprintf(path, sizeof path, "%s/%s", sub, list[i]->d_name);
+            gf_report_figure(r, path, list[i]->d_name);
+        }
+        free(list[i]);
+    }
+    free(list);
+}
+
+// analysis/: the headline numbers, then the plots in the order of the measurements.
+static void gf_report_analysis(gf_report *r, const char *dir)
+{
+    char sub[GF_REPORT_PATH], path[GF_REPORT_PATH];
+    snprintf(sub, sizeof sub, "%s/analysis", dir);
+    snprintf(path, sizeof path, "%s/summary.json", sub);
+    if (!gf_report_exists(sub)) {
+        fputs("<h2>Analysis</h2><p>Not analysed yet (<code>granflow analyze DIR</code>).</p>\n", r->out);
+        return;
+    }
+    fputs("<h2>Analysis</h2>\n", r->out);
+    gf_html_json_table(r->out, path);
+    fputs("<div class=\"figs\">\n", r->out);
+    size_t nm;
+    const gf_measure_def *m = gf_measures(&nm);
+    const char *names[64];
+    size_t nn = 0;
+    for (size_t k = 0; k < nm && nn < 64; k++) {
+        names[nn++] = m[k].name;
+        snprintf(path, sizeof path, "%s/%s.png", sub, m[k].name);
+        if (!gf_report_exists(path)) continue;
+        char caption[256];
+        snprintf(caption, sizeof caption, "%s: %s", m[k].name, m[k].what);
+        gf_report_figure(r, path, caption);
+    }
+    gf_report_pictures(r, sub, names, nn);
+    fputs("</div>\n", r->out);
+}
+
+// The comparison with the DEM run: the headline table, the overlay figure,
+// and the two runs' slices side by side.
+static void gf_report_compare(gf_report *r, const char *cmp)
+{
+    char path[GF_REPORT_PATH], dem[GF_REPORT_PATH];
+    snprintf(path, sizeof path, "%s/summary.csv", cmp);
+    if (!gf_report_exists(path)) return;
+    r->info.compared = 1;
+    fputs("<h2>DEM and spot model side by side</h2>\n<p class=\"meta\">From ", r->out);
+    gf_html_text(r->out, cmp);
+    fputs(" (<code>granflow compare</code>).</p>\n", r->out);
+    gf_html_csv_table(r->out, path, 100);
+    snprintf(path, sizeof path, "%s/compare.png", cmp);
+    if (gf_report_exists(path)) gf_report_figure(r, path, "the measurements of both runs (DEM and spot)");
+    snprintf(dem, sizeof dem, "%s/slices_dem.png", cmp);
+    snprintf(path, sizeof path, "%s/slices_spot.png", cmp);
+    if (gf_report_exists(dem) || gf_report_exists(path)) {
+        fputs("<div class=\"cols\">\n<div>", r->out);
+        if (gf_report_exists(dem)) gf_report_figure(r, dem, "DEM: central slices");
+        fputs("</div>\n<div>", r->out);
+        if (gf_report_exists(path)) gf_report_figure(r, path, "spot model: central slices at the same times");
+        fputs("</div>\n</div>\n", r->out);
+    }
+    static const char *const shown[] = {"compare", "slices_dem", "slices_spot"};
+    fputs("<div class=\"figs\">\n", r->out);
+    gf_report_pictures(r, cmp, shown, 3);
+    fputs("</div>\n", r->out);
+}
+
+gf_report_opts gf_report_opts_default(void) { return (gf_report_opts){0}; }
+
+gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report_info *info)
+{
+    gf_report_opts o = opts ? *opts : gf_report_opts_default();
+    if (!dir) return gf_error_set(GF_ERR_PARAM, "gf_report_write: dir is NULL");
+    char cfg[GF_REPORT_PATH], sum[GF_REPORT_PATH], out[GF_REPORT_PATH], tmp[GF_REPORT_PATH + 8],
+        cmp[GF_REPORT_PATH], sub[GF_REPORT_PATH];
+    snprintf(cfg, sizeof cfg, "%s/config.ini", dir);
+    snprintf(sum, sizeof sum, "%s/summary.json", dir);
+    if (!gf_report_exists(cfg) && !gf_report_exists(sum))
+        return gf_error_set(GF_ERR_PARAM, "%s: not a run directory (no config.ini or summary.json)", dir);
+    snprintf(out, sizeof out, "%s", o.out ? o.out : "");
+    if (!o.out) snprintf(out, sizeof out, "%s/report.html", dir);
+    snprintf(cmp, sizeof cmp, "%s", o.compare ? o.compare : "");
+    if (!o.compare) snprintf(cmp, sizeof cmp, "%s/compare", dir);
+    if (o.compare && !gf_report_exists(cmp))
+        return gf_error_set(GF_ERR_PARAM, "%s: no such comparison directory", o.compare);
+
+    gf_report r = {0};
+    gf_status st = gf_atomic_open(out, tmp, sizeof tmp, &r.out);
+    if (st != GF_OK) return st;
+    char title[GF_REPORT_PATH + 32];
+    snprintf(title, sizeof title, "%s", o.title ? o.title : "");
+    if (!o.title) snprintf(title, sizeof title, "granflow run %s", dir);
+    fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>", r.out);
+    gf_html_text(r.out, title);
+    fprintf(r.out, "</title>\n<style>%s</style>\n</head><body>\n<h1>", gf_report_css);
+    gf_html_text(r.out, title);
+    fprintf(r.out, "</h1>\n<p class=\"meta\">Written by granflow %s from the files of ", gf_version());
+    gf_html_text(r.out, dir);
+    fputs(".</p>\n", r.out);
+
+    fputs("<h2>Run</h2>\n", r.out);
+    if (!gf_html_json_table(r.out, sum)) fputs("<p>No summary.json.</p>\n", r.out);
+    gf_report_analysis(&r, dir);
+    snprintf(sub, sizeof sub, "%s/render", dir);
+    if (gf_report_exists(sub)) {
+        fputs("<h2>Pictures</h2>\n<div class=\"figs\">\n", r.out);
+        gf_report_pictures(&r, sub, NULL, 0);
+        fputs("</div>\n", r.out);
+    }
+    gf_report_compare(&r, cmp);
+    fputs("<h2>Configuration</h2>\n", r.out);
+    if (!gf_html_pre_file(r.out, cfg)) fputs("<p>No config.ini.</p>\n", r.out);
+    fputs("</body></html>\n", r.out);
+
+    if (r.st != GF_OK) {
+        gf_atomic_abort(r.out, tmp);
+        return r.st;
+    }
+    r.info.bytes = (size_t)ftell(r.out);
+    if ((st = gf_atomic_commit(r.out, tmp, out)) != GF_OK) return st;
+    if (info) *info = r.info;
+    return GF_OK;
+}

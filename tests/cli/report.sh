@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# CLI test: `granflow report DIR` writes DIR/report.html, one self-contained
+# page: every picture of analysis/, render/ and compare/ inlined as a data URI
+# (the first decodes back to the very bytes of its PNG), the run and analysis
+# summaries, the DEM comparison table with the DEM and spot slices side by
+# side, and config.ini; nothing refers to another file. Headless Chromium
+# (scripts/deps.sh installs it) renders the page to a PNG that must carry far
+# more than a blank page does. Bad arguments exit 2.
+# usage: bash tests/cli/report.sh GRANFLOW_BINARY TESTS_DATA_DIR
+NAME=report
+source "$(dirname "$0")/lib.bash" "$@"
+
+SILO=(--set packing.particles=1500 --set container.width=12 --set container.depth=6
+      --set container.orifice_diameter=5 --set run.duration=4 --set output.snapshot_interval=1)
+gf run -q "${SILO[@]}" -o run
+expect_rc 0 "run"
+gf analyze run
+expect_rc 0 "analyze"
+gf render run
+expect_rc 0 "render"
+# A second run (another seed) stands in for the DEM: compare reads LAMMPS dumps.
+gf run -q "${SILO[@]}" --set run.seed=2 -o dem
+expect_rc 0 "run (seed 2)"
+gf compare dem run
+expect_rc 0 "compare dem run"
+[ -f run/compare/summary.csv ] || fail "compare wrote no run/compare/summary.csv"
+ok "a small run, analysed, rendered and compared"
+
+gf report run
+expect_rc 0 "report run"
+H=run/report.html
+[ -s $H ] || fail "no $H"
+expect_err "run/report.html"
+ok "report run writes run/report.html"
+
+# Every picture is on the page, inlined; nothing points elsewhere.
+pics=$(ls run/analysis/*.png run/render/*.png run/compare/*.png | wc -l)
+imgs=$(grep -o '<img src="data:image/png;base64,' $H | wc -l)
+[ "$imgs" -eq "$pics" ] || fail "report: $imgs inlined images, $pics pictures in the run"
+grep -Eo '(src|href)="[^"]{0,12}' $H | grep -v '"data:' && fail "report refers to other files"
+ok "all $pics pictures inlined, no external references"
+
+# The first image is analysis/outflow.png (measurements in their order), byte for byte.
+sed -n 's/.*<img src="data:image\/png;base64,\([^"]*\)".*/\1/p' $H | head -1 | base64 -d > first.png
+cmp -s first.png run/analysis/outflow.png || fail "the first inlined image does not decode to analysis/outflow.png"
+ok "the base64 of outflow.png decodes to the file"
+
+# Summaries, comparison and config on the page, with the run's own values.
+exited=$(sed -n 's/.*"particles_exited": \([0-9]*\).*/\1/p' run/summary.json)
+grep -q "<th>particles_exited</th><td>$exited</td>" $H || fail "report: no particles_exited = $exited row"
+rate=$(sed -n 's/.*"flow_rate": \([0-9.e+-]*\).*/\1/p' run/analysis/summary.json)
+grep -q "<th>flow_rate</th><td>$rate</td>" $H || fail "report: no flow_rate = $rate row"
+grep -q "DEM and spot model side by side" $H || fail "report: no comparison section"
+grep -q "<th>key</th><th>dem</th><th>spot</th>" $H || fail "report: no comparison table"
+grep -q 'alt="DEM: central slices"' $H && grep -q 'alt="spot model: central slices' $H ||
+  fail "report: the DEM and spot slices are not both there"
+grep -q "^orifice_diameter = 5$" $H || fail "report: config.ini (orifice_diameter = 5) not on the page"
+ok "summaries, DEM comparison and config on the page"
+
+# -o elsewhere; a directory without a run; bad arguments.
+gf report run -o elsewhere.html -q
+expect_rc 0 "report -o"
+cmp -s elsewhere.html $H || fail "report -o writes a different page"
+mkdir empty
+gf report empty
+expect_rc 2 "report of an empty directory"
+expect_err "not a run directory"
+gf report
+expect_rc 2 "report without DIR"
+gf report run --set spot.radius=2
+expect_rc 2 "report with --set"
+[ -z "$(find . -name '*.tmp')" ] || fail "temporary files left: $(find . -name '*.tmp')"
+ok "-o, an empty directory (2), missing DIR (2), --set (2)"
+
+# Rendered by a browser: the page draws far more than a blank one.
+command -v chromium >/dev/null || fail "chromium not installed (scripts/deps.sh installs it)"
+shot() { # HTML PNG
+  timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --user-data-dir="$T/chrome" \
+    --window-size=1280,4000 --screenshot="$T/$2" "file://$T/$1" >/dev/null 2>&1
+  [ -s "$T/$2" ] || fail "chromium wrote no $2"
+  [ "$(head -c 8 "$T/$2" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "$2 is not a PNG"
+}
+printf '<!DOCTYPE html><html><body></body></html>\n' > blank.html
+shot blank.html blank.png
+shot $H report.png
+b=$(stat -c %s blank.png) r=$(stat -c %s report.png)
+[ "$r" -gt $((20 * b)) ] || fail "the rendered report ($r bytes) is not much more than a blank page ($b bytes)"
+size=$(od -An -tu1 -j16 -N8 report.png | awk '{ print $1*16777216 + $2*65536 + $3*256 + $4 "x" $5*16777216 + $6*65536 + $7*256 + $8 }')
+[ "$size" = 1280x4000 ] || fail "report.png is $size, not 1280x4000"
+[ -n "${GF_REPORT_KEEP:-}" ] && cp report.png "$GF_REPORT_KEEP"
+ok "chromium renders the page: $r bytes of PNG against $b for a blank page"
+echo "cli $NAME: $PASS passed"
