@@ -29,12 +29,14 @@ build-san: deps
 # write snapshots + summary into $(RUN_DIR), then measure it the papers' way
 # ($(RUN_DIR)/analysis: CSV files, plots, summary.json) and draw it
 # ($(RUN_DIR)/render: slices coloured by layer and by packing fraction, a
-# contact sheet). `make run RUN_TAU=60` for the paper's Fig. 3.
+# contact sheet), and put it all on one page ($(RUN_DIR)/report.html).
+# `make run RUN_TAU=60` for the paper's Fig. 3.
 run: build
 	./$(BUILD)/granflow run --force $(RUN_ENGINE) --set run.duration=$(RUN_TAU) -o $(RUN_DIR)
 	./$(BUILD)/granflow analyze $(RUN_DIR)
 	./$(BUILD)/granflow render $(RUN_DIR)
-	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, analysis/, render/)"
+	./$(BUILD)/granflow report $(RUN_DIR)
+	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, analysis/, render/, report.html)"
 
 # The whole suite: optimised build, then again under ASan + UBSan.
 test: test-fast test-san

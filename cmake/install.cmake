@@ -31,3 +31,8 @@ if(GF_OPENMP)
 endif()
 configure_file(cmake/granflow.pc.in ${CMAKE_BINARY_DIR}/granflow.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/granflow.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# The Python package, beside the library it loads (it finds <prefix>/lib by
+# itself): PYTHONPATH=<prefix>/share/granflow/python.
+install(DIRECTORY python/granflow DESTINATION ${CMAKE_INSTALL_DATADIR}/granflow/python
+        PATTERN __pycache__ EXCLUDE)

@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Installs the build into a prefix inside the build directory, then builds
-# examples/embed against the INSTALLED library twice (find_package and
-# pkg-config) and runs both. Usage: install_embed.sh BUILD_DIR SOURCE_DIR
+# examples/embed against the INSTALLED library (find_package: shared and
+# static; pkg-config) and runs each; then imports the installed Python
+# package with PYTHON. Usage: install_embed.sh BUILD_DIR SOURCE_DIR PYTHON
 set -euo pipefail
-build=$1 src=$2
+build=$1 src=$2 py=$3
 work=$build/install-test
 rm -rf "$work"
 prefix=$work/prefix
 cmake --install "$build" --prefix "$prefix" >/dev/null
 for f in lib/libgranflow.so lib/libgranflow.a bin/granflow include/granflow/granflow.h include/granflow/version.h \
-         lib/pkgconfig/granflow.pc lib/cmake/granflow/granflowConfig.cmake; do
+         lib/pkgconfig/granflow.pc lib/cmake/granflow/granflowConfig.cmake share/granflow/python/granflow/sim.py; do
   [ -e "$prefix/$f" ] || { echo "install: $f missing under $prefix"; find "$prefix" -type f; exit 1; }
 done
 # The installed CLI runs from its prefix (RPATH $ORIGIN/../lib).
@@ -35,3 +36,11 @@ cc -std=c17 -Wall -Wextra -Werror $($pc --cflags granflow) "$src/examples/embed/
 out2=$("$work/embed-pc")
 [ "$out" = "$out2" ] || { echo "pkg-config build prints differently:"; echo "$out"; echo "---"; echo "$out2"; exit 1; }
 echo "$out2" | tail -1
+
+# 3. The installed Python package loads the installed library by itself.
+got=$(env -u GRANFLOW_LIB PYTHONPATH="$prefix/share/granflow/python" PYTHONDONTWRITEBYTECODE=1 "$py" -c \
+  'import granflow; s = granflow.Simulation({"packing.particles": 300, "container.width": 10, "container.orifice_diameter": 5}); print(granflow.library_path, len(s))')
+case $got in
+  "$prefix/lib/libgranflow.so 300") echo "python: $got" ;;
+  *) echo "installed python package: expected '$prefix/lib/libgranflow.so 300', got '$got'"; exit 1 ;;
+esac

@@ -252,7 +252,24 @@ static void sim_arrays_account_for_every_particle(void **state)
     gf_sim_destroy(sim);
 }
 
+// The by-value defaults are what a NULL options pointer means.
+static void options_defaults(void **state)
+{
+    (void)state;
+    assert_int_equal(gf_dem_run_opts_default().ranks, 1);
+    assert_null(gf_dem_run_opts_default().lmp);
+    assert_false(gf_dem_run_opts_default().drain_only);
+    assert_true(gf_dem_source_default().dump_dt == 0 && !gf_dem_source_default().config);
+    gf_run_opts r = gf_run_opts_default();
+    assert_true(!r.dir && !r.resume && !r.force && !r.stop && !r.progress);
+    gf_lga_run_opts l = gf_lga_run_opts_default();
+    assert_true(!l.dir && !l.force && !l.stop && !l.progress);
+    gf_report_opts o = gf_report_opts_default();
+    assert_true(!o.out && !o.compare && !o.title);
+}
+
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(options_defaults),
     cmocka_unit_test(config_get_set_round_trip_every_key),
     cmocka_unit_test(config_by_name_errors),
     cmocka_unit_test(version_from_cmake),

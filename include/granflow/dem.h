@@ -69,6 +69,10 @@ typedef struct gf_dem_run_opts {
     void *ctx;
 } gf_dem_run_opts;
 
+/// The defaults (what a NULL opts means): one rank, `lmp` from $GF_LMP or PATH,
+/// fill and drain, no progress callback.
+GF_API gf_dem_run_opts gf_dem_run_opts_default(void);
+
 /// Runs `in.fill` then `in.drain` of `dir` with LAMMPS (working directory
 /// `dir`, logs in log.fill and log.drain), reporting the thermo output as
 /// progress. GF_ERR_IO when lmp cannot be found or started, GF_ERR_PARAM
@@ -88,6 +92,10 @@ typedef struct gf_dem_source {
     const char *const *sets;  ///< `section.key=value` overrides of that config (e.g. container.width=50)
     size_t nsets;
 } gf_dem_source;
+
+/// The defaults: dumps must carry ITEM: TIME, the container from DIR/config.ini
+/// (else the dump's box), no overrides.
+GF_API gf_dem_source gf_dem_source_default(void);
 
 /// What gf_dem_series_load dropped, over all frames.
 typedef struct gf_dem_load_report {

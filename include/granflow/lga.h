@@ -132,6 +132,9 @@ typedef struct gf_lga_run_opts {
     void *ctx;                     ///< passed to progress
 } gf_lga_run_opts;
 
+/// The defaults: no force, no stop flag, no progress callback; set `dir`.
+GF_API gf_lga_run_opts gf_lga_run_opts_default(void);
+
 /// Headline numbers of a run (also written to DIR/summary.json).
 typedef struct gf_lga_summary {
     gf_lga_scenario scenario;

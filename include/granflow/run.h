@@ -35,6 +35,9 @@ typedef struct gf_run_opts {
     void *ctx;            ///< passed to progress
 } gf_run_opts;
 
+/// The defaults: a fresh run, no progress callback, no stop flag; set `dir`.
+GF_API gf_run_opts gf_run_opts_default(void);
+
 /// Runs (or resumes) a simulation into opts->dir: snapshots every
 /// output.snapshot_interval as LAMMPS dumps in dir/snapshots/, exits.csv,
 /// summary.json, and a checkpoint at every run.checkpoint_interval, on stop

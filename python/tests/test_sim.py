@@ -56,3 +56,23 @@ def test_python_run_matches_the_cli_run(rundir):
     mine, theirs = sim.exits(), rundir.exits()
     assert np.array_equal(mine["id"], theirs["id"])
     assert np.allclose(mine["time"], theirs["time"], rtol=1e-8, atol=0)
+
+
+def test_import_reports_dropped_particles_as_a_warning(tmp_path):
+    # A simple cubic packing of 12 x 6 x 10 spheres plus one already below the
+    # base: the import keeps 720, counts the other as exited, and says so in
+    # a warning (the library never prints).
+    xs, ys, zs = np.arange(-5.5, 6), np.arange(-2.5, 3), np.arange(0.5, 10)
+    grid = np.array([(x, y, z) for z in zs for y in ys for x in xs])
+    rows = np.vstack([grid, [[0.0, 0.0, -0.3]]])
+    path = tmp_path / "cubic.csv"
+    np.savetxt(path, rows, delimiter=",", header="x,y,z", comments="", fmt="%.3f")
+    cfg = granflow.Config(SMALL)
+    cfg["packing.file"] = path
+    granflow.clear_warnings()
+    sim = granflow.Simulation(cfg)
+    assert len(sim) == 720
+    w = granflow.warnings()
+    assert len(w) == 1 and "720 of 721 particles kept (1 below the base" in w[0], w
+    granflow.clear_warnings()
+    assert granflow.warnings() == []

@@ -160,7 +160,7 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
 
 gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
 {
-    gf_dem_run_opts def = {.ranks = 1};
+    gf_dem_run_opts def = gf_dem_run_opts_default();
     if (!o) o = &def;
     char lmp[4096], mpirun[4096];
     const char *want = o->lmp ? o->lmp : getenv("GF_LMP") ? getenv("GF_LMP") : "lmp";
@@ -184,3 +184,5 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
     }
     return GF_OK;
 }
+
+gf_dem_run_opts gf_dem_run_opts_default(void) { return (gf_dem_run_opts){.ranks = 1}; }

@@ -155,3 +155,5 @@ fail:
     gf_series_free(out);
     return st;
 }
+
+gf_dem_source gf_dem_source_default(void) { return (gf_dem_source){.dump_dt = 0}; }

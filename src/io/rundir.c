@@ -262,3 +262,5 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     gf_sim_destroy(sim);
     return st;
 }
+
+gf_run_opts gf_run_opts_default(void) { return (gf_run_opts){.dir = NULL}; }

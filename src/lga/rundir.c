@@ -334,3 +334,5 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     if (st == GF_OK && interrupted) return gf_error_set(GF_ERR_INTERRUPTED, "interrupted at iteration %lld; the results so far are in %s", (long long)s.iterations, opts->dir);
     return st;
 }
+
+gf_lga_run_opts gf_lga_run_opts_default(void) { return (gf_lga_run_opts){.dir = NULL}; }
