@@ -15,7 +15,8 @@
 #include "granflow/analysis.h"
 #include "report/html.h"
 
-#define GF_REPORT_PATH 4096
+#define GF_REPORT_PATH 4096                  // a directory's path
+#define GF_REPORT_FILE (GF_REPORT_PATH + 256) // a file in it
 
 static const char gf_report_css[] =
     "body{font-family:'DejaVu Sans',sans-serif;margin:2em auto;max-width:1200px;color:#222;padding:0 1em}"
@@ -37,6 +38,14 @@ typedef struct gf_report {
     gf_report_info info;
     gf_status st; // first image failure
 } gf_report;
+
+// dir/name into out; false (out truncated) when it does not fit. gf_report_write
+// refuses directories long enough for that to happen.
+static bool gf_report_join(char *out, size_t n, const char *dir, const char *name)
+{
+    int w = snprintf(out, n, "%s/%s", dir, name);
+    return w >= 0 && (size_t)w < n;
+}
 
 static bool gf_report_exists(const char *path)
 {
@@ -74,8 +83,8 @@ static void gf_report_pictures(gf_report *r, const char *sub, const char *const 
             if (!strncmp(list[i]->d_name, skip[k], len) && list[i]->d_name[len] == '.') shown = true;
         }
         if (!shown) {
-            char path[GF_REPORT_PATH];
-            snprintf(path, sizeof path, "%s/%s", sub, list[i]->d_name);
+            char path[GF_REPORT_FILE];
+            gf_report_join(path, sizeof path, sub, list[i]->d_name);
             gf_report_figure(r, path, list[i]->d_name);
         }
         free(list[i]);
@@ -86,9 +95,9 @@ static void gf_report_pictures(gf_report *r, const char *sub, const char *const 
 // analysis/: the headline numbers, then the plots in the order of the measurements.
 static void gf_report_analysis(gf_report *r, const char *dir)
 {
-    char sub[GF_REPORT_PATH], path[GF_REPORT_PATH];
-    snprintf(sub, sizeof sub, "%s/analysis", dir);
-    snprintf(path, sizeof path, "%s/summary.json", sub);
+    char sub[GF_REPORT_PATH], path[GF_REPORT_FILE];
+    gf_report_join(sub, sizeof sub, dir, "analysis");
+    gf_report_join(path, sizeof path, sub, "summary.json");
     if (!gf_report_exists(sub)) {
         fputs("<h2>Analysis</h2><p>Not analysed yet (<code>granflow analyze DIR</code>).</p>\n", r->out);
         return;
@@ -102,7 +111,9 @@ static void gf_report_analysis(gf_report *r, const char *dir)
     size_t nn = 0;
     for (size_t k = 0; k < nm && nn < 64; k++) {
         names[nn++] = m[k].name;
-        snprintf(path, sizeof path, "%s/%s.png", sub, m[k].name);
+        char name[128];
+        snprintf(name, sizeof name, "%.100s.png", m[k].name);
+        gf_report_join(path, sizeof path, sub, name);
         if (!gf_report_exists(path)) continue;
         char caption[256];
         snprintf(caption, sizeof caption, "%s: %s", m[k].name, m[k].what);
@@ -116,18 +127,18 @@ static void gf_report_analysis(gf_report *r, const char *dir)
 // and the two runs' slices side by side.
 static void gf_report_compare(gf_report *r, const char *cmp)
 {
-    char path[GF_REPORT_PATH], dem[GF_REPORT_PATH];
-    snprintf(path, sizeof path, "%s/summary.csv", cmp);
+    char path[GF_REPORT_FILE], dem[GF_REPORT_FILE];
+    gf_report_join(path, sizeof path, cmp, "summary.csv");
     if (!gf_report_exists(path)) return;
     r->info.compared = 1;
     fputs("<h2>DEM and spot model side by side</h2>\n<p class=\"meta\">From ", r->out);
     gf_html_text(r->out, cmp);
     fputs(" (<code>granflow compare</code>).</p>\n", r->out);
     gf_html_csv_table(r->out, path, 100);
-    snprintf(path, sizeof path, "%s/compare.png", cmp);
+    gf_report_join(path, sizeof path, cmp, "compare.png");
     if (gf_report_exists(path)) gf_report_figure(r, path, "the measurements of both runs (DEM and spot)");
-    snprintf(dem, sizeof dem, "%s/slices_dem.png", cmp);
-    snprintf(path, sizeof path, "%s/slices_spot.png", cmp);
+    gf_report_join(dem, sizeof dem, cmp, "slices_dem.png");
+    gf_report_join(path, sizeof path, cmp, "slices_spot.png");
     if (gf_report_exists(dem) || gf_report_exists(path)) {
         fputs("<div class=\"cols\">\n<div>", r->out);
         if (gf_report_exists(dem)) gf_report_figure(r, dem, "DEM: central slices");
@@ -141,35 +152,41 @@ static void gf_report_compare(gf_report *r, const char *cmp)
     fputs("</div>\n", r->out);
 }
 
+static void gf_report_title(FILE *out, const char *title, const char *dir)
+{
+    if (!title) fputs("granflow run ", out);
+    gf_html_text(out, title ? title : dir);
+}
+
 gf_report_opts gf_report_opts_default(void) { return (gf_report_opts){0}; }
 
 gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report_info *info)
 {
     gf_report_opts o = opts ? *opts : gf_report_opts_default();
     if (!dir) return gf_error_set(GF_ERR_PARAM, "gf_report_write: dir is NULL");
-    char cfg[GF_REPORT_PATH], sum[GF_REPORT_PATH], out[GF_REPORT_PATH], tmp[GF_REPORT_PATH + 8],
-        cmp[GF_REPORT_PATH], sub[GF_REPORT_PATH];
-    snprintf(cfg, sizeof cfg, "%s/config.ini", dir);
-    snprintf(sum, sizeof sum, "%s/summary.json", dir);
+    // Room for every file name below dir (and below opts->compare).
+    if (strlen(dir) > GF_REPORT_PATH - 256 || (o.compare && strlen(o.compare) > GF_REPORT_PATH - 256) ||
+        (o.out && strlen(o.out) >= GF_REPORT_PATH))
+        return gf_error_set(GF_ERR_PARAM, "gf_report_write: path too long: %.80s...", dir);
+    char cfg[GF_REPORT_FILE], sum[GF_REPORT_FILE], outbuf[GF_REPORT_FILE], tmp[GF_REPORT_FILE + 8],
+        cmpbuf[GF_REPORT_PATH], sub[GF_REPORT_PATH];
+    gf_report_join(cfg, sizeof cfg, dir, "config.ini");
+    gf_report_join(sum, sizeof sum, dir, "summary.json");
     if (!gf_report_exists(cfg) && !gf_report_exists(sum))
         return gf_error_set(GF_ERR_PARAM, "%s: not a run directory (no config.ini or summary.json)", dir);
-    snprintf(out, sizeof out, "%s", o.out ? o.out : "");
-    if (!o.out) snprintf(out, sizeof out, "%s/report.html", dir);
-    snprintf(cmp, sizeof cmp, "%s", o.compare ? o.compare : "");
-    if (!o.compare) snprintf(cmp, sizeof cmp, "%s/compare", dir);
+    gf_report_join(outbuf, sizeof outbuf, dir, "report.html");
+    gf_report_join(cmpbuf, sizeof cmpbuf, dir, "compare");
+    const char *out = o.out ? o.out : outbuf, *cmp = o.compare ? o.compare : cmpbuf;
     if (o.compare && !gf_report_exists(cmp))
         return gf_error_set(GF_ERR_PARAM, "%s: no such comparison directory", o.compare);
 
     gf_report r = {0};
     gf_status st = gf_atomic_open(out, tmp, sizeof tmp, &r.out);
     if (st != GF_OK) return st;
-    char title[GF_REPORT_PATH + 32];
-    snprintf(title, sizeof title, "%s", o.title ? o.title : "");
-    if (!o.title) snprintf(title, sizeof title, "granflow run %s", dir);
     fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>", r.out);
-    gf_html_text(r.out, title);
+    gf_report_title(r.out, o.title, dir);
     fprintf(r.out, "</title>\n<style>%s</style>\n</head><body>\n<h1>", gf_report_css);
-    gf_html_text(r.out, title);
+    gf_report_title(r.out, o.title, dir);
     fprintf(r.out, "</h1>\n<p class=\"meta\">Written by granflow %s from the files of ", gf_version());
     gf_html_text(r.out, dir);
     fputs(".</p>\n", r.out);
@@ -177,7 +194,7 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     fputs("<h2>Run</h2>\n", r.out);
     if (!gf_html_json_table(r.out, sum)) fputs("<p>No summary.json.</p>\n", r.out);
     gf_report_analysis(&r, dir);
-    snprintf(sub, sizeof sub, "%s/render", dir);
+    gf_report_join(sub, sizeof sub, dir, "render");
     if (gf_report_exists(sub)) {
         fputs("<h2>Pictures</h2>\n<div class=\"figs\">\n", r.out);
         gf_report_pictures(&r, sub, NULL, 0);
