@@ -4,6 +4,7 @@
 #include "granflow/core.h"
 
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,13 +12,19 @@ static atomic_size_t gf_bytes;
 
 void *gf_alloc(size_t size)
 {
-    if (size == 0) return NULL;
+    if (size == 0 || size > SIZE_MAX - 63) return NULL;
     size_t rounded = (size + 63) & ~(size_t)63;
     void *p = aligned_alloc(64, rounded);
     if (!p) return NULL;
     memset(p, 0, rounded);
     atomic_fetch_add(&gf_bytes, size);
     return p;
+}
+
+void *gf_alloc_array(size_t n, size_t size)
+{
+    if (size != 0 && n > SIZE_MAX / size) return NULL; // n * size would wrap around
+    return gf_alloc(n * size);
 }
 
 void gf_free(void *p, size_t size)
