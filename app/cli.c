@@ -124,5 +124,6 @@ volatile sig_atomic_t *gf_cli_catch_stop(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL); // a closed terminal: checkpoint like Ctrl-C
     return &gf_cli_stop;
 }

@@ -15,7 +15,7 @@ enum {
     GF_EXIT_FAIL = 1,        ///< the run failed (I/O error, out of memory, ...)
     GF_EXIT_USAGE = 2,       ///< bad command line or configuration
     GF_EXIT_DATA = 3,        ///< a data file (packing, checkpoint) is malformed
-    GF_EXIT_INTERRUPTED = 130, ///< stopped by SIGINT/SIGTERM; a checkpoint was written
+    GF_EXIT_INTERRUPTED = 130, ///< stopped by SIGINT/SIGTERM/SIGHUP; a checkpoint was written (run)
 };
 
 /// Options common to the subcommands.
@@ -37,7 +37,7 @@ bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli);
 /// Prints the error and returns false on failure.
 bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg);
 
-/// Makes SIGINT and SIGTERM set a flag instead of killing the process; the
+/// Makes SIGINT, SIGTERM and SIGHUP set a flag instead of killing the process; the
 /// returned flag is what a run polls to stop cleanly (writing a checkpoint).
 volatile sig_atomic_t *gf_cli_catch_stop(void);
 

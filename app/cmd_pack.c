@@ -27,7 +27,7 @@ int gf_cmd_pack(int argc, char **argv)
                     pk.n, rep.read, rep.below_base, rep.other_types);
     } else {
         if (!cli.quiet) fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
-        st = gf_packing_generate(&cfg, &pk);
+        st = gf_packing_generate_stoppable(&cfg, gf_cli_catch_stop(), &pk);
     }
     if (st == GF_OK) st = gf_packing_check(&pk, &cfg);
     if (st == GF_OK) st = gf_packing_write(&pk, cli.out, GF_FORMAT_AUTO, &cfg);

@@ -7,7 +7,7 @@
 #include "cli.h"
 
 typedef struct gf_progress_ctx {
-    bool tty;
+    bool quiet, tty;
     double last_wall;
 } gf_progress_ctx;
 
@@ -22,6 +22,11 @@ static void gf_fmt_duration(char *buf, size_t n, double s)
 static void gf_show_progress(void *ctx, const gf_run_progress *p)
 {
     gf_progress_ctx *pc = ctx;
+    if (!strcmp(p->phase, "stalled")) { // said even with --quiet: the run ends before run.duration
+        fprintf(stderr, "%sgranflow run: %s\n", pc->tty ? "\r\033[K" : "", p->note);
+        return;
+    }
+    if (pc->quiet) return;
     if (!strcmp(p->phase, "packing") || !strcmp(p->phase, "reading")) {
         fprintf(stderr, "granflow run: %s the initial packing...\n", p->phase[0] == 'p' ? "building" : "reading");
         return;
@@ -74,20 +79,21 @@ int gf_cmd_run(int argc, char **argv)
     }
     volatile sig_atomic_t *stop = gf_cli_catch_stop();
 
-    gf_progress_ctx pc = {.tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
+    gf_progress_ctx pc = {.quiet = cli.quiet, .tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
     gf_run_opts opts = {
         .dir = dir,
         .resume = cli.resume != NULL,
         .force = cli.force,
         .stop = stop,
-        .progress = cli.quiet ? NULL : gf_show_progress,
+        .progress = gf_show_progress,
         .ctx = &pc,
     };
     gf_sim_stats s;
     gf_status st = gf_run_dir(&cfg, &opts, &s);
     if (st == GF_ERR_INTERRUPTED) {
-        fprintf(stderr, "\ngranflow run: %s\ngranflow run: continue with: granflow run --resume %s\n", gf_last_error(),
-                dir);
+        fprintf(stderr, "\ngranflow run: %s\n", gf_last_error());
+        if (s.particles_initial > 0) // the run had begun: its checkpoint is on disk
+            fprintf(stderr, "granflow run: continue with: granflow run --resume %s\n", dir);
         return GF_EXIT_INTERRUPTED;
     }
     if (st != GF_OK) return gf_cli_fail("run", st);

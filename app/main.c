@@ -40,7 +40,8 @@ static const char gf_usage[] =
     "\n"
     "exit codes: 0 ok, 1 failure (I/O, memory), 2 bad command line or configuration,\n"
     "            3 malformed data file, 130 interrupted (checkpoint written)\n"
-    "SIGINT/SIGTERM during a run write a checkpoint; resume with --resume DIR.\n";
+    "SIGINT/SIGTERM/SIGHUP during a run write a checkpoint; resume with --resume DIR.\n"
+    "A run holds a lock on DIR; --force first removes the old run's files from DIR.\n";
 
 // The library never prints its warnings: the CLI does, naming the command.
 static void gf_print_warning(void *ctx, const char *message)

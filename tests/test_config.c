@@ -114,7 +114,8 @@ static void defaults_match_spec(void **state)
     assert_true(isnan(c.relax_radius));
     assert_true(c.run_duration == 60);
     assert_true(c.run_seed == 1);
-    assert_true(c.run_checkpoint_interval == 0);
+    assert_true(c.run_checkpoint_interval == 10); // issue 16: a default bounds the work a kill loses
+    assert_true(c.run_stall_time == 10);
     assert_true(c.output_snapshot_interval == 2);
     assert_int_equal(gf_config_validate(&c), GF_OK);
     assert_true(c.spot_insertion_margin == 2.6);
@@ -289,7 +290,7 @@ static void load_below_range(void **state)
     expect_load_error("below.ini", "[relax]\nalpha = 0\n", 2,
                       "[relax] alpha = 0: out of range (0, 1]");
     expect_load_error("below2.ini", "[container]\nwidth = -1\n", 2,
-                      "width = -1: out of range (0, inf)");
+                      "width = -1: out of range (0, 100000]");
     expect_load_error("below3.ini", "[packing]\nparticles = 0\n", 2,
                       "particles = 0: out of range [1, 50000000]");
     expect_load_error("below4.ini", "[spot]\nstep_xy = -0.1\n", 2,
@@ -561,7 +562,7 @@ static void round_trip_modified(void **state)
     c.packing_particles = 50000000;
     c.packing_fill_height = 12.5;
     snprintf(c.packing_file, sizeof c.packing_file, "some dir/packing #1;v=2.dump");
-    c.packing_layer_thickness = 4.9406564584124654e-324; // smallest subnormal
+    c.packing_layer_thickness = 0.1; // the smallest accepted (issue 16: thinner bands overflow the tag)
     c.spot_radius = 20;
     c.spot_w = 1.7976931348623157e308;
     c.spot_insertion_rate = 3.141592653589793;
@@ -578,7 +579,7 @@ static void round_trip_modified(void **state)
     c.run_checkpoint_interval = 7;
     c.output_snapshot_interval = 0.7;
     round_trip(&c, "modified.ini");
-    c.relax_radius = 123456.78901234567;
+    c.relax_radius = 39.999999999999993; // just under the largest accepted
     round_trip(&c, "modified2.ini");
 }
 

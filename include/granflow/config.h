@@ -118,7 +118,8 @@ typedef struct gf_config {
     // [run]
     double run_duration;               ///< simulated time to reach, tau; default 60
     uint64_t run_seed;                 ///< seed of every random stream; default 1
-    double run_checkpoint_interval;    ///< checkpoint every this many tau (0: only on stop/end); default 0
+    double run_checkpoint_interval;    ///< checkpoint every this many tau (0: only on stop/end); default 10
+    double run_stall_time;             ///< stop when nothing has left for this long (0: never); default 10
     int64_t run_reorder_interval;      ///< events between full re-sorts of particle memory; default 1000000
     gf_run_mode run_mode;              ///< event (default) or fixed
     gf_run_order run_order;            ///< fixed mode: random (default), newest first, or spatial (parallel)

@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include <signal.h>
+
 #include "granflow/config.h"
 #include "granflow/core.h"
 
@@ -48,6 +50,11 @@ GF_API void gf_packing_tag_layers(gf_packing *p, double thickness);
 /// run.seed): no pair closer than 0.99 d, no centre closer than 0.5 d to a wall
 /// or the base, bulk packing fraction 0.58-0.64.
 GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
+
+/// gf_packing_generate that polls `stop` (may be NULL) at every relaxation
+/// sweep: once it is non-zero, returns GF_ERR_INTERRUPTED with nothing built.
+GF_API gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop,
+                                              gf_packing *out);
 
 /// Reads a packing (the last frame of a multi-frame LAMMPS dump). Errors name
 /// the file and line. Ids from the file are kept (they must be unique and

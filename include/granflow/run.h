@@ -16,13 +16,14 @@ extern "C" {
 
 /// What a progress callback sees.
 typedef struct gf_run_progress {
-    const char *phase;      ///< "packing" (building), "reading" (importing), "imported", "running" or "done"
+    const char *phase;      ///< "packing" (building), "reading" (importing), "imported", "running",
+                            ///< "stalled" (note: why the run stops early) or "done"
     double time, until;     ///< simulated time and the run's end, tau
     double start;           ///< simulated time when this invocation started (0, or where a resume began)
     size_t initial, remaining; ///< particles at t = 0 and now
     double steps_per_second;   ///< spot moves per wall second, this invocation
     double wall_seconds;       ///< wall time of this invocation so far
-    const char *note;          ///< phase "imported": what the import of packing.file kept and dropped
+    const char *note;          ///< "imported": what the import of packing.file kept and dropped; "stalled": why
 } gf_run_progress;
 
 /// Options of gf_run_dir.
@@ -39,10 +40,18 @@ typedef struct gf_run_opts {
 GF_API gf_run_opts gf_run_opts_default(void);
 
 /// Runs (or resumes) a simulation into opts->dir: snapshots every
-/// output.snapshot_interval as LAMMPS dumps in dir/snapshots/, exits.csv,
-/// summary.json, and a checkpoint at every run.checkpoint_interval, on stop
-/// and at the end. Returns GF_OK, GF_ERR_INTERRUPTED (checkpoint written) or
-/// an error. `stats` (may be NULL) receives the final counters.
+/// output.snapshot_interval as LAMMPS dumps in dir/snapshots/, with the new
+/// exits appended (and flushed) to exits.csv and summary.json rewritten at
+/// each; a checkpoint at every run.checkpoint_interval, on stop and at the
+/// end. A fresh run first removes what an earlier run left in dir (config.ini,
+/// checkpoint.bin, exits.csv, summary.json, snapshots, analysis/, render/);
+/// a run holds a lock on dir/.lock, and a second run there fails (GF_ERR_PARAM).
+/// A silo from which nothing has left for run.stall_time stops early with
+/// status "stalled" (GF_OK), or GF_ERR_STATE if nothing ever left. Returns
+/// GF_OK, GF_ERR_INTERRUPTED (checkpoint written; `stats` all zero when it
+/// came while building the packing, before anything was written) or an
+/// error (summary.json then says "failed"). `stats` (may be NULL) receives
+/// the final counters.
 GF_API gf_status gf_run_dir(const gf_config *cfg, const gf_run_opts *opts, gf_sim_stats *stats);
 
 /// Writes one snapshot frame in LAMMPS text-dump form (`ITEM: TIME`, then

@@ -17,6 +17,7 @@
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 // "gfCF": marks a gf_config that came from gf_config_default().
 #define GF_CONFIG_COOKIE 0x67664346u
@@ -309,6 +310,32 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_keys_format_double(cfg->spot_radius, b, sizeof b);
         return gf_error_set(GF_ERR_PARAM, "relax.radius = %s must be at least spot.radius = %s", a,
                             b);
+    }
+    // Output intervals: a bounded number per run (an interval below the
+    // rounding of the time would never advance, and the run never end).
+    if (!(cfg->run_duration / cfg->output_snapshot_interval <= GF_MAX_OUTPUTS)) {
+        gf_keys_format_double(cfg->output_snapshot_interval, a, sizeof a);
+        gf_keys_format_double(cfg->run_duration, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM,
+                            "output.snapshot_interval = %s is too small for run.duration = %s: at most %d "
+                            "snapshots per run (interval >= run.duration / %d)",
+                            a, b, GF_MAX_OUTPUTS, GF_MAX_OUTPUTS);
+    }
+    if (cfg->run_checkpoint_interval > 0 && !(cfg->run_duration / cfg->run_checkpoint_interval <= GF_MAX_OUTPUTS)) {
+        gf_keys_format_double(cfg->run_checkpoint_interval, a, sizeof a);
+        gf_keys_format_double(cfg->run_duration, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM,
+                            "run.checkpoint_interval = %s is too small for run.duration = %s: at most %d "
+                            "checkpoints per run (interval >= run.duration / %d, or 0 for none)",
+                            a, b, GF_MAX_OUTPUTS, GF_MAX_OUTPUTS);
+    }
+    if (!(cfg->spot_insertion_rate / cfg->spot_move_rate <= GF_MAX_SPOTS_PER_MOVE)) {
+        gf_keys_format_double(cfg->spot_insertion_rate, a, sizeof a);
+        gf_keys_format_double(cfg->spot_move_rate, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM,
+                            "spot.insertion_rate = %s is too high for spot.move_rate = %s: at most %g spots "
+                            "born per move time (the papers use ~13)",
+                            a, b, GF_MAX_SPOTS_PER_MOVE);
     }
     size_t ntypes;
     int32_t types[GF_PACKING_MAXTYPES];

@@ -4,13 +4,14 @@
 #include "granflow/core.h"
 
 #include <stdatomic.h>
+#include <stdint.h>
 #include <string.h>
 
 static atomic_size_t gf_bytes;
 
 void *gf_alloc(size_t size)
 {
-    if (size == 0) return NULL;
+    if (size == 0 || size > SIZE_MAX - 63) return NULL;
     // Whole cache lines, zeroed to the end, whatever allocator is installed.
     size_t rounded = (size + 63) & ~(size_t)63;
     void *p = gf_hook_alloc(rounded, 64);
@@ -18,6 +19,12 @@ void *gf_alloc(size_t size)
     memset(p, 0, rounded);
     atomic_fetch_add(&gf_bytes, size);
     return p;
+}
+
+void *gf_alloc_array(size_t n, size_t size)
+{
+    if (size != 0 && n > SIZE_MAX / size) return NULL; // n * size would wrap around
+    return gf_alloc(n * size);
 }
 
 void gf_free(void *p, size_t size)

@@ -8,6 +8,9 @@
 
 /// Zeroed, 64-byte aligned block of `size` bytes, or NULL (size 0 gives NULL).
 void *gf_alloc(size_t size);
+/// Zeroed block of n elements of `size` bytes, or NULL (also when n * size
+/// does not fit a size_t: a size derived from input can never wrap around).
+void *gf_alloc_array(size_t n, size_t size);
 /// Frees a block from gf_alloc; `size` must be the size it was allocated with.
 void gf_free(void *p, size_t size);
 /// Grows or shrinks a block, keeping min(old, new) bytes and zeroing the rest.
@@ -18,7 +21,7 @@ void *gf_hook_alloc(size_t size, size_t alignment);
 void gf_hook_free(void *block, size_t size);
 
 /// Typed helpers: n elements of type T.
-#define GF_NEW(T, n) ((T *)gf_alloc(sizeof(T) * (size_t)(n)))
+#define GF_NEW(T, n) ((T *)gf_alloc_array((size_t)(n), sizeof(T)))
 #define GF_DELETE(p, n) gf_free((p), sizeof(*(p)) * (size_t)(n))
 
 #endif

@@ -3,11 +3,19 @@
 #ifndef GF_CORE_ERROR_H
 #define GF_CORE_ERROR_H
 
+#include <stddef.h>
+
 #include "granflow/core.h"
 
 /// Records a printf-style message as the thread's last error and returns status.
 gf_status gf_error_set(gf_status status, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+
+/// Copies `in` to out[0..n) with every byte that is not printable ASCII or
+/// part of valid UTF-8 written as \xNN (binary input never reaches a
+/// terminal raw). Returns the full escaped length (as snprintf); out may be
+/// NULL when n is 0. gf_error_set applies it to every message.
+size_t gf_escape(const char *in, char *out, size_t n);
 
 /// Clears the thread's last-error message.
 void gf_error_clear(void);

@@ -50,4 +50,17 @@
 /// Largest particle count the engine accepts (32-bit indices in cells and lists).
 #define GF_MAX_PARTICLES 100000000
 
+/// Most snapshots, and most checkpoints, one run may write: run.duration /
+/// output.snapshot_interval and run.duration / run.checkpoint_interval above
+/// this are refused. A snapshot of the papers' silo is ~2 MB, so 10^5 of them
+/// are already 200 GB; tinier intervals only make a run that never ends (the
+/// next output time stops advancing once the interval is below the rounding
+/// of the current time).
+#define GF_MAX_OUTPUTS 100000
+
+/// Largest ratio spot.insertion_rate / spot.move_rate: spots born per move
+/// time. The papers use ~13; 10^4 would bury the orifice under thousands of
+/// spots per step, and beyond it memory grows without bound.
+#define GF_MAX_SPOTS_PER_MOVE 10000.0
+
 #endif

@@ -24,6 +24,7 @@ uint64_t gf_rng_poisson(gf_rng *r, double mean)
         double u1 = gf_rng_uniform_pos(r), u2 = gf_rng_uniform(r);
         double z = sqrt(-2.0 * log(u1)) * cos(2.0 * 3.14159265358979323846 * u2);
         double k = floor(mean + sqrt(mean) * z + 0.5);
+        if (!(k < 0x1p63)) return UINT64_C(1) << 63; // (a cast out of range is undefined)
         return k < 0 ? 0 : (uint64_t)k;
     }
     double limit = exp(-mean), p = gf_rng_uniform(r);

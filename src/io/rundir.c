@@ -4,7 +4,9 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -26,6 +28,11 @@ typedef struct gf_rundir {
     uint64_t moves0;
     gf_packing scratch;
     const char *status;
+    FILE *exits;          // exits.csv, open for appending
+    size_t exits_written; // exits already in it
+    double flow_t0;       // when this invocation began (stall clock without exits)
+    bool stalled;         // the snapshot hook saw no exit for run.stall_time
+    int lock_fd;          // holds the lock on dir/.lock
 } gf_rundir;
 
 static gf_status gf_mkdir(const char *path)
@@ -54,7 +61,35 @@ static gf_status gf_mkdirs(const char *path)
     return gf_mkdir(buf);
 }
 
-// A fresh run over an old directory must not leave the old run's later snapshots.
+static gf_status gf_remove(const char *path)
+{
+    if (remove(path) == 0 || errno == ENOENT) return GF_OK;
+    return gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
+}
+
+// rm -r of a directory the tools wrote (analysis/, render/); symbolic links
+// are removed, never followed.
+static gf_status gf_remove_tree(const char *path, int depth)
+{
+    struct stat sb;
+    if (lstat(path, &sb) != 0) return errno == ENOENT ? GF_OK : gf_error_set(GF_ERR_IO, "%s: %s", path, strerror(errno));
+    if (!S_ISDIR(sb.st_mode) || depth > 16) return gf_remove(path);
+    DIR *d = opendir(path);
+    if (!d) return gf_error_set(GF_ERR_IO, "%s: cannot open directory: %s", path, strerror(errno));
+    gf_status st = GF_OK;
+    for (struct dirent *e; st == GF_OK && (e = readdir(d)) != NULL;) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        char sub[GF_PATH_MAX + 300];
+        if (snprintf(sub, sizeof sub, "%s/%s", path, e->d_name) >= (int)sizeof sub)
+            st = gf_error_set(GF_ERR_IO, "%s/%s: path too long to remove", path, e->d_name);
+        else
+            st = gf_remove_tree(sub, depth + 1);
+    }
+    closedir(d);
+    return st == GF_OK ? gf_remove(path) : st;
+}
+
+// Snapshot files (snap_*.dump and their .tmp) in `snaps`.
 static gf_status gf_clear_snapshots(const char *snaps)
 {
     DIR *d = opendir(snaps);
@@ -62,13 +97,70 @@ static gf_status gf_clear_snapshots(const char *snaps)
     gf_status st = GF_OK;
     for (struct dirent *e; (e = readdir(d)) != NULL;) {
         size_t n = strlen(e->d_name);
-        if (strncmp(e->d_name, "snap_", 5) != 0 || n < 6 || strcmp(e->d_name + n - 5, ".dump") != 0) continue;
+        bool dump = n >= 6 && strcmp(e->d_name + n - 5, ".dump") == 0;
+        bool tmp = n >= 10 && strcmp(e->d_name + n - 9, ".dump.tmp") == 0;
+        if (strncmp(e->d_name, "snap_", 5) != 0 || !(dump || tmp)) continue;
         char path[GF_PATH_MAX + 300];
         snprintf(path, sizeof path, "%s/%s", snaps, e->d_name);
-        if (remove(path) != 0) st = gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
+        if (st == GF_OK) st = gf_remove(path);
     }
     closedir(d);
     return st;
+}
+
+// A fresh run starts from an empty run directory: everything an earlier run
+// (and analyze/render with their default -o) wrote there goes first, the
+// checkpoint before anything else, so that a clear cut short leaves no
+// resumable mix of two runs. Other files are left alone.
+static gf_status gf_clear_run(const char *dir)
+{
+    static const char *const files[] = {"checkpoint.bin", "checkpoint.bin.tmp", "summary.json", "summary.json.tmp",
+                                        "exits.csv",      "exits.csv.tmp",      "config.ini",   "config.ini.tmp"};
+    static const char *const trees[] = {"analysis", "render"};
+    char path[GF_PATH_MAX + 32];
+    gf_status st = GF_OK;
+    for (size_t i = 0; st == GF_OK && i < sizeof files / sizeof files[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        st = gf_remove(path);
+    }
+    for (size_t i = 0; st == GF_OK && i < sizeof trees / sizeof trees[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, trees[i]);
+        st = gf_remove_tree(path, 0);
+    }
+    snprintf(path, sizeof path, "%s/snapshots", dir);
+    return st == GF_OK ? gf_clear_snapshots(path) : st;
+}
+
+// One run at a time per directory: a POSIX record lock on dir/.lock, held
+// until the process ends (the kernel drops it even after kill -9). The file
+// holds the owner's pid for the message of the next one.
+static gf_status gf_lock_dir(const char *dir, int *fd_out)
+{
+    char path[GF_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/.lock", dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0) return gf_error_set(GF_ERR_IO, "%s: cannot create the run lock: %s", path, strerror(errno));
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+    if (fcntl(fd, F_SETLK, &fl) != 0) {
+        int err = errno;
+        char pid[32] = "";
+        ssize_t n = read(fd, pid, sizeof pid - 1);
+        pid[n > 0 ? n : 0] = '\0';
+        pid[strcspn(pid, "\n")] = '\0';
+        close(fd);
+        if (err == EACCES || err == EAGAIN)
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s is in use by another granflow run%s%s%s (lock %s): wait for it to end, "
+                                "or choose another -o",
+                                dir, *pid ? " (pid " : "", pid, *pid ? ")" : "", path);
+        return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
+    }
+    char pid[32];
+    int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || write(fd, pid, (size_t)len) != len) { /* the pid is only for messages */
+    }
+    *fd_out = fd;
+    return GF_OK;
 }
 
 static void gf_path(char *out, size_t n, const char *dir, const char *name)
@@ -96,6 +188,8 @@ gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf
     return gf_atomic_commit(f, tmp, path);
 }
 
+static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim);
+
 static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
 {
     gf_rundir *rd = ctx;
@@ -103,9 +197,23 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     if (st != GF_OK) return st;
     char path[GF_PATH_MAX + 64];
     snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
-    return gf_run_write_snapshot(path, rd->cfg, &rd->scratch, time, gf_sim_get_stats(sim).events);
+    st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, time, gf_sim_get_stats(sim).events);
+    if (st == GF_OK) st = gf_save_progress(rd, sim);
+    if (st != GF_OK) return st;
+    // A silo that no longer drains would write snapshots of the same heap
+    // until run.duration: stop it (run.stall_time, checked at each snapshot).
+    size_t nexit;
+    const gf_exit *e = gf_sim_exits(sim, &nexit);
+    double last = nexit ? fmax(e[nexit - 1].time, rd->flow_t0) : rd->flow_t0;
+    if (rd->cfg->run_stall_time > 0 && rd->scratch.n > 0 && time - last >= rd->cfg->run_stall_time) {
+        rd->stalled = true;
+        return gf_error_set(GF_ERR_STATE, "stalled"); // ends gf_sim_run; gf_run_dir tells why
+    }
+    return GF_OK;
 }
 
+// exits.csv as a whole, atomically, from the engine's list (a resume drops
+// the lines appended after its checkpoint this way).
 static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 40];
@@ -121,6 +229,21 @@ static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
     return gf_atomic_commit(f, tmp, path);
 }
 
+// Appends the exits not yet in exits.csv and flushes them to the kernel, so
+// that they survive the process (SIGKILL, an OOM kill).
+static gf_status gf_append_exits(gf_rundir *rd, const gf_sim *sim)
+{
+    if (!rd->exits) return GF_OK;
+    size_t n;
+    const gf_exit *e = gf_sim_exits(sim, &n);
+    for (size_t i = rd->exits_written; i < n; i++)
+        fprintf(rd->exits, "%" PRId64 ",%.9g,%.7f,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y);
+    if (fflush(rd->exits) != 0 || ferror(rd->exits))
+        return gf_error_set(GF_ERR_IO, "%s/exits.csv: cannot write: %s", rd->dir, strerror(errno ? errno : EIO));
+    rd->exits_written = n;
+    return GF_OK;
+}
+
 static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 40];
@@ -132,6 +255,14 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     double wall = gf_clock_now() - rd->wall0;
     double sps = wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0;
     fprintf(f, "{\n  \"granflow_version\": \"%s\",\n  \"status\": \"%s\",\n", gf_version(), rd->status);
+    if (!strcmp(rd->status, "failed")) {
+        fputs("  \"error\": \"", f);
+        for (const char *c = gf_last_error(); *c; c++) // JSON string: quotes, backslashes, control bytes escaped
+            if (*c == '"' || *c == '\\') fprintf(f, "\\%c", *c);
+            else if ((unsigned char)*c < 0x20) fprintf(f, "\\u%04x", (unsigned)*c);
+            else fputc(*c, f);
+        fputs("\",\n", f);
+    }
     fprintf(f, "  \"seed\": %" PRIu64 ",\n", rd->cfg->run_seed);
     fprintf(f, "  \"particles_initial\": %zu,\n  \"particles_remaining\": %zu,\n  \"particles_exited\": %zu,\n",
             s.particles_initial, s.particles_remaining, s.particles_exited);
@@ -146,14 +277,20 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     return gf_atomic_commit(f, tmp, path);
 }
 
+// Exits and summary: on disk at every snapshot and checkpoint.
+static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim)
+{
+    gf_status st = gf_append_exits(rd, sim);
+    if (st == GF_OK) st = gf_write_summary(rd, sim);
+    return st;
+}
+
 static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
     gf_status st = gf_sim_save(sim, path);
-    if (st == GF_OK) st = gf_write_exits(rd, sim);
-    if (st == GF_OK) st = gf_write_summary(rd, sim);
-    return st;
+    return st == GF_OK ? gf_save_progress(rd, sim) : st;
 }
 
 static gf_status gf_on_checkpoint(void *ctx, const gf_sim *sim) { return gf_save_all(ctx, sim); }
@@ -170,7 +307,12 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
 
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
-    if (!cfg->packing_file[0]) return gf_packing_generate(cfg, pk);
+    if (!cfg->packing_file[0]) {
+        gf_status st = gf_packing_generate_stoppable(cfg, opts->stop, pk);
+        if (st == GF_ERR_INTERRUPTED)
+            gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+        return st;
+    }
     // A DEM packing may hold other atom types (a frozen floor) and particles
     // already falling through the orifice: dropped, and said so.
     gf_packing_import_report rep;
@@ -186,18 +328,40 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
     return st;
 }
 
+// The run directory made ready for `sim`: created, locked, cleared of an
+// earlier run (fresh runs) or of exits past the checkpoint (resume), the
+// configuration written, exits.csv open for appending, summary.json "running".
+static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
+{
+    char snaps[GF_PATH_MAX + 32], cfgpath[GF_PATH_MAX + 32], exits[GF_PATH_MAX + 32];
+    gf_path(snaps, sizeof snaps, rd->dir, "snapshots");
+    gf_path(cfgpath, sizeof cfgpath, rd->dir, "config.ini");
+    gf_path(exits, sizeof exits, rd->dir, "exits.csv");
+    gf_status st = gf_mkdirs(rd->dir);
+    if (st == GF_OK) st = gf_lock_dir(rd->dir, &rd->lock_fd);
+    if (st == GF_OK && !rd->opts->resume) st = gf_clear_run(rd->dir);
+    if (st == GF_OK) st = gf_mkdir(snaps);
+    if (st == GF_OK) st = gf_config_save(rd->cfg, cfgpath);
+    if (st == GF_OK) st = gf_write_exits(rd, sim);
+    if (st != GF_OK) return st;
+    rd->exits = fopen(exits, "a");
+    if (!rd->exits) return gf_error_set(GF_ERR_IO, "%s: cannot open for appending: %s", exits, strerror(errno));
+    gf_sim_exits(sim, &rd->exits_written);
+    return gf_write_summary(rd, sim);
+}
+
 gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_stats *stats)
 {
+    if (stats) memset(stats, 0, sizeof *stats);
     gf_config cfg = *cfg_in;
     gf_status st = gf_config_validate(&cfg);
     if (st != GF_OK) return st;
-    gf_rundir rd = {.cfg = &cfg, .opts = opts, .status = "running"};
+    gf_rundir rd = {.cfg = &cfg, .opts = opts, .status = "running", .lock_fd = -1};
     if (snprintf(rd.dir, sizeof rd.dir, "%s", opts->dir) >= (int)sizeof rd.dir)
-        return gf_error_set(GF_ERR_PARAM, "run directory path too long");
-    char ckpt[GF_PATH_MAX + 32], snaps[GF_PATH_MAX + 32], cfgpath[GF_PATH_MAX + 32];
+        return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(opts->dir),
+                            GF_PATH_MAX - 1);
+    char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
-    gf_path(snaps, sizeof snaps, rd.dir, "snapshots");
-    gf_path(cfgpath, sizeof cfgpath, rd.dir, "config.ini");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
         return gf_error_set(GF_ERR_PARAM,
                             "%s already holds a run (%s exists): resume it with --resume %s, "
@@ -220,15 +384,15 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }
-    if (st == GF_OK && ((st = gf_mkdirs(rd.dir)) == GF_OK && (st = gf_mkdir(snaps)) == GF_OK) && !opts->resume)
-        st = gf_clear_snapshots(snaps);
-    if (st == GF_OK) st = gf_config_save(&cfg, cfgpath);
+    if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
     if (st != GF_OK) {
+        if (rd.exits) fclose(rd.exits);
+        if (rd.lock_fd >= 0) close(rd.lock_fd);
         gf_sim_destroy(sim);
         return st;
     }
     rd.moves0 = gf_sim_get_stats(sim).spot_moves;
-    rd.t0 = gf_sim_get_stats(sim).time;
+    rd.t0 = rd.flow_t0 = gf_sim_get_stats(sim).time;
     rd.wall0 = gf_clock_now();
     gf_run_hooks hooks = {
         .ctx = &rd,
@@ -239,15 +403,36 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         .stop = opts->stop,
     };
     st = gf_sim_run(sim, cfg.run_duration, &hooks);
+    size_t nexit;
+    gf_sim_exits(sim, &nexit);
+    double reached = gf_sim_get_stats(sim).time;
+    if (rd.stalled && nexit == 0) {
+        // Not one particle has left: a silo that cannot drain is an error.
+        st = gf_error_set(GF_ERR_STATE,
+                          "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
+                          "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau",
+                          cfg.run_stall_time, reached);
+    } else if (rd.stalled) {
+        st = GF_OK;
+    }
     if (st == GF_OK || st == GF_ERR_INTERRUPTED) {
         gf_status run_st = st;
-        rd.status = st == GF_OK ? "complete" : "interrupted";
+        rd.status = st == GF_ERR_INTERRUPTED ? "interrupted" : rd.stalled ? "stalled" : "complete";
         st = gf_save_all(&rd, sim);
         if (st == GF_OK) {
             st = run_st;
             if (st == GF_ERR_INTERRUPTED)
-                gf_error_set(st, "stopped at t = %.4g tau; checkpoint written to %s", gf_sim_get_stats(sim).time,
-                             ckpt);
+                gf_error_set(st, "stopped at t = %.4g tau; checkpoint written to %s", reached, ckpt);
+        }
+        if (st == GF_OK && rd.stalled && opts->progress) {
+            char note[256];
+            snprintf(note, sizeof note,
+                     "the flow stopped: no particle has left since t = %.4g tau (run.stall_time = %g); "
+                     "stopped at t = %.4g tau with %zu particles left",
+                     gf_sim_exits(sim, &nexit)[nexit - 1].time, cfg.run_stall_time, reached,
+                     gf_sim_get_stats(sim).particles_remaining);
+            gf_run_progress p = {.phase = "stalled", .time = reached, .until = cfg.run_duration, .note = note};
+            opts->progress(opts->ctx, &p);
         }
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
@@ -257,7 +442,19 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
             opts->progress(opts->ctx, &p);
         }
     }
+    if (st != GF_OK && st != GF_ERR_INTERRUPTED) {
+        // A failed run says so in its summary (not "running"), with the reason.
+        rd.status = "failed";
+        char why[2048];
+        snprintf(why, sizeof why, "%s", gf_last_error());
+        gf_append_exits(&rd, sim);
+        gf_error_set(st, "%s", why); // the summary carries it
+        gf_write_summary(&rd, sim);
+        gf_error_set(st, "%s", why);
+    }
     if (stats) *stats = gf_sim_get_stats(sim);
+    if (rd.exits) fclose(rd.exits);
+    close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
     gf_sim_destroy(sim);
     return st;

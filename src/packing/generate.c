@@ -32,6 +32,9 @@
 #define GF_GEN_SNAP 1e-3          // at the end, closer than this to a wall = on it
 #define GF_GEN_MAX_SWEEPS 200000  // safety net against a relaxation that never ends
 #define GF_GEN_STREAM 0x7061636b696e67ull // "packing": the RNG stream of this module
+// Largest footprint width x depth, d^2: 10^4 times the papers' 50 x 8 silo,
+// and small enough that every coordinate and cell count stays exact.
+#define GF_GEN_MAX_FOOTPRINT 4e6
 // Acceptance checks of the result (SPEC 1.2).
 #define GF_GEN_MIN_PAIR 0.99
 #define GF_GEN_WALL 0.5
@@ -65,6 +68,7 @@ typedef struct gf_gen {
     double *slab_sum, *slab_strain;
     size_t *slab_count;
     size_t nslab, slab_cap;
+    volatile sig_atomic_t *stop; // polled once per sweep (may be NULL)
 } gf_gen;
 
 static void gf_gen_release(gf_gen *g)
@@ -121,15 +125,16 @@ static gf_status gf_gen_build(gf_gen *g)
     const double cut = 1.0 + GF_GEN_SKIN;
     // Cells of side h >= cut; a sparse tall column gets bigger cells so the
     // grid never has many more cells than particles.
-    double h = cut;
-    size_t nx, ny, nz;
+    // Counted in doubles, so a huge container cannot overflow them.
+    double h = cut, fnx, fny, fnz;
     for (;;) {
-        nx = (size_t)fmax(1.0, floor(g->width / h));
-        ny = (size_t)fmax(1.0, floor(g->depth / h));
-        nz = (size_t)floor((ztop + 0.5) / h) + 1;
-        if ((double)nx * (double)ny * (double)nz <= 2.0 * (double)n + 64.0) break;
+        fnx = fmax(1.0, floor(g->width / h));
+        fny = fmax(1.0, floor(g->depth / h));
+        fnz = floor(fmax(0.0, ztop + 0.5) / h) + 1.0;
+        if (fnx * fny * fnz <= 2.0 * (double)n + 64.0) break;
         h *= 1.25;
     }
+    size_t nx = (size_t)fnx, ny = (size_t)fny, nz = (size_t)fnz;
     size_t ncell = nx * ny * nz;
     if (ncell > g->ncell_cap) {
         GF_DELETE(g->cell_start, g->ncell_cap + 1);
@@ -411,6 +416,12 @@ static gf_status gf_gen_keep_list(gf_gen *g, double disp2)
     return gf_gen_slabs(g);
 }
 
+static gf_status gf_gen_stopped(const gf_gen *g, long sweeps)
+{
+    if (!g->stop || !*g->stop) return GF_OK;
+    return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted after %ld relaxation sweeps", sweeps);
+}
+
 // Runs the whole method on g. Returns the status.
 static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
 {
@@ -437,6 +448,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     long sweeps = 0;
     double mean = 0.0, last = INFINITY;
     for (; sweeps < GF_GEN_SETTLE_MAX; sweeps++) {
+        if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st;
         double worst = gf_gen_push(g, &mean);
         if (sweeps % GF_GEN_SETTLE_EVERY == 0) {
             GF_GEN_TRACE("lid: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
@@ -452,6 +464,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     // overlap left in it does that part at once, the sweeps the rest.
     g->zhi = INFINITY;
     for (;;) {
+        if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st;
         double worst = gf_gen_push(g, &mean);
         if (sweeps % 200 == 0)
             GF_GEN_TRACE("open: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
@@ -551,6 +564,10 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
         return gf_error_set(GF_ERR_PARAM,
                             "packing: a container %g x %g cannot hold a sphere of diameter 1",
                             width, depth);
+    if (!(width * depth <= GF_GEN_MAX_FOOTPRINT))
+        return gf_error_set(GF_ERR_PARAM,
+                            "packing: a container %g x %g is larger than the generator's limit of %g d^2",
+                            width, depth, GF_GEN_MAX_FOOTPRINT);
     if (!(cfg->packing_layer_thickness > 0.0 && isfinite(cfg->packing_layer_thickness)))
         return gf_error_set(GF_ERR_PARAM, "packing: layer thickness must be > 0 (got %g)",
                             cfg->packing_layer_thickness);
@@ -577,12 +594,18 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
 
 gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
 {
+    return gf_packing_generate_stoppable(cfg, NULL, out);
+}
+
+gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out)
+{
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
     size_t count = 0;
     gf_status st = gf_gen_count(cfg, &count);
     gf_gen g = {0};
     g.width = cfg->container_width;
     g.depth = cfg->container_depth;
+    g.stop = stop;
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
     if (st == GF_OK) gf_gen_snap(&g);

@@ -82,6 +82,7 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
     gf_config d = gf_config_default();
     c.run_duration = d.run_duration;
     c.run_checkpoint_interval = d.run_checkpoint_interval;
+    c.run_stall_time = d.run_stall_time;
     c.run_threads = d.run_threads; // results do not depend on it
     FILE *f = open_memstream(text, len);
     if (!f) return gf_error_set(GF_ERR_NOMEM, "out of memory");
@@ -149,13 +150,15 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     uint32_t version = GF_CKPT_VERSION, bom = GF_CKPT_BOM;
     uint64_t size = b.len;
     uint32_t crc = gf_crc32(b.data, b.len);
+    errno = 0;
     bool ok = fwrite(GF_CKPT_MAGIC, 1, 8, f) == 8 && fwrite(&version, 4, 1, f) == 1 &&
               fwrite(&bom, 4, 1, f) == 1 && fwrite(&size, 8, 1, f) == 1 && fwrite(&crc, 4, 1, f) == 1 &&
               fwrite(b.data, 1, b.len, f) == b.len;
+    int err = ok ? 0 : (errno ? errno : EIO);
     gf_free(b.data, b.cap);
     if (!ok) {
         gf_atomic_abort(f, tmp);
-        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint", tmp);
+        return gf_error_set(GF_ERR_IO, "%s: cannot write checkpoint: %s", tmp, strerror(err));
     }
     return gf_atomic_commit(f, tmp, path);
 }
@@ -273,7 +276,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
         return gf_ckpt_fail(sim, data,
                             gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
                                                        "was made with (on resume only run.duration, "
-                                                       "run.checkpoint_interval and run.threads may change)",
+                                                       "run.checkpoint_interval, run.stall_time and run.threads may change)",
                                          path, key));
     }
     free(mine);

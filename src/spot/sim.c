@@ -625,15 +625,20 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
         gf_sim_draw_pending(sim);
         const double tn = gf_sim_next_time(sim);
         for (double ts; (ts = (double)sim->next_snap * dsnap) <= tn && ts <= last_snap;) {
+            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
             if (ts > sim->t_reached) sim->t_reached = ts;
             if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
                 return st;
             sim->next_snap++;
         }
         while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
+            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
             if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
-            sim->next_ckpt += dck;
+            // Due times that no longer advance (an interval below the rounding
+            // of the time; gf_config_validate refuses those) skip ahead.
+            double next = sim->next_ckpt + dck;
+            sim->next_ckpt = next > sim->next_ckpt ? next : nextafter(tn, INFINITY);
         }
         if (tn > until || sim->n_alive == 0) {
             if (until > sim->t_reached && tn > until) sim->t_reached = until;
