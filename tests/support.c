@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "support.h"
 
+#include <zlib.h>
+
 #include <math.h>
 
 #include "core/alloc.h"
@@ -69,6 +71,28 @@ char *gf_test_read_file(const char *path, size_t *len)
         if (len) *len = (size_t)n;
     }
     return buf;
+}
+
+size_t gf_test_gzip(const char *src, const char *dst, size_t keep)
+{
+    size_t n;
+    char *text = gf_test_read_file(src, &n);
+    if (!text) return 0;
+    gzFile g = gzopen(dst, "wb6");
+    bool ok = g && (n == 0 || gzwrite(g, text, (unsigned)n) == (int)n);
+    if (g && gzclose(g) != Z_OK) ok = false;
+    free(text);
+    if (!ok) return 0;
+    size_t full;
+    char *z = gf_test_read_file(dst, &full);
+    if (!z) return 0;
+    if (keep > 0 && keep < full) {
+        FILE *f = fopen(dst, "wb");
+        ok = f && fwrite(z, 1, keep, f) == keep;
+        if (f) fclose(f);
+    }
+    free(z);
+    return ok ? full : 0;
 }
 
 void gf_assert_near_(double a, double b, double tol, const char *ea, const char *eb, const char *file,

@@ -31,6 +31,11 @@ const char *gf_test_write_file(const char *dir, const char *name, const char *te
 /// Reads a whole file into a malloc'd NUL-terminated buffer (NULL on failure).
 char *gf_test_read_file(const char *path, size_t *len);
 
+/// Compresses file `src` with gzip into `dst` (zlib's gzwrite), keeping only
+/// the first `keep` bytes of the compressed file when keep > 0 (a truncated
+/// .gz). Returns the compressed size before truncation, 0 on failure.
+size_t gf_test_gzip(const char *src, const char *dst, size_t keep);
+
 /// True when both files exist and hold the same bytes.
 bool gf_test_same_file(const char *a, const char *b);
 

@@ -217,6 +217,24 @@ static void series_scaled_steps_types(void **state)
     assert_int_equal(s.frames[0].pk.layer[0], 1);
     assert_int_equal(s.frames[0].pk.layer[1], 2);
     assert_int_equal(s.frames[1].pk.layer[0], 2);
+    // The same dump gzipped: the same series, bit for bit (the type column
+    // is found through the compression too).
+    char gz[1024];
+    snprintf(gz, sizeof gz, "%s.gz", f);
+    assert_true(gf_test_gzip(f, gz, 0) > 0);
+    gf_series g;
+    gf_dem_load_report grep2;
+    assert_int_equal(gf_dem_series_load(gz, &src, &g, &grep2), GF_OK);
+    assert_int_equal(grep2.other_types, rep.other_types);
+    assert_int_equal(grep2.below_base, rep.below_base);
+    assert_int_equal(g.nframes, s.nframes);
+    for (size_t k = 0; k < s.nframes; k++) {
+        assert_true(g.frames[k].time == s.frames[k].time);
+        assert_int_equal(g.frames[k].pk.n, s.frames[k].pk.n);
+        assert_memory_equal(g.frames[k].pk.z, s.frames[k].pk.z, s.frames[k].pk.n * sizeof(double));
+        assert_memory_equal(g.frames[k].pk.layer, s.frames[k].pk.layer, s.frames[k].pk.n * sizeof *s.frames[k].pk.layer);
+    }
+    gf_series_free(&g);
     gf_series_free(&s);
     // ITEM: TIME wins over the step count when present.
     const char *t = wdump("timed.dump", "ITEM: TIME\n0.5\nITEM: TIMESTEP\n5000\nITEM: NUMBER OF ATOMS\n1\n" BOX

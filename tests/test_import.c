@@ -659,6 +659,73 @@ static void big_dump_50000(void **state)
 }
 
 /// Non-seekable input (a FIFO) takes the one-pass path: every frame converted.
+// gzip: the same bytes compressed read as the same packing, whatever the
+// format (the name without .gz decides it), and a compressed file named
+// without .gz reads too; a cut or corrupted .gz is a format error naming it.
+static void gzip_reads_like_plain(void **state)
+{
+    (void)state;
+    gf_packing a = {0}, b = {0}, c = {0};
+    random_packing(&a, 20000, 9, 1, 1);
+    const char *names[] = {"z.dump", "z.xyz", "z.csv"};
+    for (size_t k = 0; k < 3; k++) {
+        char plain[1024], gz[1024];
+        snprintf(plain, sizeof plain, "%s", tmppath(names[k]));
+        snprintf(gz, sizeof gz, "%s.gz", plain);
+        assert_int_equal(gf_packing_write(&a, plain, GF_FORMAT_AUTO, NULL), GF_OK);
+        assert_true(gf_test_gzip(plain, gz, 0) > 0);
+        assert_int_equal(gf_packing_read(plain, GF_FORMAT_AUTO, &b), GF_OK);
+        assert_int_equal(gf_packing_read(gz, GF_FORMAT_AUTO, &c), GF_OK);
+        assert_int_equal(b.n, c.n);
+        assert_memory_equal(b.x, c.x, b.n * sizeof *b.x);
+        assert_memory_equal(b.z, c.z, b.n * sizeof *b.z);
+        assert_memory_equal(b.id, c.id, b.n * sizeof *b.id);
+        assert_memory_equal(b.y, c.y, b.n * sizeof *b.y);
+        assert_memory_equal(b.r, c.r, b.n * sizeof *b.r);
+    }
+    // A multi-frame dump, compressed: the reader seeks back to the last frame.
+    size_t n1;
+    char *t1 = gf_test_read_file(tmppath("z.dump"), &n1);
+    assert_non_null(t1);
+    FILE *f = fopen(tmppath("zz.dump"), "wb");
+    assert_non_null(f);
+    fwrite(t1, 1, n1, f);
+    fwrite(t1, 1, n1, f);
+    fclose(f);
+    free(t1);
+    char plain[1024], hidden[1024];
+    snprintf(plain, sizeof plain, "%s", tmppath("zz.dump"));
+    snprintf(hidden, sizeof hidden, "%s", tmppath("zz_gzip_inside.dump"));
+    size_t full = gf_test_gzip(plain, hidden, 0);
+    assert_true(full > 0);
+    gf_packing_free(&c);
+    assert_int_equal(gf_packing_read(hidden, GF_FORMAT_AUTO, &c), GF_OK);
+    expect_same(&a, &c, 1, 1);
+
+    // Cut at two thirds: rc 3 (GF_ERR_FORMAT), the file named, the cause said.
+    char cut[1024];
+    snprintf(cut, sizeof cut, "%s", tmppath("zz_cut.dump.gz"));
+    assert_true(gf_test_gzip(plain, cut, full * 2 / 3) > 0);
+    expect_error(cut, GF_FORMAT_AUTO, GF_ERR_FORMAT, "zz_cut.dump.gz:", 0, "truncated gzip file");
+    // Only the 8-byte trailer missing: the text is whole but the file is not.
+    assert_true(gf_test_gzip(plain, cut, full - 8) > 0);
+    expect_error(cut, GF_FORMAT_AUTO, GF_ERR_FORMAT, "zz_cut.dump.gz:", 0, "truncated gzip file");
+    // A flipped byte in the middle of the compressed data.
+    size_t nz;
+    char *z = gf_test_read_file(hidden, &nz);
+    assert_non_null(z);
+    z[nz / 2] ^= 0x55;
+    f = fopen(cut, "wb");
+    assert_non_null(f);
+    fwrite(z, 1, nz, f);
+    fclose(f);
+    free(z);
+    expect_error(cut, GF_FORMAT_AUTO, GF_ERR_FORMAT, "zz_cut.dump.gz:", 0, NULL);
+    gf_packing_free(&a);
+    gf_packing_free(&b);
+    gf_packing_free(&c);
+}
+
 static void read_from_fifo(void **state)
 {
     (void)state;
@@ -734,6 +801,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(write_lammps_layout),
     cmocka_unit_test(write_error_names_path),
     cmocka_unit_test(big_dump_50000),
+    cmocka_unit_test(gzip_reads_like_plain),
     cmocka_unit_test(read_from_fifo),
 };
 

@@ -29,6 +29,7 @@
 #include "granflow/analysis.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
+#include "io/textscan.h"
 
 enum { GF_SERIES_PATH = GF_PATH_MAX + 512 };
 
@@ -123,16 +124,11 @@ static int gf_frame_cmp(const void *pa, const void *pb)
 
 static int gf_name_cmp(const void *a, const void *b) { return strcmp(a, b); }
 
-static int gf_has_suffix(const char *s, const char *suf)
-{
-    size_t n = strlen(s), k = strlen(suf);
-    return n > k && strcmp(s + n - k, suf) == 0;
-}
-
 static int gf_is_dump_name(const char *name)
 {
     if (name[0] == '.') return 0;
-    return gf_has_suffix(name, ".dump") || gf_has_suffix(name, ".lammpstrj") || gf_has_suffix(name, ".txt") ||
+    return gf_textscan_has_ext(name, ".dump") || gf_textscan_has_ext(name, ".lammpstrj") ||
+           gf_textscan_has_ext(name, ".txt") ||
            (strncmp(name, "dump.", 5) == 0 && name[5] != '\0');
 }
 
@@ -165,7 +161,7 @@ static gf_status gf_list_dumps(gf_loader *L, const char *dir)
     if (st != GF_OK) return st;
     if (L->nfiles == 0)
         return gf_error_set(GF_ERR_IO,
-                            "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*)",
+                            "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*, each possibly .gz)",
                             dir);
     qsort(L->files, L->nfiles, sizeof *L->files, gf_name_cmp);
     return GF_OK;

@@ -55,7 +55,7 @@ const gf_key gf_keys[] = {
      .unit = "d",
      .doc = "if > 0, generate enough spheres to fill to this height (0: use particles)"},
     {"packing", "file", GF_KEY_PATH, GF_OFF(packing_file), .def = "", .unit = "",
-     .doc = "packing to import (LAMMPS dump, .xyz, .csv) instead of generating (empty: generate)"},
+     .doc = "packing to import (LAMMPS dump, .xyz, .csv, each possibly gzipped: `.gz`) instead of generating (empty: generate)"},
     {"packing", "layer_thickness", GF_KEY_DOUBLE, GF_OFF(packing_layer_thickness), .min = 0.1, .max = 1e6,
      .def = "10", .unit = "d", .doc = "thickness of the colour bands tagging initial layers"},
     {"packing", "types", GF_KEY_PATH, GF_OFF(packing_types), .def = "", .unit = "",

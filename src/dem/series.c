@@ -13,16 +13,14 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/dem.h"
+#include "io/textscan.h"
 
 static int gf_dem_is_dump(const char *name)
 {
-    size_t n = strlen(name);
     if (name[0] == '.') return 0;
-    const char *suf[] = {".dump", ".lammpstrj", ".txt"};
-    for (size_t k = 0; k < 3; k++) {
-        size_t m = strlen(suf[k]);
-        if (n > m && strcmp(name + n - m, suf[k]) == 0) return 1;
-    }
+    if (gf_textscan_has_ext(name, ".dump") || gf_textscan_has_ext(name, ".lammpstrj") ||
+        gf_textscan_has_ext(name, ".txt"))
+        return 1;
     return strncmp(name, "dump.", 5) == 0 && name[5] != '\0';
 }
 
@@ -48,17 +46,21 @@ static int gf_dem_first_dump(const char *path, char *out, size_t n)
 /// Whether the first ITEM: ATOMS line of `file` names a `type` column.
 static bool gf_dem_has_type(const char *file)
 {
-    FILE *f = fopen(file, "r");
-    if (!f) return false;
-    char line[4096];
+    gf_textscan ts;
+    if (gf_textscan_open(&ts, file) != GF_OK) return false;
+    char *line, *tok[64];
+    size_t len;
+    gf_status st;
     bool found = false;
-    while (fgets(line, sizeof line, f))
+    while (gf_textscan_next(&ts, &line, &len, &st) == 1)
         if (strncmp(line, "ITEM: ATOMS", 11) == 0) {
-            for (char *t = strtok(line + 11, " \t\r\n"); t; t = strtok(NULL, " \t\r\n"))
-                if (strcmp(t, "type") == 0) found = true;
+            size_t n = gf_textscan_split(line + 11, tok, 64);
+            for (size_t k = 0; k < n && k < 64; k++)
+                if (strcmp(tok[k], "type") == 0) found = true;
             break;
         }
-    fclose(f);
+    gf_textscan_close(&ts);
+    gf_error_clear();
     return found;
 }
 

@@ -749,12 +749,6 @@ static gf_status gf_read_csv(gf_reader *rd)
 
 // ---------------------------------------------------------------------------
 
-static int gf_has_suffix(const char *path, const char *suffix)
-{
-    size_t n = strlen(path), k = strlen(suffix);
-    return n >= k && strcasecmp(path + n - k, suffix) == 0;
-}
-
 gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out)
 {
     if (!out) return gf_error_set(GF_ERR_PARAM, "gf_packing_read: no output packing");
@@ -763,9 +757,9 @@ gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing
         return gf_error_set(GF_ERR_PARAM, "gf_packing_read: no file name");
     }
     if (format == GF_FORMAT_AUTO)
-        format = gf_has_suffix(path, ".xyz")   ? GF_FORMAT_XYZ
-                 : gf_has_suffix(path, ".csv") ? GF_FORMAT_CSV
-                                               : GF_FORMAT_LAMMPS;
+        format = gf_textscan_has_ext(path, ".xyz")   ? GF_FORMAT_XYZ
+                 : gf_textscan_has_ext(path, ".csv") ? GF_FORMAT_CSV
+                                                     : GF_FORMAT_LAMMPS;
     if (format != GF_FORMAT_LAMMPS && format != GF_FORMAT_XYZ && format != GF_FORMAT_CSV) {
         gf_packing_free(out);
         return gf_error_set(GF_ERR_PARAM, "gf_packing_read: unknown format %d for %s", (int)format,

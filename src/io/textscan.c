@@ -6,13 +6,15 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
 
 enum {
-    GF_TEXTSCAN_CHUNK = 1 << 16,            // bytes per fread
+    GF_TEXTSCAN_CHUNK = 1 << 16,            // bytes per gzread
     GF_TEXTSCAN_MAX_LINE = 64 * 1024 * 1024 // longer lines mean a binary or broken file
 };
 
@@ -20,22 +22,29 @@ gf_status gf_textscan_open(gf_textscan *ts, const char *path)
 {
     memset(ts, 0, sizeof *ts);
     ts->path = path;
-    ts->f = fopen(path, "rb");
-    if (!ts->f) return gf_error_set(GF_ERR_IO, "cannot open %s: %s", path, strerror(errno));
+    struct stat sb;
+    errno = 0;
+    ts->f = gzopen(path, "rb");
+    if (!ts->f)
+        return gf_error_set(GF_ERR_IO, "cannot open %s: %s", path, errno ? strerror(errno) : "out of memory");
     ts->cap = 2 * (size_t)GF_TEXTSCAN_CHUNK;
     ts->buf = gf_alloc(ts->cap);
     if (!ts->buf) {
-        fclose(ts->f);
+        gzclose(ts->f);
         ts->f = NULL;
         return gf_error_set(GF_ERR_NOMEM, "out of memory reading %s", path);
     }
-    ts->seekable = fseeko(ts->f, 0, SEEK_CUR) == 0 && ftello(ts->f) == 0;
+    gzbuffer(ts->f, GF_TEXTSCAN_CHUNK);
+    // gzseek rewinds and decompresses forward in a compressed file: slower
+    // than a plain seek, but correct, and readers seek back at most once.
+    ts->seekable = stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
+    ts->gz = !gzdirect(ts->f);
     return GF_OK;
 }
 
 void gf_textscan_close(gf_textscan *ts)
 {
-    if (ts->f) fclose(ts->f);
+    if (ts->f) gzclose(ts->f);
     gf_free(ts->buf, ts->cap);
     ts->f = NULL;
     ts->buf = NULL;
@@ -62,12 +71,24 @@ static gf_status gf_textscan_fill(gf_textscan *ts)
         ts->buf = nb;
         ts->cap *= 2;
     }
-    size_t got = fread(ts->buf + ts->end, 1, GF_TEXTSCAN_CHUNK, ts->f);
-    ts->end += got;
-    if (got < (size_t)GF_TEXTSCAN_CHUNK) {
-        if (ferror(ts->f))
-            return gf_error_set(GF_ERR_IO, "%s:%ld: read error: %s", ts->path, ts->line + 1,
-                                strerror(errno));
+    int got = gzread(ts->f, ts->buf + ts->end, GF_TEXTSCAN_CHUNK);
+    if (got < 0) {
+        int code;
+        const char *msg = gzerror(ts->f, &code);
+        if (code == Z_ERRNO)
+            return gf_error_set(GF_ERR_IO, "%s:%ld: read error: %s", ts->path, ts->line + 1, strerror(errno));
+        return gf_error_set(GF_ERR_FORMAT, "%s:%ld: corrupt gzip data (%s)", ts->path, ts->line + 1, msg);
+    }
+    ts->end += (size_t)got;
+    if (got < GF_TEXTSCAN_CHUNK) {
+        // gzread returns short reads only at the end; a gzip stream cut off
+        // before its trailer ends with Z_BUF_ERROR ("unexpected end of file").
+        int code;
+        const char *msg = gzerror(ts->f, &code);
+        if (code == Z_BUF_ERROR)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: truncated gzip file (%s)", ts->path, ts->line + 1, msg);
+        if (code != Z_OK)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: corrupt gzip data (%s)", ts->path, ts->line + 1, msg);
         ts->eof = 1;
     }
     return GF_OK;
@@ -108,15 +129,22 @@ int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st)
 
 gf_status gf_textscan_seek(gf_textscan *ts, long long offset, long line_no)
 {
-    if (!ts->seekable || fseeko(ts->f, (off_t)offset, SEEK_SET) != 0)
+    if (!ts->seekable || gzseek(ts->f, (z_off_t)offset, SEEK_SET) != (z_off_t)offset)
         return gf_error_set(GF_ERR_IO, "%s: cannot seek back to line %ld: %s", ts->path, line_no,
                             strerror(errno));
-    clearerr(ts->f);
+    gzclearerr(ts->f);
     ts->beg = ts->end = 0;
     ts->base = offset;
     ts->eof = 0;
     ts->line = line_no - 1;
     return GF_OK;
+}
+
+int gf_textscan_has_ext(const char *name, const char *ext)
+{
+    size_t n = strlen(name), k = strlen(ext);
+    if (n > k + 3 && strcasecmp(name + n - 3, ".gz") == 0) n -= 3;
+    return n > k && strncasecmp(name + n - k, ext, k) == 0;
 }
 
 static int gf_textscan_is_blank(char c)

@@ -2,18 +2,21 @@
 // Internal: a buffered line reader for big text files (one growing buffer, no
 // allocation per line, \n or \r\n endings, line numbers and byte offsets so a
 // reader can come back to a line), and in-place whitespace tokenising.
+// Files are read through zlib's gzread, so a gzip-compressed file (any name)
+// reads as its plain text and a plain file reads unchanged.
 #ifndef GF_IO_TEXTSCAN_H
 #define GF_IO_TEXTSCAN_H
 
 #include <stddef.h>
 #include <stdio.h>
+#include <zlib.h>
 
 #include "granflow/core.h"
 
 /// A file being read line by line. Fields are private to textscan.c except
 /// `path` and `line`, which error messages use.
 typedef struct gf_textscan {
-    FILE *f;
+    gzFile f;
     const char *path;   ///< as given to gf_textscan_open (not copied)
     char *buf;          ///< gf_alloc'd; the current line lives here
     size_t cap;         ///< bytes allocated for buf
@@ -21,12 +24,16 @@ typedef struct gf_textscan {
     long long base;     ///< file offset of buf[0]
     long long line_off; ///< file offset of the line last returned
     long line;          ///< 1-based number of the line last returned (0 before the first)
-    int eof;            ///< fread has reached the end of the file
+    int eof;            ///< gzread has reached the end of the file
     int partial;        ///< the line last returned had no newline (a cut-off last line?)
     int seekable;       ///< gf_textscan_seek can be used (regular file)
+    int gz;             ///< the file is gzip-compressed (not read transparently)
 } gf_textscan;
 
-/// Opens `path` for reading. GF_ERR_IO ("cannot open <path>: <strerror>") on failure.
+/// Opens `path` for reading, plain or gzip-compressed (detected from the
+/// content). GF_ERR_IO ("cannot open <path>: <strerror>") on failure. A
+/// truncated or corrupt gzip stream is reported by gf_textscan_next as
+/// GF_ERR_FORMAT naming the file and line.
 gf_status gf_textscan_open(gf_textscan *ts, const char *path);
 
 /// Closes the file and frees the buffer (safe on a zeroed or closed scanner).
@@ -41,6 +48,10 @@ int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st);
 /// Repositions at a line start recorded earlier from `line_off`, so that the
 /// next gf_textscan_next returns that line with number `line_no`.
 gf_status gf_textscan_seek(gf_textscan *ts, long long offset, long line_no);
+
+/// Whether the file name `name` ends in `ext` (e.g. ".dump"), or in `ext`
+/// followed by ".gz" (ignoring case).
+int gf_textscan_has_ext(const char *name, const char *ext);
 
 /// Splits `s` at blanks (space, tab, \r, \v, \f) in place. Stores up to `max`
 /// token pointers in tok and returns the total number of tokens (which may

@@ -5,12 +5,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/packing.h"
 #include "io/packing_frames.h"
+#include "io/textscan.h"
 
 /// The last frame of a LAMMPS dump, with whether it had a `type` column.
 typedef struct gf_import_last {
@@ -32,8 +32,7 @@ static gf_status gf_import_keep_last(void *ctx, const gf_packing_frame *f, gf_pa
 
 static int gf_import_is_lammps(const char *path)
 {
-    size_t n = strlen(path);
-    return !(n >= 4 && (strcasecmp(path + n - 4, ".xyz") == 0 || strcasecmp(path + n - 4, ".csv") == 0));
+    return !gf_textscan_has_ext(path, ".xyz") && !gf_textscan_has_ext(path, ".csv");
 }
 
 gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep)
