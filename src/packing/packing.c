@@ -157,8 +157,9 @@ gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
         if (!gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0))
             return gf_error_set(GF_ERR_PARAM,
                                 "particle id %lld at (%g, %g, %g) is outside the container "
-                                "(|x| <= %g, |y| <= %g, z >= 0 except over the orifice)",
-                                (long long)p->id[i], p->x[i], p->y[i], p->z[i], box.xhi, box.yhi);
+                                "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)",
+                                (long long)p->id[i], p->x[i], p->y[i], p->z[i],
+                                box.kind == GF_SHAPE_CYLINDER ? "a cylinder within" : "a box", box.xhi, box.yhi);
     }
     return GF_OK;
 }

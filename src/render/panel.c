@@ -41,7 +41,7 @@ void gf_panel_layout(const gf_config *cfg, const gf_render_opts *o, double zmax,
     p->s = o->px_per_d;
     p->xlo = -0.5 * w - gf_margin;
     p->ztop = zmax + 1.0;
-    p->zbot = fmin(0.0, cfg->exit_z) - gf_margin;
+    p->zbot = fmin(0.0, gf_config_exit_plane(cfg)) - gf_margin;
     // the small slack keeps exact products (e.g. 14 d x 10 px) from rounding up a pixel
     p->w = (int)ceil((w + 2.0 * gf_margin) * p->s - 1e-9);
     p->h = (int)ceil((p->ztop - p->zbot) * p->s - 1e-9);
