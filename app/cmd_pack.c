@@ -39,8 +39,7 @@ int gf_cmd_pack(int argc, char **argv)
     double top = 0;
     for (size_t i = 0; i < pk.n; i++)
         if (pk.z[i] > top) top = pk.z[i];
-    double hw = 0.5 * cfg.container_width, hd = 0.5 * cfg.container_depth;
-    double phi = gf_packing_fraction(&pk, -hw + 2, hw - 2, -hd + 2, hd - 2, 2.0, top - 3.0); // away from walls and surfaces
+    double phi = gf_packing_bulk_fraction(&pk, &cfg); // away from walls and surfaces
     if (!cli.quiet)
         fprintf(stderr, "granflow pack: %zu particles, top at z = %.2f, bulk packing fraction %.4f, "
                         "min distance %.4f, %.1f s -> %s\n",

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "geom/container.h"
 #include "granflow/dem.h"
 
 static const char *path_in(const char *sub)
@@ -87,6 +88,55 @@ static void lammps_run_gives_readable_dumps(void **state)
     assert_int_equal(pk.n, 300);
     assert_int_equal(ir.other_types + ir.below_base, 0);
     gf_packing_free(&pk);
+}
+
+// A hopper (cylinder, 60 degree funnel, outlet pipe, central column): the
+// walls are one LAMMPS region (wall/gran/region), and the DEM particles stay
+// inside the same container granflow's geometry describes.
+static void lammps_hopper_walls_hold(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.container_shape = GF_SHAPE_CYLINDER;
+    c.container_radius = 5;
+    c.hopper_angle = 60;
+    c.outlet_diameter = 4;
+    c.outlet_length = 1;
+    c.inner_radius = 1;
+    c.packing_particles = 300;
+    c.dem_fill_method = GF_DEM_GENERATE;
+    c.dem_settle_time = 0.3;
+    c.run_duration = 0.3;
+    c.output_snapshot_interval = 0.1;
+    char dir[900];
+    snprintf(dir, sizeof dir, "%s", path_in("dem_hopper"));
+    gf_dem_plan plan;
+    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    char in[1300];
+    snprintf(in, sizeof in, "%s/in.drain", dir);
+    char *text = gf_test_read_file(in, NULL);
+    assert_non_null(text);
+    assert_non_null(strstr(text, "cone z 0 0 2 5 0 5.196152423 open 1 open 2")); // (5 - 2) tan 60
+    assert_non_null(strstr(text, "side out"));
+    assert_non_null(strstr(text, "wall/gran/region"));
+    assert_null(strstr(text, "xplane"));
+    free(text);
+    gf_dem_run_opts ro = {.ranks = 1};
+    if (gf_dem_run(dir, &ro) != GF_OK) fail_msg("LAMMPS run failed: %s", gf_last_error());
+    gf_series s;
+    gf_dem_load_report rep;
+    assert_int_equal(gf_dem_series_load(dir, NULL, &s, &rep), GF_OK);
+    assert_int_equal(s.nframes, 4);
+    assert_true(s.cfg.container_shape == GF_SHAPE_CYLINDER && s.cfg.container_width == 10);
+    gf_container box = gf_container_make(&s.cfg);
+    for (size_t k = 0; k < s.nframes; k++) {
+        const gf_packing *p = &s.frames[k].pk;
+        assert_true(p->n > 250);
+        for (size_t i = 0; i < p->n; i++)
+            if (!gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.49, 0.0))
+                fail_msg("frame %zu: particle at (%g, %g, %g) is through a wall", k, p->x[i], p->y[i], p->z[i]);
+    }
+    gf_series_free(&s);
 }
 
 // ---- importing dumps ------------------------------------------------------------
@@ -266,6 +316,7 @@ static void truncated_dump_is_an_error(void **state)
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(lammps_run_gives_readable_dumps),
+    cmocka_unit_test(lammps_hopper_walls_hold),
     cmocka_unit_test(import_types_and_below_base),
     cmocka_unit_test(types_parse),
     cmocka_unit_test(series_scaled_steps_types),

@@ -19,6 +19,12 @@ typedef enum gf_orifice_shape {
     GF_ORIFICE_SLIT = 1,   ///< |x| < orifice_diameter/2, all y
 } gf_orifice_shape;
 
+/// The container's shape (docs/geometry.md).
+typedef enum gf_container_shape {
+    GF_SHAPE_BOX = 0,      ///< walls at x = +-width/2, y = +-depth/2, flat base z = 0 with an orifice
+    GF_SHAPE_CYLINDER = 1, ///< wall at radius `radius` about the z axis, optional conical funnel, outlet pipe, inner column
+} gf_container_shape;
+
 /// Where the ball of a spot step is centred (thesis Sec. 3.4).
 typedef enum gf_ball_centre {
     GF_BALL_MIDPOINT = 0, ///< s + v/2 (Stratonovich; the papers' choice)
@@ -84,6 +90,12 @@ typedef struct gf_config {
     gf_orifice_shape orifice_shape;    ///< circle (default) or slit
     double orifice_diameter;           ///< diameter (circle) or full width (slit), d; default 8
     double exit_z;                     ///< particles whose centre falls below this leave, d; default 0
+    gf_container_shape container_shape; ///< box (default) or cylinder
+    double container_radius;           ///< cylinder: radius of the wall, d; default 12.5
+    double hopper_angle;               ///< cylinder: funnel angle to the horizontal, degrees; 0 = flat base (default)
+    double outlet_diameter;            ///< cylinder: diameter of the outlet (and pipe), d; default 8
+    double outlet_length;              ///< cylinder: length of the straight pipe below z = 0, d; default 0
+    double inner_radius;               ///< cylinder: radius of a solid central column (0: none, default), d
 
     // [packing]
     int64_t packing_particles;         ///< number of spheres to generate; default 55000
@@ -185,6 +197,9 @@ GF_API gf_status gf_config_validate(gf_config *cfg);
 /// spaces, e.g. "1" or "1, 3". Empty text (or only spaces) means every type:
 /// *n = 0. GF_ERR_PARAM naming the bad item, or when more than `max` are given.
 GF_API gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t max, size_t *n);
+/// Height below which a particle centre has left the container, d: exit_z,
+/// less the outlet pipe's length for a cylinder (particles leave at its end).
+GF_API double gf_config_exit_plane(const gf_config *cfg);
 
 /// Writes the configuration as a valid INI file that gf_config_load reads back
 /// to the same values (numbers printed with round-trip precision).

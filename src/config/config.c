@@ -289,6 +289,32 @@ gf_status gf_config_validate(gf_config *cfg)
     if (isnan(cfg->dem_gammat)) cfg->dem_gammat = 0.5 * cfg->dem_gamman;
 
     char a[32], b[32];
+    if (cfg->container_shape == GF_SHAPE_CYLINDER) {
+        // The cylinder's bounding box and outlet, in the box's keys, for
+        // everything that reads those (grid, dumps, analysis, pictures).
+        if (cfg->orifice_shape != GF_ORIFICE_CIRCLE)
+            return gf_error_set(GF_ERR_PARAM, "container.orifice_shape = slit: a cylinder's outlet is a circle "
+                                              "(container.outlet_diameter)");
+        if (!(cfg->outlet_diameter < 2.0 * cfg->container_radius)) {
+            gf_keys_format_double(cfg->outlet_diameter, a, sizeof a);
+            gf_keys_format_double(cfg->container_radius, b, sizeof b);
+            return gf_error_set(GF_ERR_PARAM,
+                                "container.outlet_diameter = %s must be less than 2 * container.radius (radius %s)", a, b);
+        }
+        if (cfg->inner_radius > 0.0 && !(cfg->inner_radius + 1.0 < cfg->container_radius)) {
+            gf_keys_format_double(cfg->inner_radius, a, sizeof a);
+            gf_keys_format_double(cfg->container_radius, b, sizeof b);
+            return gf_error_set(GF_ERR_PARAM,
+                                "container.inner_radius = %s leaves no room for a sphere: it must be less than "
+                                "container.radius - 1 = %s - 1", a, b);
+        }
+        if (cfg->inner_radius > 0.0 && !(cfg->hopper_angle > 0.0))
+            return gf_error_set(GF_ERR_PARAM, "container.inner_radius > 0 needs container.hopper_angle > 0: the "
+                                              "column ends at the top of the funnel, and on a flat base it would "
+                                              "stand on the outlet");
+        cfg->container_width = cfg->container_depth = 2.0 * cfg->container_radius;
+        cfg->orifice_diameter = cfg->outlet_diameter;
+    }
     if (!(cfg->orifice_diameter < cfg->container_width)) {
         gf_keys_format_double(cfg->orifice_diameter, a, sizeof a);
         gf_keys_format_double(cfg->container_width, b, sizeof b);
@@ -420,4 +446,9 @@ gf_status gf_config_save(const gf_config *cfg, const char *path)
         return st;
     }
     return gf_atomic_commit(f, tmp, path);
+}
+
+double gf_config_exit_plane(const gf_config *cfg)
+{
+    return cfg->container_shape == GF_SHAPE_CYLINDER ? cfg->exit_z - cfg->outlet_length : cfg->exit_z;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 _Static_assert(sizeof(gf_orifice_shape) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_container_shape) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_ball_centre) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_lga_scenario) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_lga_flow) == sizeof(int), "enum keys are stored as int");
@@ -19,6 +20,7 @@ _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == siz
                "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
+static const char *const gf_keys_shape_names[] = {"box", "cylinder", NULL};
 static const char *const gf_keys_ball_names[] = {"midpoint", "end", NULL};
 static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
 static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
@@ -47,7 +49,19 @@ const gf_key gf_keys[] = {
      .def = "8", .unit = "d",
      .doc = "orifice diameter (circle) or full width (slit), must be < container.width"},
     {"container", "exit_z", GF_KEY_DOUBLE, GF_OFF(exit_z), .min = -INFINITY, .max = 0.5, .def = "0",
-     .unit = "d", .doc = "particles whose centre falls below this height leave"},
+     .unit = "d", .doc = "particles whose centre falls below this height (less container.outlet_length) leave"},
+    {"container", "shape", GF_KEY_ENUM, GF_OFF(container_shape), .names = gf_keys_shape_names, .def = "box",
+     .unit = "", .doc = "box (width x depth, flat base with an orifice) or cylinder (radius, funnel, outlet pipe)"},
+    {"container", "radius", GF_KEY_DOUBLE, GF_OFF(container_radius), GF_POSITIVE, .def = "12.5", .unit = "d",
+     .doc = "cylinder: radius of the wall about the z axis (width and depth become 2 radius)"},
+    {"container", "hopper_angle", GF_KEY_DOUBLE, GF_OFF(hopper_angle), .min = 0, .max = 80, .def = "0",
+     .unit = "deg", .doc = "cylinder: funnel angle to the horizontal, cone from the wall down to the outlet (0: flat base)"},
+    {"container", "outlet_diameter", GF_KEY_DOUBLE, GF_OFF(outlet_diameter), GF_POSITIVE, .def = "8",
+     .unit = "d", .doc = "cylinder: diameter of the outlet at z = 0 and of the pipe below it (orifice_diameter follows it)"},
+    {"container", "outlet_length", GF_KEY_DOUBLE, GF_OFF(outlet_length), GF_NONNEG, .def = "0", .unit = "d",
+     .doc = "cylinder: length of the straight pipe below the outlet; particles leave at its end"},
+    {"container", "inner_radius", GF_KEY_DOUBLE, GF_OFF(inner_radius), GF_NONNEG, .def = "0", .unit = "d",
+     .doc = "cylinder: radius of a solid central column down to the top of the funnel (0: none)"},
 
     {"packing", "particles", GF_KEY_INT64, GF_OFF(packing_particles), .min = 1, .max = 50000000,
      .def = "55000", .unit = "", .doc = "number of spheres to generate"},

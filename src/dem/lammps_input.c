@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "dem/dem_internal.h"
 #include "granflow/dem.h"
+#include "geom/container.h"
 #include "granflow/packing.h"
 
 #define GF_DEM_PI 3.14159265358979323846
@@ -76,14 +77,47 @@ static void gf_dem_head(FILE *f, const gf_config *c, const char *what)
 {
     fprintf(f,
             "# granflow %s: %s\n"
-            "# container %g x %g d, %s orifice of %g d at the centre of the base z = 0.\n"
+            "# container %s%g x %g d, %s orifice of %g d at the centre of the base z = 0.\n"
             "# Units lj: d = 1, particle mass 1, g = 1, so times are in tau = sqrt(d/g).\n"
             "# Written by `granflow dem`; see docs/dem.md.\n\n",
-            gf_version(), what, c->container_width, c->container_depth,
+            gf_version(), what, c->container_shape == GF_SHAPE_CYLINDER ? "cylinder (bounding box) " : "",
+            c->container_width, c->container_depth,
             c->orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", c->orifice_diameter);
 }
 
-static void gf_dem_physics(FILE *f, const gf_config *c)
+/// A cylinder's walls as one region, prefix_vessel (docs/geometry.md): the
+/// wall above the funnel, the funnel (a cone), the outlet pipe continued to
+/// zlo (particles leave below its end), less a central column; open faces
+/// where the parts join, so that only the container's surface pushes.
+static void gf_dem_cylinder_region(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
+{
+    gf_container b = gf_container_make(c);
+    fprintf(f, "# the cylinder: wall radius %g, funnel at %g degrees to the outlet of radius %g at z = 0, pipe %g d\n",
+            b.radius, c->hopper_angle, b.r_out, b.pipe);
+    if (b.sin_a > 0.0) {
+        fprintf(f,
+                "region %s_wall cylinder z 0 0 %.10g %.10g %.10g open 1 open 2 units box\n"
+                "region %s_funnel cone z 0 0 %.10g %.10g 0 %.10g open 1 open 2 units box\n"
+                "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
+                "region %s_shell union 3 %s_wall %s_funnel %s_pipe\n",
+                pre, b.radius, b.z_top, zhi, pre, b.r_out, b.radius, b.z_top, pre, b.r_out, zlo, pre, pre, pre, pre);
+    } else { // a flat base: its lower face, with the hole the pipe cuts in it
+        fprintf(f,
+                "region %s_wall cylinder z 0 0 %.10g 0 %.10g open 2 units box\n"
+                "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
+                "region %s_shell union 2 %s_wall %s_pipe\n",
+                pre, b.radius, zhi, pre, b.r_out, zlo, pre, pre, pre);
+    }
+    if (b.r_in > 0.0)
+        fprintf(f,
+                "region %s_column cylinder z 0 0 %.10g %.10g %.10g open 2 side out units box\n"
+                "region %s_vessel intersect 2 %s_shell %s_column\n",
+                pre, b.r_in, b.z_top, zhi + 1.0, pre, pre, pre);
+    else
+        fprintf(f, "region %s_vessel union 1 %s_shell\n", pre, pre);
+}
+
+static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
 {
     char law[256];
     gf_dem_contact(c, law, sizeof law);
@@ -102,16 +136,24 @@ static void gf_dem_physics(FILE *f, const gf_config *c)
             "# damping of a flow-rim contact uses the flow particle's mass, not the reduced one)\n"
             "fix freeze_rim rim freeze\n"
             "fix integrate flow nve/sphere\n"
-            "fix gravity flow gravity 1.0 vector 0 0 -1\n"
-            "fix wall_x flow wall/gran hertz/history %s xplane %.10g %.10g\n"
-            "fix wall_y flow wall/gran hertz/history %s yplane %.10g %.10g\n"
+            "fix gravity flow gravity 1.0 vector 0 0 -1\n",
+            law, c->dem_timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM);
+    if (c->container_shape == GF_SHAPE_CYLINDER) {
+        gf_dem_cylinder_region(f, c, pre, zlo, zhi);
+        fprintf(f, "fix walls flow wall/gran/region hertz/history %s region %s_vessel\n", law, pre);
+    } else {
+        fprintf(f,
+                "fix wall_x flow wall/gran hertz/history %s xplane %.10g %.10g\n"
+                "fix wall_y flow wall/gran hertz/history %s yplane %.10g %.10g\n",
+                law, -hw, hw, law, -hd, hd);
+    }
+    fprintf(f,
             "compute ke flow ke\n"
             "variable nflow equal count(flow)\n"
             "variable kea equal c_ke/(v_nflow+(v_nflow==0))\n"
             "thermo_style custom step time v_nflow v_kea\n"
             "thermo_modify norm no\n"
             "thermo %lld\n",
-            law, c->dem_timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM, law, -hw, hw, law, -hd, hd,
             (long long)gf_dem_steps(c, 0.1));
 }
 
@@ -174,7 +216,13 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
     if (st != GF_OK) return st;
     if (!dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_dem_write_inputs: no directory");
     gf_dem_plan plan = {0};
-    double area = c->container_width * c->container_depth, vp = GF_DEM_PI / 6.0;
+    const bool cyl = c->container_shape == GF_SHAPE_CYLINDER;
+    if (cyl && c->inner_radius > 0.0 && c->dem_fill_method == GF_DEM_POUR)
+        return gf_error_set(GF_ERR_PARAM, "dem.fill_method = pour cannot pour around container.inner_radius (fix pour "
+                                          "would insert into the column): use dem.fill_method = generate");
+    double area = cyl ? GF_DEM_PI * (c->container_radius * c->container_radius - c->inner_radius * c->inner_radius)
+                      : c->container_width * c->container_depth,
+           vp = GF_DEM_PI / 6.0;
     gf_packing pk = {0};
     if (c->dem_fill_method == GF_DEM_GENERATE) {
         if (c->packing_file[0]) st = gf_packing_import(c, &pk, NULL);
@@ -187,7 +235,9 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
         plan.particles = c->packing_particles;
     }
     plan.fill_height = (double)plan.particles * vp / (GF_DEM_PHI_FILL * area);
-    plan.delete_z = fmin(c->exit_z, 0.0) - GF_DEM_DELETE_DEPTH;
+    // A funnel holds less than the cylinder over it: the fill ends at most its height higher.
+    if (cyl) plan.fill_height += gf_container_make(c).z_top;
+    plan.delete_z = fmin(gf_config_exit_plane(c), 0.0) - GF_DEM_DELETE_DEPTH;
     plan.box_zlo = plan.delete_z - 2.0;
     plan.snapshot_steps = gf_dem_steps(c, c->output_snapshot_interval);
     plan.drain_steps = gf_dem_steps(c, c->run_duration);
@@ -236,16 +286,23 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
     gf_dem_beads(f, c);
     fprintf(f, "set type %d diameter %g\nset type %d density %.16g\n", GF_DEM_TYPE_RIM, GF_DEM_BEAD, GF_DEM_TYPE_RIM,
             GF_DEM_DENSITY);
-    gf_dem_physics(f, c);
+    gf_dem_physics(f, c, "fill", plan.box_zlo, plan.box_zhi);
     fprintf(f, "# the base is closed while the container fills\n"
-               "fix base flow wall/gran hertz/history %s zplane 0 NULL\n",
-            law);
+               "fix base flow wall/gran hertz/history %s zplane %.10g NULL\n",
+            law, cyl ? fmin(gf_config_exit_plane(c), 0.0) : 0.0);
     int64_t chunk = gf_dem_steps(c, GF_DEM_CHUNK);
     if (c->dem_fill_method == GF_DEM_POUR) {
         long maxk = (long)ceil(2.0 * plan.pour_time / GF_DEM_CHUNK) + 20;
+        char pour[256];
+        if (cyl)
+            snprintf(pour, sizeof pour, "region pour cylinder z 0 0 %.10g %.10g %.10g units box\n",
+                     c->container_radius - 0.55, z_ins, z_ins + hp);
+        else
+            snprintf(pour, sizeof pour, "region pour block %.10g %.10g %.10g %.10g %.10g %.10g units box\n", -hw + 0.55,
+                     hw - 0.55, -hd + 0.55, hd - 0.55, z_ins, z_ins + hp);
         fprintf(f,
                 "# pour %lld particles from the region %.4g < z < %.4g (batches of packing fraction %g)\n"
-                "region pour block %.10g %.10g %.10g %.10g %.10g %.10g units box\n"
+                "%s"
                 "fix pour flow pour %lld %d %ld region pour vol %g 200 diam one 1.0 dens %.16g %.16g vel 0 0 0 0 0\n"
                 "print \"granflow-phase fill %lld %.6g\"\n"
                 "variable pourk loop %ld\n"
@@ -256,8 +313,7 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
                 "jump SELF pour_loop\n"
                 "label pour_done\n"
                 "unfix pour\n",
-                (long long)plan.particles, z_ins, z_ins + hp, GF_DEM_POUR_FRACTION, -hw + 0.55, hw - 0.55,
-                -hd + 0.55, hd - 0.55, z_ins, z_ins + hp, (long long)plan.particles, GF_DEM_TYPE_FLOW,
+                (long long)plan.particles, z_ins, z_ins + hp, GF_DEM_POUR_FRACTION, pour, (long long)plan.particles, GF_DEM_TYPE_FLOW,
                 gf_dem_seed(c, 1), GF_DEM_POUR_FRACTION, GF_DEM_DENSITY, GF_DEM_DENSITY, (long long)plan.particles,
                 plan.pour_time, maxk, (long long)chunk, (long long)plan.particles);
     } else {
@@ -287,16 +343,20 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
     gf_dem_head(f, c, "DEM drainage (after in.fill)");
     double R = 0.5 * c->orifice_diameter;
     fprintf(f, "read_restart settled.restart\nnewton off\n");
-    gf_dem_physics(f, c);
-    fprintf(f, "reset_timestep 0\n# the base with its hole: the surface of (z > 0) united with the hole below it\n"
-               "region above block INF INF INF INF 0 INF units box\n");
-    if (c->orifice_shape == GF_ORIFICE_SLIT)
-        fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", -R, R, plan.box_zlo);
-    else
-        fprintf(f, "region hole cylinder z 0 0 %.10g %.10g 1 units box\n", R, plan.box_zlo);
+    gf_dem_physics(f, c, "drain", plan.box_zlo, plan.box_zhi);
+    fprintf(f, "reset_timestep 0\n");
+    if (!cyl) {
+        fprintf(f, "# the base with its hole: the surface of (z > 0) united with the hole below it\n"
+                   "region above block INF INF INF INF 0 INF units box\n");
+        if (c->orifice_shape == GF_ORIFICE_SLIT)
+            fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", -R, R, plan.box_zlo);
+        else
+            fprintf(f, "region hole cylinder z 0 0 %.10g %.10g 1 units box\n", R, plan.box_zlo);
+        fprintf(f, "region vessel union 2 above hole\n"
+                   "fix base flow wall/gran/region hertz/history %s region vessel\n",
+                law);
+    }
     fprintf(f,
-            "region vessel union 2 above hole\n"
-            "fix base flow wall/gran/region hertz/history %s region vessel\n"
             "# particles that fell %g d below the base through the hole leave\n"
             "region gone block INF INF INF INF INF %.10g units box\n"
             "fix gone flow evaporate %lld %lld gone %ld\n"
@@ -306,7 +366,7 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
             "print \"granflow-phase drain ${nflow} %.6g\"\n"
             "run %lld\n"
             "print \"granflow-phase done ${nflow} 0\"\n",
-            law, GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(c, 0.01),
+            GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(c, 0.01),
             (long long)(plan.particles + 1), gf_dem_seed(c, 2), c->output_snapshot_interval,
             (long long)plan.snapshot_steps, c->run_duration, (long long)plan.drain_steps);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;

@@ -142,7 +142,7 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
             bool ok = ntypes == 0;
             for (size_t t = 0; t < ntypes && !ok; t++) ok = p->layer[i] == types[t];
             if (!ok) r.other_types++;
-            else if (p->z[i] < cfg.exit_z) r.below_base++, ok = false;
+            else if (p->z[i] < gf_config_exit_plane(&cfg)) r.below_base++, ok = false;
             keep[i] = ok;
         }
         gf_dem_compact(p, keep);

@@ -1,57 +1,73 @@
 // SPDX-License-Identifier: MIT
-// The silo geometry of SPEC 1.1 (2009 paper Sec. 2: walls x = +-25, y = +-4, base z = 0).
+// The container of a configuration, and what shapes share (docs/geometry.md).
 #include "geom/container.h"
+
+static const double gf_deg = 3.14159265358979323846 / 180.0;
 
 gf_container gf_container_make(const gf_config *cfg)
 {
     gf_container c = {
+        .ops = &gf_box_ops,
+        .kind = cfg->container_shape,
         .xlo = -0.5 * cfg->container_width,
         .xhi = 0.5 * cfg->container_width,
         .ylo = -0.5 * cfg->container_depth,
         .yhi = 0.5 * cfg->container_depth,
         .shape = cfg->orifice_shape,
         .hole = 0.5 * cfg->orifice_diameter,
-        .exit_z = cfg->exit_z,
+        .exit_z = gf_config_exit_plane(cfg),
     };
+    if (cfg->container_shape == GF_SHAPE_CYLINDER) {
+        double R = cfg->container_radius, ro = 0.5 * cfg->outlet_diameter, a = cfg->hopper_angle * gf_deg;
+        c.ops = &gf_cylinder_ops;
+        c.xlo = c.ylo = -R;
+        c.xhi = c.yhi = R;
+        c.shape = GF_ORIFICE_CIRCLE;
+        c.hole = ro;
+        c.radius = R;
+        c.r_out = ro;
+        c.r_in = cfg->inner_radius;
+        c.pipe = cfg->outlet_length;
+        c.sin_a = cfg->hopper_angle > 0.0 ? sin(a) : 0.0;
+        c.cos_a = cfg->hopper_angle > 0.0 ? cos(a) : 1.0;
+        c.z_top = (R - ro) * c.sin_a / c.cos_a;
+        c.cone_len = (R - ro) / c.cos_a;
+    }
     return c;
 }
 
-void gf_container_push(const gf_container *c, double x, double y, double z, double r, double alpha,
-                       double *dx, double *dy, double *dz)
+void gf_container_bounds(const gf_container *c, double ztop, double lo[3], double hi[3])
 {
-    double g;
-    if ((g = x - c->xlo) < r) *dx += alpha * (r - g);
-    if ((g = c->xhi - x) < r) *dx -= alpha * (r - g);
-    if ((g = y - c->ylo) < r) *dy += alpha * (r - g);
-    if ((g = c->yhi - y) < r) *dy -= alpha * (r - g);
-    if (z >= r) return;
-    if (!gf_container_over_hole(c, x, y)) {
-        if (z > -r) *dz += alpha * (r - z); // on the plate (a centre under it is left to the side walls)
-        return;
-    }
-    // Over the hole: the nearest plate point is on the rim (a circle or the two slit edges).
-    double ex, ey; // horizontal vector from the rim point to the centre
-    if (c->shape == GF_ORIFICE_SLIT) {
-        ex = x >= 0 ? x - c->hole : x + c->hole;
-        ey = 0.0;
-    } else {
-        double rho = sqrt(x * x + y * y);
-        if (rho <= 0.0) return; // the rim is a full hole radius away
-        double s = (rho - c->hole) / rho;
-        ex = x * s;
-        ey = y * s;
-    }
-    double dist = sqrt(ex * ex + ey * ey + z * z);
-    if (dist >= r || dist <= 0.0) return;
-    double f = alpha * (r - dist) / dist;
-    *dx += f * ex;
-    *dy += f * ey;
-    *dz += f * z;
+    lo[0] = c->xlo;
+    lo[1] = c->ylo;
+    lo[2] = fmin(0.0, c->exit_z) - 1.0;
+    hi[0] = c->xhi;
+    hi[1] = c->yhi;
+    hi[2] = ztop;
 }
 
-bool gf_container_contains(const gf_container *c, double x, double y, double z, double r, double tol)
+void gf_container_push_walls(const gf_container *c, double x, double y, double z, double r, double alpha,
+                             double *dx, double *dy, double *dz)
 {
-    if (x < c->xlo + r - tol || x > c->xhi - r + tol) return false;
-    if (y < c->ylo + r - tol || y > c->yhi - r + tol) return false;
-    return z >= r - tol || gf_container_over_hole(c, x, y);
+    gf_wall_hit hit[GF_WALL_HITS];
+    const double p[3] = {x, y, z};
+    int n = c->ops->walls(c, p, r, hit);
+    for (int k = 0; k < n; k++) {
+        double f = alpha * (r - hit[k].gap);
+        *dx += f * hit[k].n[0];
+        *dy += f * hit[k].n[1];
+        *dz += f * hit[k].n[2];
+    }
+}
+
+int gf_container_mirror_walls(const gf_container *c, const double ctr[3], double rs, double m[][3])
+{
+    gf_wall_hit hit[GF_WALL_HITS];
+    int n = c->ops->walls(c, ctr, rs, hit), k = 0;
+    for (int h = 0; h < n; h++) {
+        if (!hit[h].side || hit[h].gap <= -rs) continue;
+        for (int a = 0; a < 3; a++) m[k][a] = ctr[a] - 2.0 * hit[h].gap * hit[h].n[a];
+        k++;
+    }
+    return k;
 }

@@ -178,7 +178,7 @@ gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf
     double ztop = 1.0;
     for (size_t i = 0; i < p->n; i++)
         if (p->z[i] + p->r[i] > ztop) ztop = p->z[i] + p->r[i];
-    double zlo = cfg->exit_z < 0.0 ? cfg->exit_z : 0.0;
+    double zlo = gf_config_exit_plane(cfg) < 0.0 ? gf_config_exit_plane(cfg) : 0.0;
     fprintf(f, "ITEM: TIME\n%.17g\nITEM: TIMESTEP\n%" PRIu64 "\nITEM: NUMBER OF ATOMS\n%zu\n", time, step, p->n);
     fprintf(f, "ITEM: BOX BOUNDS ff ff ff\n%.17g %.17g\n%.17g %.17g\n%.17g %.17g\n", -0.5 * cfg->container_width,
             0.5 * cfg->container_width, -0.5 * cfg->container_depth, 0.5 * cfg->container_depth, zlo, ztop);

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/rng.h"
+#include "geom/container.h"
 
 // Parameters of the method (docs/packing.md says why each has its value).
 #define GF_GEN_PHI_BOX 0.64       // nominal packing fraction of the closed start box
@@ -60,7 +61,10 @@ typedef struct gf_gen {
     size_t *cell_start; // counting-sort scratch, ncell_cap + 1
     size_t ncell_cap;
     uint32_t *cell;       // cell of each particle during a build
-    double width, depth;  // side walls at +-width/2, +-depth/2
+    double width, depth;  // side walls at +-width/2, +-depth/2 (a cylinder: its bounding box)
+    bool shaped;          // not a box: the container's walls bound the centres too
+    gf_container box;     // ... these walls, at z + zoff
+    double zoff;          // height of the generation's z = 0 in the container (the floor 0.5 below zlo)
     double zlo, zhi;      // lowest and highest allowed centre height (zhi: the lid)
     double ztop;          // highest centre
     // Stretch profile of the column: overlap sums per horizontal slab of
@@ -317,6 +321,51 @@ static inline double gf_gen_wall(double v, double lo, double hi)
     return v <= hi ? v : hi;
 }
 
+// The walls of a shaped container (funnel, pipe, column, curved wall): a
+// centre closer than 1/2 to one is put back as gf_gen_wall does, half as
+// far inside as it went through.
+static void gf_gen_shape_wall(const gf_gen *g, double *x, double *y, double *z)
+{
+    const gf_container *c = &g->box;
+    double p[3] = {*x, *y, *z + g->zoff}, rho2 = p[0] * p[0] + p[1] * p[1];
+    double ro = c->radius - 0.5, ri = c->r_in + 0.5;
+    if (p[2] >= c->z_top + 0.5 && rho2 < ro * ro && (c->r_in <= 0.0 || rho2 > ri * ri)) return; // the bulk
+    gf_wall_hit hit[GF_WALL_HITS];
+    int n = gf_container_walls(c, p, 0.5, hit);
+    for (int k = 0; k < n; k++) {
+        double f = (1.0 + GF_GEN_BOUNCE) * (0.5 - hit[k].gap);
+        p[0] += f * hit[k].n[0];
+        p[1] += f * hit[k].n[1];
+        p[2] += f * hit[k].n[2];
+    }
+    *x = p[0];
+    *y = p[1];
+    *z = p[2] - g->zoff;
+}
+
+// Volume of a shaped container between the floor and height h (generation
+// coordinates), by slices: the cross-section is pi (R(z)^2 - r_i(z)^2).
+static double gf_gen_area(const gf_container *c, double z)
+{
+    double R = c->radius;
+    if (z < 0.0) R = c->r_out;
+    else if (c->sin_a > 0.0 && z < c->z_top) R = c->r_out + z * c->cos_a / c->sin_a;
+    double ri = c->r_in > 0.0 && z >= c->z_top ? c->r_in : 0.0;
+    return gf_gen_pi * (R * R - ri * ri);
+}
+
+// Height (generation coordinates) below which the container holds volume v.
+static double gf_gen_height_for(const gf_gen *g, double v)
+{
+    const double dz = 0.01;
+    double h = 0.0, acc = 0.0;
+    while (acc < v) {
+        acc += dz * gf_gen_area(&g->box, h + 0.5 * dz + g->zoff);
+        h += dz;
+    }
+    return h;
+}
+
 // The column stretch: z -> z + u(z), u piecewise linear over the slabs with
 // slope slab_strain (>= 0), u(zlo) = 0. It only ever lengthens pair vectors.
 static inline double gf_gen_lift(const double *restrict lift, const double *restrict strain,
@@ -357,6 +406,7 @@ static double gf_gen_move(gf_gen *g, double gain)
         xi = gf_gen_wall(xi, xlo, xhi);
         yi = gf_gen_wall(yi, ylo, yhi);
         zi = gf_gen_wall(zi, zlo, zhi);
+        if (g->shaped) gf_gen_shape_wall(g, &xi, &yi, &zi);
         double r = rz[i];
         if (gain > 0.0) {
             zi = gf_gen_lift(lift, strain, nslab, zlo, zi);
@@ -428,16 +478,22 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     size_t n = g->n;
     // 1. Random centres in the container closed at the height that a packing
     // of fraction PHI_BOX would fill. Overlaps are allowed (and many).
-    double height = (double)n * gf_gen_pi / 6.0 / (g->width * g->depth * GF_GEN_PHI_BOX);
+    double height = g->shaped ? gf_gen_height_for(g, (double)n * gf_gen_pi / 6.0 / GF_GEN_PHI_BOX)
+                              : (double)n * gf_gen_pi / 6.0 / (g->width * g->depth * GF_GEN_PHI_BOX);
     g->zlo = 0.5;
     g->zhi = fmax(g->zlo, height - 0.5);
     const double xhi = 0.5 * g->width - 0.5, yhi = 0.5 * g->depth - 0.5;
     gf_rng rng;
     gf_rng_seed(&rng, seed, GF_GEN_STREAM);
     for (size_t i = 0; i < n; i++) {
-        g->x[i] = xhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
-        g->y[i] = yhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
-        g->z[i] = g->zlo + (g->zhi - g->zlo) * gf_rng_uniform(&rng);
+        for (long tries = 0;; tries++) { // a shaped container: drawn in its bounding box until inside
+            g->x[i] = xhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
+            g->y[i] = yhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
+            g->z[i] = g->zlo + (g->zhi - g->zlo) * gf_rng_uniform(&rng);
+            if (!g->shaped || gf_container_contains(&g->box, g->x[i], g->y[i], g->z[i] + g->zoff, 0.5, 0.0))
+                break;
+            if (tries > 100000) return gf_error_set(GF_ERR_PARAM, "packing: no room for a sphere in the container");
+        }
     }
     gf_status st = gf_gen_build(g);
     if (st == GF_OK) st = gf_gen_slabs(g);
@@ -487,6 +543,21 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
 static void gf_gen_snap(gf_gen *g)
 {
     const double xhi = 0.5 * g->width - 0.5, yhi = 0.5 * g->depth - 0.5, zlo = g->zlo;
+    if (g->shaped) { // onto the floor, and onto the walls closer than 1/2 + SNAP
+        for (size_t i = 0; i < g->n; i++) {
+            if (g->z[i] < zlo + GF_GEN_SNAP) g->z[i] = zlo;
+            double p[3] = {g->x[i], g->y[i], g->z[i] + g->zoff};
+            gf_wall_hit hit[GF_WALL_HITS];
+            int nh = gf_container_walls(&g->box, p, 0.5 + GF_GEN_SNAP, hit);
+            for (int k = 0; k < nh; k++) {
+                double f = 0.5 - hit[k].gap;
+                g->x[i] += f * hit[k].n[0];
+                g->y[i] += f * hit[k].n[1];
+                g->z[i] += f * hit[k].n[2];
+            }
+        }
+        return;
+    }
     for (size_t i = 0; i < g->n; i++) {
         if (g->x[i] > xhi - GF_GEN_SNAP) g->x[i] = xhi;
         if (g->x[i] < GF_GEN_SNAP - xhi) g->x[i] = -xhi;
@@ -525,7 +596,7 @@ static gf_status gf_gen_emit(const gf_gen *g, double zmax, const gf_config *cfg,
             out->id[k] = (int64_t)k + 1;
             out->x[k] = g->x[i];
             out->y[k] = g->y[i];
-            out->z[k] = g->z[i];
+            out->z[k] = g->z[i] + g->zoff;
             out->r[k] = 0.5;
         }
         out->n = m;
@@ -536,11 +607,14 @@ static gf_status gf_gen_emit(const gf_gen *g, double zmax, const gf_config *cfg,
 }
 
 // Final acceptance check: the promises of SPEC 1.2 hold, or this is a bug.
-static gf_status gf_gen_check(const gf_packing *p, double width, double depth)
+static gf_status gf_gen_check(const gf_packing *p, const gf_gen *g, double width, double depth)
 {
     double hw = 0.5 * width - GF_GEN_WALL, hd = 0.5 * depth - GF_GEN_WALL;
     for (size_t i = 0; i < p->n; i++) {
-        if (!(fabs(p->x[i]) <= hw && fabs(p->y[i]) <= hd && p->z[i] >= GF_GEN_WALL))
+        bool in = g->shaped ? gf_container_contains(&g->box, p->x[i], p->y[i], p->z[i], GF_GEN_WALL, 1e-9) &&
+                                  p->z[i] >= g->zoff + GF_GEN_WALL - 1e-9
+                            : fabs(p->x[i]) <= hw && fabs(p->y[i]) <= hd && p->z[i] >= GF_GEN_WALL;
+        if (!in)
             return gf_error_set(GF_ERR_STATE,
                                 "packing: particle %zu at (%g, %g, %g) is closer than %g to a wall",
                                 i + 1, p->x[i], p->y[i], p->z[i], GF_GEN_WALL);
@@ -578,6 +652,8 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
                                 "packing: fill height %g must be finite and at least one diameter",
                                 fill);
         n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
+        if (cfg->container_shape == GF_SHAPE_CYLINDER) // and the pipe
+            n += ceil(0.66 * 0.25 * cfg->outlet_diameter * cfg->outlet_diameter * cfg->outlet_length / (1.0 / 6.0));
     } else {
         if (cfg->packing_particles < 1)
             return gf_error_set(GF_ERR_PARAM,
@@ -606,12 +682,15 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     g.width = cfg->container_width;
     g.depth = cfg->container_depth;
     g.stop = stop;
+    g.box = gf_container_make(cfg);
+    g.shaped = g.box.kind != GF_SHAPE_BOX;
+    g.zoff = g.shaped ? fmin(0.0, g.box.exit_z) : 0.0; // a pipe is filled from its end up
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
     if (st == GF_OK) gf_gen_snap(&g);
     double zmax = INFINITY;
     if (st == GF_OK && cfg->packing_fill_height > 0.0) {
-        zmax = cfg->packing_fill_height - 0.5;
+        zmax = cfg->packing_fill_height - 0.5 - g.zoff;
         double ztop = 0.0;
         for (size_t i = 0; i < g.n; i++) ztop = fmax(ztop, g.z[i]);
         if (ztop < zmax + 1.0) // the count above makes this a bug
@@ -620,7 +699,7 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     }
     if (st == GF_OK) st = gf_gen_emit(&g, zmax, cfg, out);
     gf_gen_release(&g);
-    if (st == GF_OK) st = gf_gen_check(out, cfg->container_width, cfg->container_depth);
+    if (st == GF_OK) st = gf_gen_check(out, &g, cfg->container_width, cfg->container_depth);
     if (st != GF_OK) gf_packing_free(out); // nothing half-made comes back
     return st;
 }

@@ -76,7 +76,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
             r.other_types++;
             continue;
         }
-        if (pk.z[i] < cfg->exit_z) {
+        if (pk.z[i] < gf_config_exit_plane(cfg)) {
             r.below_base++;
             continue;
         }
@@ -93,7 +93,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
         gf_packing_free(&pk);
         return gf_error_set(GF_ERR_PARAM,
                             "%s: no particle left of %zu (%zu of other atom types than packing.types = '%s', "
-                            "%zu below container.exit_z)",
+                            "%zu below the exit plane, container.exit_z less container.outlet_length)",
                             path, r.read, r.other_types, cfg->packing_types, r.below_base);
     }
     gf_packing_tag_layers(&pk, cfg->packing_layer_thickness);

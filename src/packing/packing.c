@@ -163,8 +163,28 @@ gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
         if (!gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0))
             return gf_error_set(GF_ERR_PARAM,
                                 "particle id %lld at (%g, %g, %g) is outside the container "
-                                "(|x| <= %g, |y| <= %g, z >= 0 except over the orifice)",
-                                (long long)p->id[i], p->x[i], p->y[i], p->z[i], box.xhi, box.yhi);
+                                "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)",
+                                (long long)p->id[i], p->x[i], p->y[i], p->z[i],
+                                box.kind == GF_SHAPE_CYLINDER ? "a cylinder within" : "a box", box.xhi, box.yhi);
     }
     return GF_OK;
+}
+
+double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg)
+{
+    double top = 0.0;
+    for (size_t i = 0; i < p->n; i++)
+        if (p->z[i] > top) top = p->z[i];
+    if (cfg->container_shape != GF_SHAPE_CYLINDER) {
+        double hw = 0.5 * cfg->container_width, hd = 0.5 * cfg->container_depth;
+        return gf_packing_fraction(p, -hw + 2, hw - 2, -hd + 2, hd - 2, 2.0, top - 3.0);
+    }
+    gf_container c = gf_container_make(cfg);
+    double R = c.radius - 2.0, z0 = c.z_top + 2.0;
+    if (c.r_in > 0.0) { // a slab of the annulus, on the +x side of the column
+        double x0 = c.r_in + 2.0, h = fmin(2.0, 0.5 * (R - x0));
+        return gf_packing_fraction(p, x0, sqrt(R * R - h * h), -h, h, z0, top - 3.0);
+    }
+    double a = R / sqrt(2.0); // the square inscribed in the wall less 2 d
+    return gf_packing_fraction(p, -a, a, -a, a, z0, top - 3.0);
 }

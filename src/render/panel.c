@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/container.h"
 #include "render/palette.h"
 
 enum { GF_LABEL_MIN_PX = 28, GF_BAR_MIN_PX = 84 };
@@ -41,7 +42,7 @@ void gf_panel_layout(const gf_config *cfg, const gf_render_opts *o, double zmax,
     p->s = o->px_per_d;
     p->xlo = -0.5 * w - gf_margin;
     p->ztop = zmax + 1.0;
-    p->zbot = fmin(0.0, cfg->exit_z) - gf_margin;
+    p->zbot = fmin(0.0, gf_config_exit_plane(cfg)) - gf_margin;
     // the small slack keeps exact products (e.g. 14 d x 10 px) from rounding up a pixel
     p->w = (int)ceil((w + 2.0 * gf_margin) * p->s - 1e-9);
     p->h = (int)ceil((p->ztop - p->zbot) * p->s - 1e-9);
@@ -133,8 +134,39 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
     cairo_set_source_rgb(cr, gf_palette_outside[0], gf_palette_outside[1], gf_palette_outside[2]);
     cairo_paint(cr);
     cairo_set_source_rgb(cr, gf_palette_inside[0], gf_palette_inside[1], gf_palette_inside[2]);
-    gf_rect(cr, GF_X(-hw), GF_Y(0.0), GF_X(hw), GF_Y(p->ztop));
-    cairo_fill(cr);
+    const gf_container box = gf_container_make(cfg);
+    const bool cyl = box.kind == GF_SHAPE_CYLINDER;
+    if (cyl) {
+        // The axial section: wall, funnel, pipe (drawn first, as thick lines
+        // the particles then cover where they touch), and the column.
+        const double zt = box.z_top, ro = box.r_out, zb = -box.pipe;
+        cairo_move_to(cr, GF_X(-hw), GF_Y(p->ztop));
+        cairo_line_to(cr, GF_X(-hw), GF_Y(zt));
+        cairo_line_to(cr, GF_X(-ro), GF_Y(0.0));
+        cairo_line_to(cr, GF_X(-ro), GF_Y(zb));
+        cairo_line_to(cr, GF_X(ro), GF_Y(zb));
+        cairo_line_to(cr, GF_X(ro), GF_Y(0.0));
+        cairo_line_to(cr, GF_X(hw), GF_Y(zt));
+        cairo_line_to(cr, GF_X(hw), GF_Y(p->ztop));
+        cairo_close_path(cr);
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
+        cairo_set_line_width(cr, 2.0 * gf_wall * s);
+        for (int side = -1; side <= 1; side += 2) {
+            cairo_move_to(cr, GF_X(side * hw), GF_Y(p->ztop));
+            cairo_line_to(cr, GF_X(side * hw), GF_Y(zt));
+            cairo_line_to(cr, GF_X(side * ro), GF_Y(0.0));
+            if (box.pipe > 0.0) cairo_line_to(cr, GF_X(side * ro), GF_Y(zb));
+            cairo_stroke(cr);
+        }
+        if (box.r_in > 0.0) {
+            gf_rect(cr, GF_X(-box.r_in), GF_Y(zt), GF_X(box.r_in), GF_Y(p->ztop));
+            cairo_fill(cr);
+        }
+    } else {
+        gf_rect(cr, GF_X(-hw), GF_Y(0.0), GF_X(hw), GF_Y(p->ztop));
+        cairo_fill(cr);
+    }
 
     // particles: flat discs with a darker rim so that touching ones stay apart
     const double rim = 0.07 * s;
@@ -160,19 +192,20 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
 
     // walls and base, outside the container so they hide no particle
     cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
-    gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-hw), GF_Y(p->ztop));
-    gf_rect(cr, GF_X(hw), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(p->ztop));
-    if (ho < hw) {
+    if (!cyl) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-hw), GF_Y(p->ztop));
+    if (!cyl) gf_rect(cr, GF_X(hw), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(p->ztop));
+    if (!cyl && ho < hw) {
         gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-ho), GF_Y(0.0));
         gf_rect(cr, GF_X(ho), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(0.0));
     }
     cairo_fill(cr);
-    if (cfg->exit_z < 0.0) { // where particles leave, across the orifice
+    const double exit_plane = gf_config_exit_plane(cfg);
+    if (exit_plane < 0.0) { // where particles leave, across the orifice
         double dash = 0.5 * s;
         cairo_set_dash(cr, &dash, 1, 0.0);
         cairo_set_line_width(cr, fmax(0.08 * s, 1.0));
-        cairo_move_to(cr, GF_X(-ho), GF_Y(cfg->exit_z));
-        cairo_line_to(cr, GF_X(ho), GF_Y(cfg->exit_z));
+        cairo_move_to(cr, GF_X(-ho), GF_Y(exit_plane));
+        cairo_line_to(cr, GF_X(ho), GF_Y(exit_plane));
         cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0.0);
     }

@@ -86,26 +86,6 @@ gf_status gf_spot_unmark(gf_sim *sim, gf_work *w)
     return gf_sim_track_moves(sim, w, w->scratch_used, w->in_ball);
 }
 
-// Mirror images of c in the side walls its ball crosses (2009 paper Sec. 4,
-// the reflection procedure). Returns their number (0 to 4).
-static int gf_wall_mirrors(const gf_sim *sim, const double c[3], double m[4][3])
-{
-    const gf_container *b = &sim->box;
-    const double rs = sim->rs;
-    int n = 0;
-    const double walls[4] = {b->xlo, b->xhi, b->ylo, b->yhi};
-    for (int w = 0; w < 4; w++) {
-        int axis = w / 2;
-        if (fabs(c[axis] - walls[w]) >= rs) continue;
-        m[n][0] = c[0];
-        m[n][1] = c[1];
-        m[n][2] = c[2];
-        m[n][axis] = 2.0 * walls[w] - c[axis];
-        n++;
-    }
-    return n;
-}
-
 long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u0[3])
 {
     size_t m = gf_gather(sim, w, c);
@@ -126,8 +106,9 @@ long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u0[3
         u[1] *= f;
         u[2] *= f;
     }
-    double mir[4][3];
-    int nmir = cfg->spot_walls == GF_WALLS_REFLECT ? gf_wall_mirrors(sim, c, mir) : 0;
+    // Mirror images of c in the side walls its ball crosses (Sec. 4, the reflection procedure).
+    double mir[GF_WALL_HITS][3];
+    int nmir = cfg->spot_walls == GF_WALLS_REFLECT ? sim->box.ops->mirrors(&sim->box, c, sim->rs, mir) : 0;
     // SPEC 1.3 spot(c, u, r_s): every particle within r_s of c moves by u
     // (times S(x) = 1 + the mirrored balls that also reach it, Sec. 4).
     // Particles that fall out leave the inside list, which relax() then uses

@@ -24,7 +24,7 @@ void gf_sim_derive(gf_sim *sim)
     sim->spot_ins_r = fmax(0.0, 0.5 * c->orifice_diameter - c->spot_insertion_margin);
     // SPEC 1.3 mass balance: a spot is born one radius below the exit, so its
     // ball sweeps its whole volume past the exit plane as it rises.
-    sim->spot_birth_z = c->exit_z - c->spot_radius;
+    sim->spot_birth_z = gf_config_exit_plane(c) - c->spot_radius;
     sim->no_relax = c->relax_method == GF_RELAX_NONE;
     sim->use_nlist = c->relax_method != GF_RELAX_NONE;
 }
@@ -100,9 +100,8 @@ gf_status gf_sim_make_grid(gf_sim *sim)
             if (sim->alive[i] && sim->p[i].z > top) top = sim->p[i].z;
         sim->grid_ztop = top + 2.0;
     }
-    const gf_container *b = &sim->box;
-    double lo[3] = {b->xlo, b->ylo, fmin(0.0, b->exit_z) - 1.0};
-    double hi[3] = {b->xhi, b->yhi, sim->grid_ztop};
+    double lo[3], hi[3];
+    gf_container_bounds(&sim->box, sim->grid_ztop, lo, hi);
     return gf_grid_init(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap);
 }
 
@@ -171,7 +170,7 @@ fail:
 bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
-    if (!(q->z < sim->box.exit_z) || !gf_container_over_hole(&sim->box, q->x, q->y)) return false;
+    if (!gf_container_exited(&sim->box, q->x, q->y, q->z)) return false;
     gf_exit e = {sim->id[i], sim->t, q->x, q->y};
     if (w->defer_exits) {
         // The parallel step: kept by the worker, merged (sorted by id) after the phase.
@@ -289,25 +288,23 @@ static void gf_spot_delete(gf_sim *sim, size_t k)
     sim->st.spots_deleted++;
 }
 
-static double gf_clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
-
 // Candidate `dir` of a move from s: the BCC walk (+-dx, 0, dz), (0, +-dy, dz)
 // (2009 paper Sec. 2), truncated d_w from each side wall (0 with reflection,
-// Sec. 4) and, below the base plate, kept over the region spots are born in.
+// Sec. 4) and, below the base, kept over the region spots are born in.
 static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir, double n[3])
 {
     const gf_config *c = &sim->cfg;
     const gf_container *b = &sim->box;
     double h = c->spot_step_xy;
-    double nx = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
-    double ny = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
-    double nz = s[2] + c->spot_step_z;
+    n[0] = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
+    n[1] = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
+    n[2] = s[2] + c->spot_step_z;
     double dw = c->spot_walls == GF_WALLS_REFLECT ? 0.0 : c->spot_wall_distance;
-    nx = gf_clamp(nx, b->xlo + dw, b->xhi - dw);
-    ny = gf_clamp(ny, b->ylo + dw, b->yhi - dw);
+    b->ops->spot_clamp(b, n, dw);
+    double nx = n[0], ny = n[1], nz = n[2];
     if (nz < 0.0) {
         if (b->shape == GF_ORIFICE_SLIT) {
-            nx = gf_clamp(nx, -sim->spot_ins_r, sim->spot_ins_r);
+            nx = nx < -sim->spot_ins_r ? -sim->spot_ins_r : (nx > sim->spot_ins_r ? sim->spot_ins_r : nx);
         } else {
             double rho2 = nx * nx + ny * ny, R = sim->spot_ins_r;
             if (rho2 > R * R) {

@@ -31,6 +31,26 @@ expect_rc 0 "granflow config custom.ini"
 cmp -s custom.ini out || fail "granflow config custom.ini: output differs from the file it read"
 ok "non-default values (17 digits, enums, uint64 max, path with a space) round-trip"
 
+# --- a cylinder: its config reads back to itself; bad shapes are refused ----
+gf config --set container.shape=cylinder --set container.radius=10 --set container.hopper_angle=30 \
+    --set container.outlet_diameter=6 --set container.outlet_length=4 --set container.inner_radius=2
+expect_rc 0 "granflow config (a cylinder)"
+cp out cylinder.ini
+grep -qx 'width = 20' cylinder.ini || fail "a cylinder of radius 10: width is not its bounding box 20"
+gf config cylinder.ini
+expect_rc 0 "granflow config cylinder.ini"
+cmp -s cylinder.ini out || fail "granflow config cylinder.ini: output differs from the file it read"
+gf config --set container.shape=cylinder --set container.radius=5 --set container.outlet_diameter=12
+expect_rc 2 "config: outlet wider than the cylinder"
+expect_err "container.outlet_diameter" "config: outlet wider than the cylinder"
+gf config --set container.shape=cylinder --set container.inner_radius=2
+expect_rc 2 "config: a column on a flat base"
+expect_err "container.hopper_angle" "config: a column on a flat base"
+gf config --set container.shape=cone
+expect_rc 2 "config: container.shape=cone"
+expect_err "container.shape" "config: container.shape=cone"
+ok "a cylinder's config round-trips; bad cylinders exit 2 naming the key"
+
 # --- --set errors -----------------------------------------------------------
 gf config --set spot.w=abc
 expect_rc 2 "config --set spot.w=abc"

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+// The box (SPEC 1.1; 2009 paper Sec. 2: walls x = +-25, y = +-4, base z = 0
+// with a circular or slit orifice).
+#include "geom/container.h"
+
+static int gf_box_walls(const gf_container *c, const double p[3], double reach, gf_wall_hit *hit)
+{
+    int n = 0;
+    const double side[4][4] = {{p[0] - c->xlo, 1, 0, 0}, {c->xhi - p[0], -1, 0, 0},
+                               {p[1] - c->ylo, 0, 1, 0}, {c->yhi - p[1], 0, -1, 0}};
+    for (int k = 0; k < 4; k++)
+        if (side[k][0] < reach) hit[n++] = (gf_wall_hit){side[k][0], {side[k][1], side[k][2], side[k][3]}, true};
+    if (p[2] >= reach) return n;
+    if (!gf_container_over_hole(c, p[0], p[1])) {
+        hit[n++] = (gf_wall_hit){p[2], {0, 0, 1}, false}; // the base plate
+        return n;
+    }
+    // Over the hole: the nearest plate point is on the rim (a circle or the two slit edges).
+    double ex, ey;
+    if (c->shape == GF_ORIFICE_SLIT) {
+        ex = p[0] >= 0 ? p[0] - c->hole : p[0] + c->hole;
+        ey = 0.0;
+    } else {
+        double rho = sqrt(p[0] * p[0] + p[1] * p[1]);
+        if (rho <= 0.0) return n;
+        double s = (rho - c->hole) / rho;
+        ex = p[0] * s;
+        ey = p[1] * s;
+    }
+    double dist = sqrt(ex * ex + ey * ey + p[2] * p[2]);
+    if (dist < reach && dist > 0.0) hit[n++] = (gf_wall_hit){dist, {ex / dist, ey / dist, p[2] / dist}, false};
+    return n;
+}
+
+void gf_box_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
+                 double *dy, double *dz)
+{
+    double g;
+    if ((g = x - c->xlo) < r) *dx += alpha * (r - g);
+    if ((g = c->xhi - x) < r) *dx -= alpha * (r - g);
+    if ((g = y - c->ylo) < r) *dy += alpha * (r - g);
+    if ((g = c->yhi - y) < r) *dy -= alpha * (r - g);
+    if (z >= r) return;
+    if (!gf_container_over_hole(c, x, y)) {
+        if (z > -r) *dz += alpha * (r - z); // on the plate (a centre under it is left to the side walls)
+        return;
+    }
+    // Over the hole: the nearest plate point is on the rim (a circle or the two slit edges).
+    double ex, ey; // horizontal vector from the rim point to the centre
+    if (c->shape == GF_ORIFICE_SLIT) {
+        ex = x >= 0 ? x - c->hole : x + c->hole;
+        ey = 0.0;
+    } else {
+        double rho = sqrt(x * x + y * y);
+        if (rho <= 0.0) return; // the rim is a full hole radius away
+        double s = (rho - c->hole) / rho;
+        ex = x * s;
+        ey = y * s;
+    }
+    double dist = sqrt(ex * ex + ey * ey + z * z);
+    if (dist >= r || dist <= 0.0) return;
+    double f = alpha * (r - dist) / dist;
+    *dx += f * ex;
+    *dy += f * ey;
+    *dz += f * z;
+}
+
+static bool gf_box_contains(const gf_container *c, double x, double y, double z, double r, double tol)
+{
+    if (x < c->xlo + r - tol || x > c->xhi - r + tol) return false;
+    if (y < c->ylo + r - tol || y > c->yhi - r + tol) return false;
+    return z >= r - tol || gf_container_over_hole(c, x, y);
+}
+
+static double gf_clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+static void gf_box_spot_clamp(const gf_container *c, double n[3], double dw)
+{
+    n[0] = gf_clamp(n[0], c->xlo + dw, c->xhi - dw);
+    n[1] = gf_clamp(n[1], c->ylo + dw, c->yhi - dw);
+}
+
+static int gf_box_mirrors(const gf_container *c, const double ctr[3], double rs, double m[][3])
+{
+    int n = 0;
+    const double walls[4] = {c->xlo, c->xhi, c->ylo, c->yhi};
+    for (int w = 0; w < 4; w++) {
+        int axis = w / 2;
+        if (fabs(ctr[axis] - walls[w]) >= rs) continue;
+        m[n][0] = ctr[0];
+        m[n][1] = ctr[1];
+        m[n][2] = ctr[2];
+        m[n][axis] = 2.0 * walls[w] - ctr[axis];
+        n++;
+    }
+    return n;
+}
+
+const gf_shape_ops gf_box_ops = {
+    .walls = gf_box_walls,
+    .push = gf_box_push,
+    .contains = gf_box_contains,
+    .spot_clamp = gf_box_spot_clamp,
+    .mirrors = gf_box_mirrors,
+};
