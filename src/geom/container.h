@@ -36,4 +36,16 @@ void gf_container_push(const gf_container *c, double x, double y, double z, doub
 /// the side walls and above the base, or anywhere over the hole.
 bool gf_container_contains(const gf_container *c, double x, double y, double z, double r, double tol);
 
+/// Bounding rectangle of the container's horizontal cross-section.
+void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2]);
+
+/// True when a sphere of radius r centred at (x, y) at the top of the
+/// container clears the side walls (re-insertion on the free surface asks
+/// this of every position it tries; a new shape answers for its own walls).
+bool gf_container_inside_xy(const gf_container *c, double x, double y, double r);
+
+/// Lowest height the centre of a sphere of radius r at (x, y) can have on
+/// the container's floor (the flat base: r).
+double gf_container_floor_z(const gf_container *c, double x, double y, double r);
+
 #endif

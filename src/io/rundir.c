@@ -5,6 +5,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,8 +15,11 @@
 
 #include "core/atomic_file.h"
 #include "core/clock.h"
+#include "core/alloc.h"
 #include "core/error.h"
+#include "geom/mesh.h"
 #include "granflow/packing.h"
+#include "io/vtk.h"
 
 typedef struct gf_rundir {
     const gf_config *cfg;
@@ -25,6 +29,8 @@ typedef struct gf_rundir {
     double t0;
     uint64_t moves0;
     gf_packing scratch;
+    int32_t *pass;      ///< recirculation: the pass of each scratch particle
+    size_t pass_cap;
     const char *status;
 } gf_rundir;
 
@@ -62,7 +68,9 @@ static gf_status gf_clear_snapshots(const char *snaps)
     gf_status st = GF_OK;
     for (struct dirent *e; (e = readdir(d)) != NULL;) {
         size_t n = strlen(e->d_name);
-        if (strncmp(e->d_name, "snap_", 5) != 0 || n < 6 || strcmp(e->d_name + n - 5, ".dump") != 0) continue;
+        if (strncmp(e->d_name, "snap_", 5) != 0 || n < 6 ||
+            (strcmp(e->d_name + n - 5, ".dump") != 0 && strcmp(e->d_name + n - 4, ".vtu") != 0))
+            continue;
         char path[GF_PATH_MAX + 300];
         snprintf(path, sizeof path, "%s/%s", snaps, e->d_name);
         if (remove(path) != 0) st = gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
@@ -76,8 +84,8 @@ static void gf_path(char *out, size_t n, const char *dir, const char *name)
     snprintf(out, n, "%s/%s", dir, name);
 }
 
-gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, double time,
-                                uint64_t step)
+gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, const int32_t *pass,
+                                double time, uint64_t step)
 {
     char tmp[GF_PATH_MAX + 8];
     FILE *f;
@@ -90,9 +98,15 @@ gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf
     fprintf(f, "ITEM: TIME\n%.17g\nITEM: TIMESTEP\n%" PRIu64 "\nITEM: NUMBER OF ATOMS\n%zu\n", time, step, p->n);
     fprintf(f, "ITEM: BOX BOUNDS ff ff ff\n%.17g %.17g\n%.17g %.17g\n%.17g %.17g\n", -0.5 * cfg->container_width,
             0.5 * cfg->container_width, -0.5 * cfg->container_depth, 0.5 * cfg->container_depth, zlo, ztop);
-    fputs("ITEM: ATOMS id type x y z\n", f);
-    for (size_t i = 0; i < p->n; i++)
-        fprintf(f, "%" PRId64 " %d %.7f %.7f %.7f\n", p->id[i], p->layer[i], p->x[i], p->y[i], p->z[i]);
+    bool poly = false; // a radius column only when the radii differ from the papers' 0.5
+    for (size_t i = 0; i < p->n && !poly; i++) poly = p->r[i] != 0.5;
+    fprintf(f, "ITEM: ATOMS id type x y z%s%s\n", poly ? " radius" : "", pass ? " pass" : "");
+    for (size_t i = 0; i < p->n; i++) {
+        fprintf(f, "%" PRId64 " %d %.7f %.7f %.7f", p->id[i], p->layer[i], p->x[i], p->y[i], p->z[i]);
+        if (poly) fprintf(f, " %.7g", p->r[i]);
+        if (pass) fprintf(f, " %d", (int)pass[i]);
+        fputc('\n', f);
+    }
     return gf_atomic_commit(f, tmp, path);
 }
 
@@ -101,9 +115,29 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     gf_rundir *rd = ctx;
     gf_status st = gf_sim_particles(sim, &rd->scratch);
     if (st != GF_OK) return st;
+    const int32_t *pass = NULL;
+    if (rd->cfg->run_recirculate) {
+        size_t n = rd->scratch.n;
+        if (n > rd->pass_cap) {
+            GF_DELETE(rd->pass, rd->pass_cap);
+            rd->pass_cap = 0;
+            if (!(rd->pass = GF_NEW(int32_t, n))) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+            rd->pass_cap = n;
+        }
+        if ((st = gf_sim_passes(sim, rd->pass, n)) != GF_OK) return st;
+        pass = rd->pass;
+    }
     char path[GF_PATH_MAX + 64];
-    snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
-    return gf_run_write_snapshot(path, rd->cfg, &rd->scratch, time, gf_sim_get_stats(sim).events);
+    const gf_output_format fmt = rd->cfg->output_format;
+    if (fmt != GF_OUTPUT_VTK) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
+        st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, pass, time, gf_sim_get_stats(sim).events);
+    }
+    if (st == GF_OK && fmt != GF_OUTPUT_DUMP) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
+        st = gf_vtk_write_particles(path, &rd->scratch, pass, time);
+    }
+    return st;
 }
 
 static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
@@ -115,9 +149,10 @@ static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
     if (st != GF_OK) return st;
     size_t n;
     const gf_exit *e = gf_sim_exits(sim, &n);
-    fputs("id,time,x,y\n", f);
+    fputs("id,time,x,y,pass,entry_time,entry_r\n", f);
     for (size_t i = 0; i < n; i++)
-        fprintf(f, "%" PRId64 ",%.9g,%.7f,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y);
+        fprintf(f, "%" PRId64 ",%.9g,%.7f,%.7f,%" PRId64 ",%.9g,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y, e[i].pass,
+                e[i].entry_time, e[i].entry_r);
     return gf_atomic_commit(f, tmp, path);
 }
 
@@ -135,6 +170,7 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     fprintf(f, "  \"seed\": %" PRIu64 ",\n", rd->cfg->run_seed);
     fprintf(f, "  \"particles_initial\": %zu,\n  \"particles_remaining\": %zu,\n  \"particles_exited\": %zu,\n",
             s.particles_initial, s.particles_remaining, s.particles_exited);
+    fprintf(f, "  \"particles_reinserted\": %zu,\n", s.particles_reinserted);
     fprintf(f, "  \"spots_inserted\": %" PRIu64 ",\n  \"spots_deleted\": %" PRIu64 ",\n  \"spots_active\": %zu,\n",
             s.spots_inserted, s.spots_deleted, s.spots_active);
     fprintf(f, "  \"spot_moves\": %" PRIu64 ",\n  \"relax_calls\": %" PRIu64 ",\n  \"events\": %" PRIu64 ",\n",
@@ -166,6 +202,23 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
                          wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
+}
+
+// container.vtk: the walls up to a diameter above the packing, for ParaView.
+static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
+{
+    gf_status st = gf_sim_particles(sim, &rd->scratch);
+    if (st != GF_OK) return st;
+    double top = 1.0;
+    for (size_t i = 0; i < rd->scratch.n; i++) top = fmax(top, rd->scratch.z[i] + rd->scratch.r[i] + 1.0);
+    gf_container box = gf_container_make(rd->cfg);
+    gf_mesh m;
+    if ((st = gf_container_mesh(&box, top, 96, &m)) != GF_OK) return st;
+    char path[GF_PATH_MAX + 32];
+    gf_path(path, sizeof path, rd->dir, "container.vtk");
+    st = gf_vtk_write_mesh(path, &m, "granflow container");
+    gf_mesh_free(&m);
+    return st;
 }
 
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
@@ -223,6 +276,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (st == GF_OK && ((st = gf_mkdirs(rd.dir)) == GF_OK && (st = gf_mkdir(snaps)) == GF_OK) && !opts->resume)
         st = gf_clear_snapshots(snaps);
     if (st == GF_OK) st = gf_config_save(&cfg, cfgpath);
+    if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
     if (st != GF_OK) {
         gf_sim_destroy(sim);
         return st;
@@ -259,6 +313,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     }
     if (stats) *stats = gf_sim_get_stats(sim);
     gf_packing_free(&rd.scratch);
+    GF_DELETE(rd.pass, rd.pass_cap);
     gf_sim_destroy(sim);
     return st;
 }
