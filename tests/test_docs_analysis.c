@@ -227,7 +227,7 @@ static gf_series flowing_silo(void)
             if (z >= 0.0) {
                 assert_int_equal(gf_packing_push(&s.frames[k].pk, p0.id[i], p0.layer[i], x, p0.y[i], z, 0.5), GF_OK);
             } else if (k + 1 == s.nframes) {
-                ex[s.nexits++] = (gf_exit){p0.id[i], p0.z[i] / v, p0.x[i], p0.y[i]};
+                ex[s.nexits++] = (gf_exit){.id = p0.id[i], .time = p0.z[i] / v, .x = p0.x[i], .y = p0.y[i], .pass = 1};
             }
         }
     }

@@ -93,7 +93,7 @@ static void outflow_from_exits(void **state)
     gf_series s;
     series_init(&s, 8, times);
     gf_exit *e = GF_NEW(gf_exit, N);
-    for (size_t k = 0; k < N; k++) e[k] = (gf_exit){(int64_t)k + 1, 1.0 + (double)k / R, 0.0, 0.0};
+    for (size_t k = 0; k < N; k++) e[k] = (gf_exit){.id = (int64_t)k + 1, .time = 1.0 + (double)k / R, .pass = 1};
     series_exits(&s, e, N);
     GF_DELETE(e, N);
     gf_analysis_opts o;
@@ -300,8 +300,8 @@ static void rtd_per_layer(void **state)
     for (int i = 1; i <= 6; i++) push(&s.frames[0].pk, i, i <= 3 ? 1 : 2, 0.0, 5.0 * i);
     push(&s.frames[1].pk, 6, 2, 0.0, 1.0);
     s.n_initial = 6;
-    const gf_exit e[] = {{6, 1.0, 0, 0}, {1, 3.0, 0, 0}, {99, 4.0, 0, 0}, {2, 5.0, 0, 0},
-                         {4, 6.0, 0, 0}, {5, 8.0, 0, 0}, {3, 10.0, 0, 0}};
+    const gf_exit e[] = {{.id = 6, .time = 1.0}, {.id = 1, .time = 3.0}, {.id = 99, .time = 4.0}, {.id = 2, .time = 5.0},
+                         {.id = 4, .time = 6.0}, {.id = 5, .time = 8.0}, {.id = 3, .time = 10.0}};
     series_exits(&s, e, sizeof e / sizeof e[0]);
     gf_analysis_opts o;
     gf_analysis_opts_default(&o);
@@ -355,7 +355,7 @@ static void rtd_needs_exits(void **state)
     assert_non_null(strstr(gf_last_error(), "rtd: needs the exit time of every particle"));
     gf_measure_free(&out);
     // Exits, but none yet: a valid, empty result.
-    series_exits(&s, (const gf_exit[]){{1, -1.0, 0, 0}}, 1); // before the first frame
+    series_exits(&s, (const gf_exit[]){{.id = 1, .time = -1.0}}, 1); // before the first frame
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
     assert_true(gf_test_value(&out, "rtd_exited") == 0.0 && isnan(gf_test_value(&out, "rtd_mean")));
     gnuplot_runs(&out, "rtd_empty");

@@ -62,7 +62,7 @@ static void run_directory(void **state)
         for (int i = k; i < 4; i++)
             assert_int_equal(gf_packing_push(&pk, i + 1, layer[i], -5.0 + i, 0.5, 10.0 * i + 1 - k, 0.5), GF_OK);
         snprintf(path, sizeof path, "%s/snapshots/snap_%06d.dump", dir, k);
-        assert_int_equal(gf_run_write_snapshot(path, &cfg, &pk, 2.0 * k, (uint64_t)(1000 * k)), GF_OK);
+        assert_int_equal(gf_run_write_snapshot(path, &cfg, &pk, NULL, 2.0 * k, (uint64_t)(1000 * k)), GF_OK);
         gf_packing_free(&pk);
     }
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n2,3.5,0.25,-1\n1,1.25,0.5,0.75\n");
@@ -219,6 +219,8 @@ static void bad_exits_line(void **state)
     expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:3:", "column 'time': 'abc'");
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n1,0.5,0,0\n2,0.7,0\n");
     expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:3:", "3 fields, expected 4");
+    gf_test_write_file(dir, "exits.csv", "id,time,x,y,pass,entry_time,entry_r\n1,0.5,0,0,0,0,1\n");
+    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:2:", "column 'pass': '0'");
     gf_test_write_file(dir, "exits.csv", "id,t,x,y\n");
     expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:1:", "header 'id,time,x,y'");
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n\n1,0.5,0,0\n-3,0.7,0,0\n");

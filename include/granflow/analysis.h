@@ -127,6 +127,12 @@ typedef struct gf_analysis_opts {
     // surface
     double surf_dx;           ///< column spacing, d (2.5): x_j = dx j - dx/2, j = 1..10
     size_t surf_ncols;        ///< columns (10)
+    // zones (reactor outputs, docs/pebble-bed.md): radii from the axis x = y = 0
+    double zone_radii[16];    ///< outer radii of the radial zones, increasing, d; the last zone reaches
+                              ///< the wall (none given: four zones of equal area within the wall)
+    size_t zone_nradii;       ///< how many radii were given (0: automatic)
+    double zone_dr;           ///< radial bin of v_z(r), d (0.5)
+    double zone_dz;           ///< height bin of the streamlines, d (2)
 } gf_analysis_opts;
 
 GF_API void gf_analysis_opts_default(gf_analysis_opts *o);
@@ -148,6 +154,7 @@ GF_API gf_status gf_measure_density(const gf_series *s, const gf_analysis_opts *
 GF_API gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 GF_API gf_status gf_measure_badness(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+GF_API gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 
 /// A measurement by name ("outflow", "velocity", ...), in the order above.
 typedef struct gf_measure_def {

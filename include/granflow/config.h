@@ -78,6 +78,19 @@ typedef enum gf_dem_fill {
     GF_DEM_GENERATE = 1, ///< granflow's packing (packing.file, else the generator), settled under gravity by LAMMPS
 } gf_dem_fill;
 
+/// Where a recirculated particle is put back on the free surface (run.reinsert).
+typedef enum gf_reinsert {
+    GF_REINSERT_RANDOM = 0, ///< uniformly over the whole cross-section
+    GF_REINSERT_ZONE = 1,   ///< uniformly over the annulus run.reinsert_rmin <= r < run.reinsert_rmax
+} gf_reinsert;
+
+/// What a run writes at each snapshot (output.format).
+typedef enum gf_output_format {
+    GF_OUTPUT_DUMP = 0, ///< LAMMPS text dumps (snapshots/snap_NNNNNN.dump)
+    GF_OUTPUT_VTK = 1,  ///< VTK XML unstructured grids (snapshots/snap_NNNNNN.vtu)
+    GF_OUTPUT_BOTH = 2, ///< both
+} gf_output_format;
+
 #define GF_PATH_MAX 1024
 
 /// The whole configuration. Make it with gf_config_default(), then change
@@ -103,6 +116,8 @@ typedef struct gf_config {
     char packing_file[GF_PATH_MAX];    ///< import this packing instead of generating (LAMMPS dump, .xyz, .csv)
     double packing_layer_thickness;    ///< thickness of the colour bands tagging initial layers, d; default 10
     char packing_types[GF_PATH_MAX];   ///< atom types to import from a LAMMPS dump, "1,3" (empty: all)
+    double packing_radius2;            ///< radius of the second species of a generated packing, d; default 0.5
+    double packing_fraction2;          ///< number fraction of the second species; default 0 (monodisperse)
 
     // [spot] the five fitted parameters and the walk (2009 paper Fig. 2)
     double spot_radius;                ///< r_s, d; default 2.6
@@ -136,9 +151,15 @@ typedef struct gf_config {
     gf_run_mode run_mode;              ///< event (default) or fixed
     gf_run_order run_order;            ///< fixed mode: random (default), newest first, or spatial (parallel)
     int64_t run_threads;               ///< threads of the spatial fixed step; 0 (default): every core
+    int run_recirculate;               ///< put exited particles back on the free surface (on/off); default off
+    int64_t run_max_passes;            ///< recirculation: a particle leaves for good after this many passes; 0 (default): never
+    gf_reinsert run_reinsert;          ///< recirculation: random (default) or zone
+    double run_reinsert_rmin;          ///< zone re-insertion: inner radius from the axis x = y = 0, d; default 0
+    double run_reinsert_rmax;          ///< zone re-insertion: outer radius, d; NaN = auto (to the wall)
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
+    gf_output_format output_format;    ///< dump (default), vtk or both
 
     // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:
     // nearest-neighbour distance 1 (one particle diameter), time in iterations.

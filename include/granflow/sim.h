@@ -25,7 +25,8 @@ typedef struct gf_sim_stats {
     double time;                 ///< simulated time, tau
     size_t particles_initial;    ///< particles at t = 0
     size_t particles_remaining;  ///< particles still in the container
-    size_t particles_exited;     ///< particles that left through the orifice
+    size_t particles_exited;     ///< exits through the orifice (with recirculation, one particle may exit many times)
+    size_t particles_reinserted; ///< exits put back on the free surface (run.recirculate); initial = remaining + exited - reinserted
     size_t spots_active;         ///< spots currently in the packing
     uint64_t spots_inserted;     ///< spots born at the orifice
     uint64_t spots_deleted;      ///< spots removed at the top of the packing
@@ -75,6 +76,10 @@ GF_API const gf_config *gf_sim_config(const gf_sim *sim);
 
 /// Copies the particles still in the container into `out` (sorted by id).
 GF_API gf_status gf_sim_particles(const gf_sim *sim, gf_packing *out);
+
+/// The pass each particle of gf_sim_particles is on (same order: by id) into
+/// pass[0, n); n must be the count gf_sim_particles returned.
+GF_API gf_status gf_sim_passes(const gf_sim *sim, int32_t *pass, size_t n);
 
 /// The exits so far, sorted by (time, id); `*n` receives the count. Owned by sim.
 GF_API const gf_exit *gf_sim_exits(const gf_sim *sim, size_t *n);

@@ -27,6 +27,8 @@ static const gf_measure_def gf_measure_table[] = {
     {"surface", "free-surface angle by regression, over time", gf_measure_surface},
     {"badness", "packing badness B over a region and window", gf_measure_badness},
     {"rtd", "residence-time distribution by initial layer", gf_measure_rtd},
+    {"zones", "reactor outputs: residence times per pass and radial zone, flow shares, mixing matrix, streamlines, v_z(r)",
+     gf_measure_zones},
 };
 
 const gf_measure_def *gf_measures(size_t *n)

@@ -38,6 +38,9 @@ void gf_analysis_opts_default(gf_analysis_opts *o)
     o->dens_z1 = 70.0;
     o->surf_dx = 2.5; // 2009 paper Sec. 4: x_j = 2.5 j - 1.25, j = 1..10
     o->surf_ncols = 10;
+    o->zone_nradii = 0;
+    o->zone_dr = 0.5;
+    o->zone_dz = 2.0;
 }
 
 typedef enum { GF_OPT_REAL, GF_OPT_COUNT, GF_OPT_LIST } gf_opt_kind;
@@ -46,16 +49,19 @@ typedef struct gf_opt_key {
     const char *key;
     gf_opt_kind kind;
     size_t off;      ///< offset of the field in gf_analysis_opts
+    size_t count;    ///< GF_OPT_LIST: offset of its count (size_t)
     double lo, hi;   ///< accepted range (inclusive)
 } gf_opt_key;
 
-#define GF_OPT(k, kind, field, lo, hi) {k, kind, offsetof(gf_analysis_opts, field), lo, hi}
+#define GF_OPT(k, kind, field, lo, hi) {k, kind, offsetof(gf_analysis_opts, field), 0, lo, hi}
+#define GF_OPT_L(k, field, nfield, lo, hi) \
+    {k, GF_OPT_LIST, offsetof(gf_analysis_opts, field), offsetof(gf_analysis_opts, nfield), lo, hi}
 static const gf_opt_key gf_opt_keys[] = {
     GF_OPT("window.t0", GF_OPT_REAL, t0, 0.0, 1e12),
     GF_OPT("window.t1", GF_OPT_REAL, t1, 0.0, 1e12),
     GF_OPT("dump.dt", GF_OPT_REAL, dump_dt, 0.0, 1e6),
     GF_OPT("velocity.bin", GF_OPT_REAL, vel_bin, 0.05, 100.0),
-    GF_OPT("velocity.heights", GF_OPT_LIST, vel_heights, -1e6, 1e6),
+    GF_OPT_L("velocity.heights", vel_heights, vel_nheights, -1e6, 1e6),
     GF_OPT("velocity.band", GF_OPT_REAL, vel_band, 0.05, 100.0),
     GF_OPT("velocity.y_xhalf", GF_OPT_REAL, vely_xhalf, 0.1, 1e6),
     GF_OPT("velocity.y_z0", GF_OPT_REAL, vely_z0, -1e6, 1e6),
@@ -76,6 +82,9 @@ static const gf_opt_key gf_opt_keys[] = {
     GF_OPT("density.z1", GF_OPT_REAL, dens_z1, -1e6, 1e6),
     GF_OPT("surface.dx", GF_OPT_REAL, surf_dx, 0.1, 1e6),
     GF_OPT("surface.columns", GF_OPT_COUNT, surf_ncols, 2.0, 1000.0),
+    GF_OPT_L("zones.radii", zone_radii, zone_nradii, 1e-6, 1e6),
+    GF_OPT("zones.dr", GF_OPT_REAL, zone_dr, 0.01, 1e3),
+    GF_OPT("zones.dz", GF_OPT_REAL, zone_dz, 0.01, 1e3),
 };
 #undef GF_OPT
 
@@ -131,8 +140,12 @@ gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
             n++;
         }
         if (n == 0) return gf_error_set(GF_ERR_PARAM, "analysis option %s: empty list", d->key);
-        memcpy(o->vel_heights, list, sizeof(double) * n);
-        o->vel_nheights = n;
+        if (d->off == offsetof(gf_analysis_opts, zone_radii))
+            for (size_t k2 = 1; k2 < n; k2++)
+                if (!(list[k2] > list[k2 - 1]))
+                    return gf_error_set(GF_ERR_PARAM, "analysis option %s: the radii must increase", d->key);
+        memcpy(field, list, sizeof(double) * n);
+        *(size_t *)(void *)((char *)o + d->count) = n;
         return GF_OK;
     }
     return gf_error_set(GF_ERR_PARAM, "unknown analysis option '%.*s' (see docs/analysis.md)", (int)klen, assignment);

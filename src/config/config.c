@@ -363,6 +363,12 @@ gf_status gf_config_validate(gf_config *cfg)
                             "born per move time (the papers use ~13)",
                             a, b, GF_MAX_SPOTS_PER_MOVE);
     }
+    if (cfg->run_reinsert == GF_REINSERT_ZONE && !isnan(cfg->run_reinsert_rmax) &&
+        !(cfg->run_reinsert_rmin < cfg->run_reinsert_rmax)) {
+        gf_keys_format_double(cfg->run_reinsert_rmin, a, sizeof a);
+        gf_keys_format_double(cfg->run_reinsert_rmax, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM, "run.reinsert_rmin = %s must be less than run.reinsert_rmax = %s", a, b);
+    }
     size_t ntypes;
     int32_t types[GF_PACKING_MAXTYPES];
     if (gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes) != GF_OK) {

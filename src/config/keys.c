@@ -15,6 +15,8 @@ _Static_assert(sizeof(gf_ball_centre) == sizeof(int), "enum keys are stored as i
 _Static_assert(sizeof(gf_lga_scenario) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_lga_flow) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_dem_fill) == sizeof(int), "enum keys are stored as int");
+_Static_assert(sizeof(gf_reinsert) == sizeof(int) && sizeof(gf_output_format) == sizeof(int),
+               "enum keys are stored as int");
 _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == sizeof(int) &&
                    sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int),
                "enum keys are stored as int");
@@ -29,6 +31,8 @@ static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
 static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", NULL};
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
+static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
+static const char *const gf_keys_format_names[] = {"dump", "vtk", "both", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
 #define GF_OFF(field) offsetof(gf_config, field)
@@ -74,6 +78,10 @@ const gf_key gf_keys[] = {
      .def = "10", .unit = "d", .doc = "thickness of the colour bands tagging initial layers"},
     {"packing", "types", GF_KEY_PATH, GF_OFF(packing_types), .def = "", .unit = "",
      .doc = "atom types to keep when importing a LAMMPS dump, e.g. 1 or 1,3 (empty: all)"},
+    {"packing", "radius2", GF_KEY_DOUBLE, GF_OFF(packing_radius2), .min = 0.35, .max = 1.0, .def = "0.5",
+     .unit = "d", .doc = "radius of the second species of a generated packing (the first has radius 0.5)"},
+    {"packing", "fraction2", GF_KEY_DOUBLE, GF_OFF(packing_fraction2), .min = 0, .max = 1, .def = "0",
+     .unit = "", .doc = "number fraction of the second species (0: monodisperse)"},
 
     {"spot", "radius", GF_KEY_DOUBLE, GF_OFF(spot_radius), .min = 0, .max = 20, .min_open = true,
      .def = "2.6", .unit = "d", .doc = "spot radius r_s"},
@@ -137,9 +145,22 @@ const gf_key gf_keys[] = {
                         "fixed colouring, run in parallel; results do not depend on run.threads)"},
     {"run", "threads", GF_KEY_INT64, GF_OFF(run_threads), .min = 0, .max = 4096, .def = "0", .unit = "",
      .doc = "threads of the spatial fixed step (run.order = spatial); 0: every core"},
+    {"run", "recirculate", GF_KEY_ENUM, GF_OFF(run_recirculate), .names = gf_keys_onoff_names, .def = "off",
+     .unit = "", .doc = "put every particle that exits back on the free surface, its pass count + 1 (pebble-bed cycling)"},
+    {"run", "max_passes", GF_KEY_INT64, GF_OFF(run_max_passes), .min = 0, .max = 1e9, .def = "0", .unit = "",
+     .doc = "recirculation: a particle leaves for good at the end of this pass (0: never)"},
+    {"run", "reinsert", GF_KEY_ENUM, GF_OFF(run_reinsert), .names = gf_keys_reinsert_names, .def = "random",
+     .unit = "", .doc = "recirculation: where on the surface: random (whole cross-section) or zone (the annulus "
+                        "reinsert_rmin <= r < reinsert_rmax around the axis x = y = 0)"},
+    {"run", "reinsert_rmin", GF_KEY_DOUBLE, GF_OFF(run_reinsert_rmin), GF_NONNEG, .def = "0", .unit = "d",
+     .doc = "zone re-insertion: inner radius from the axis"},
+    {"run", "reinsert_rmax", GF_KEY_AUTO, GF_OFF(run_reinsert_rmax), GF_POSITIVE, .def = "auto", .unit = "d",
+     .doc = "zone re-insertion: outer radius from the axis (auto: to the wall)"},
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long; at most 10^5 per run.duration"},
+    {"output", "format", GF_KEY_ENUM, GF_OFF(output_format), .names = gf_keys_format_names, .def = "dump",
+     .unit = "", .doc = "snapshot files: dump (LAMMPS text), vtk (VTK XML .vtu for ParaView) or both"},
 
     {"lga", "scenario", GF_KEY_ENUM, GF_OFF(lga_scenario), .names = gf_keys_lga_scenario_names,
      .def = "silo", .unit = "",

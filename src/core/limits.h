@@ -47,6 +47,34 @@
 /// them away: far enough that no live particle can overlap them.
 #define GF_PARK_COORD 1.0e30
 
+/// Recirculation (spot/recirculate.c): a re-inserted sphere rolls into a
+/// pocket of the surface by steps of GF_SETTLE_STEP r down, each followed by
+/// GF_SETTLE_SWEEPS passes pushing it out of its neighbours, for at most
+/// GF_SETTLE_ITERS steps, ending after GF_SETTLE_PATIENCE steps in which it
+/// did not move. Perched near the top of a sphere it rolls off geometrically
+/// (~10% further per step), so a pocket is found in ~20-60 steps; the exact
+/// set-down afterwards removes what the sweeps leave of its contacts' overlaps.
+#define GF_SETTLE_STEP 0.2
+#define GF_SETTLE_SWEEPS 8
+#define GF_SETTLE_ITERS 400
+#define GF_SETTLE_PATIENCE 4
+/// Most a settled sphere may be lifted clear of its overlaps, times r; more
+/// means the sweeps did not converge, and the plain drop is kept instead.
+#define GF_SETTLE_LIFT 0.05
+/// Targets tried for one re-insertion before the plain drop is kept (one
+/// settling in five does not converge; eight fail together ~1e-6 of the time).
+#define GF_SETTLE_TARGETS 8
+/// A step that moves a settling sphere less than this times r counts as still.
+#define GF_SETTLE_STILL 1e-6
+/// Neighbours within r + r_max + this of a settling sphere are gathered, and
+/// again after it has moved half of this, d.
+#define GF_SETTLE_REACH 1.0
+/// Clearance added to the resting height, d, so rounding never makes an overlap.
+#define GF_REINSERT_GAP 1e-9
+/// Rejection samples for a target in the re-insertion zone before giving up
+/// (a zone of 1e-4 of the cross-section is still found with p > 0.99995).
+#define GF_REINSERT_SAMPLES 100000
+
 /// Largest particle count the engine accepts (32-bit indices in cells and lists).
 #define GF_MAX_PARTICLES 100000000
 

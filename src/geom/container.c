@@ -71,3 +71,24 @@ int gf_container_mirror_walls(const gf_container *c, const double ctr[3], double
     }
     return k;
 }
+
+void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2])
+{
+    lo[0] = c->xlo;
+    lo[1] = c->ylo;
+    hi[0] = c->xhi;
+    hi[1] = c->yhi;
+}
+
+bool gf_container_inside_xy(const gf_container *c, double x, double y, double r)
+{
+    return x >= c->xlo + r && x <= c->xhi - r && y >= c->ylo + r && y <= c->yhi - r;
+}
+
+double gf_container_floor_z(const gf_container *c, double x, double y, double r)
+{
+    (void)c;
+    (void)x;
+    (void)y;
+    return r;
+}

@@ -112,4 +112,16 @@ void gf_container_push_walls(const gf_container *c, double x, double y, double z
                              double *dx, double *dy, double *dz);
 int gf_container_mirror_walls(const gf_container *c, const double ctr[3], double rs, double m[][3]);
 
+/// Bounding rectangle of the container's horizontal cross-section.
+void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2]);
+
+/// True when a sphere of radius r centred at (x, y) at the top of the
+/// container clears the side walls (re-insertion on the free surface asks
+/// this of every position it tries; a new shape answers for its own walls).
+bool gf_container_inside_xy(const gf_container *c, double x, double y, double r);
+
+/// Lowest height the centre of a sphere of radius r at (x, y) can have on
+/// the container's floor (the flat base: r).
+double gf_container_floor_z(const gf_container *c, double x, double y, double r);
+
 #endif

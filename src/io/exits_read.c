@@ -2,6 +2,8 @@
 // gf_exits_read: the exits.csv a run writes (src/io/rundir.c), back into gf_exit records.
 #include "io/exits_read.h"
 
+#include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -42,38 +44,50 @@ static int gf_exits_cmp(const void *pa, const void *pb)
 
 static gf_status gf_exits_parse(gf_textscan *ts, gf_exit **arr, size_t *n, size_t *cap)
 {
-    static const char *const names[4] = {"id", "time", "x", "y"};
-    int have_header = 0;
+    // id,time,x,y (a run without recirculation's columns, or an older run),
+    // or id,time,x,y,pass,entry_time,entry_r.
+    static const char *const names[7] = {"id", "time", "x", "y", "pass", "entry_time", "entry_r"};
+    size_t ncol = 0;
     for (;;) {
-        char *line, *tok[4];
+        char *line, *tok[7];
         size_t len;
         gf_status st;
         int r = gf_textscan_next(ts, &line, &len, &st);
         if (r < 0) return st;
         if (r == 0) break;
         if (!*gf_textscan_skip_blank(line)) continue;
-        size_t nf = gf_exits_split(line, tok, 4);
-        if (!have_header) {
-            if (nf != 4 || strcasecmp(tok[0], "id") || strcasecmp(tok[1], "time") || strcasecmp(tok[2], "x") ||
-                strcasecmp(tok[3], "y"))
-                return gf_error_set(GF_ERR_FORMAT, "%s:%ld: expected the header 'id,time,x,y'", ts->path, ts->line);
-            have_header = 1;
+        size_t nf = gf_exits_split(line, tok, 7);
+        if (!ncol) {
+            bool ok = nf == 4 || nf == 7;
+            for (size_t k = 0; ok && k < nf; k++) ok = strcasecmp(tok[k], names[k]) == 0;
+            if (!ok)
+                return gf_error_set(GF_ERR_FORMAT, "%s:%ld: expected the header 'id,time,x,y' or "
+                                                   "'id,time,x,y,pass,entry_time,entry_r'", ts->path, ts->line);
+            ncol = nf;
             continue;
         }
-        if (nf != 4)
-            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: %zu fields, expected 4 (id,time,x,y)%s", ts->path, ts->line,
-                                nf, ts->partial && nf < 4 ? " (truncated file?)" : "");
-        gf_exit e;
+        if (nf != ncol)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: %zu fields, expected %zu as the header says%s", ts->path,
+                                ts->line, nf, ncol, ts->partial && nf < ncol ? " (truncated file?)" : "");
+        gf_exit e = {.pass = 1, .entry_time = 0.0, .entry_r = NAN};
         long long id;
         if (gf_textscan_int(tok[0], &id) != 0 || id <= 0)
             return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'id': '%.64s' is not a positive integer", ts->path,
                                 ts->line, tok[0]);
         e.id = (int64_t)id;
-        double *v[3] = {&e.time, &e.x, &e.y};
-        for (int k = 0; k < 3; k++)
-            if (gf_textscan_double(tok[k + 1], v[k]) != 0)
+        double *v[6] = {&e.time, &e.x, &e.y, NULL, &e.entry_time, &e.entry_r};
+        for (size_t k = 1; k < ncol; k++) {
+            if (k == 4) {
+                long long pass;
+                if (gf_textscan_int(tok[4], &pass) != 0 || pass <= 0)
+                    return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'pass': '%.64s' is not a positive integer",
+                                        ts->path, ts->line, tok[4]);
+                e.pass = pass;
+            } else if (gf_textscan_double(tok[k], v[k - 1]) != 0) {
                 return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column '%s': '%.64s' is not a finite number", ts->path,
-                                    ts->line, names[k + 1], tok[k + 1]);
+                                    ts->line, names[k], tok[k]);
+            }
+        }
         if (*n == *cap) {
             size_t nc = *cap ? 2 * *cap : 1024;
             gf_exit *a = gf_realloc(*arr, sizeof(gf_exit) * *cap, sizeof(gf_exit) * nc);
@@ -83,7 +97,7 @@ static gf_status gf_exits_parse(gf_textscan *ts, gf_exit **arr, size_t *n, size_
         }
         (*arr)[(*n)++] = e;
     }
-    if (!have_header) return gf_error_set(GF_ERR_FORMAT, "%s: empty file, expected the header 'id,time,x,y'", ts->path);
+    if (!ncol) return gf_error_set(GF_ERR_FORMAT, "%s: empty file, expected the header 'id,time,x,y'", ts->path);
     return GF_OK;
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Internal: reading a run's exits.csv (`id,time,x,y`, one line per particle that left).
+// Internal: reading a run's exits.csv (`id,time,x,y[,pass,entry_time,entry_r]`, one line per exit).
 #ifndef GF_IO_EXITS_READ_H
 #define GF_IO_EXITS_READ_H
 

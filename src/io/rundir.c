@@ -16,8 +16,11 @@
 
 #include "core/atomic_file.h"
 #include "core/clock.h"
+#include "core/alloc.h"
 #include "core/error.h"
+#include "geom/mesh.h"
 #include "granflow/packing.h"
+#include "io/vtk.h"
 
 typedef struct gf_rundir {
     const gf_config *cfg;
@@ -27,6 +30,8 @@ typedef struct gf_rundir {
     double t0;
     uint64_t moves0;
     gf_packing scratch;
+    int32_t *pass;      ///< recirculation: the pass of each scratch particle
+    size_t pass_cap;
     const char *status;
     FILE *exits;          // exits.csv, open for appending
     size_t exits_written; // exits already in it
@@ -97,9 +102,11 @@ static gf_status gf_clear_snapshots(const char *snaps)
     gf_status st = GF_OK;
     for (struct dirent *e; (e = readdir(d)) != NULL;) {
         size_t n = strlen(e->d_name);
+        bool snap = strncmp(e->d_name, "snap_", 5) == 0;
         bool dump = n >= 6 && strcmp(e->d_name + n - 5, ".dump") == 0;
-        bool tmp = n >= 10 && strcmp(e->d_name + n - 9, ".dump.tmp") == 0;
-        if (strncmp(e->d_name, "snap_", 5) != 0 || !(dump || tmp)) continue;
+        bool vtu = n >= 5 && strcmp(e->d_name + n - 4, ".vtu") == 0;
+        bool tmp = n >= 9 && strcmp(e->d_name + n - 4, ".tmp") == 0;
+        if (!snap || !(dump || vtu || tmp)) continue;
         char path[GF_PATH_MAX + 300];
         snprintf(path, sizeof path, "%s/%s", snaps, e->d_name);
         if (st == GF_OK) st = gf_remove(path);
@@ -115,7 +122,8 @@ static gf_status gf_clear_snapshots(const char *snaps)
 static gf_status gf_clear_run(const char *dir)
 {
     static const char *const files[] = {"checkpoint.bin", "checkpoint.bin.tmp", "summary.json", "summary.json.tmp",
-                                        "exits.csv",      "exits.csv.tmp",      "config.ini",   "config.ini.tmp"};
+                                        "exits.csv",      "exits.csv.tmp",      "config.ini",   "config.ini.tmp",
+                                        "container.vtk",  "container.vtk.tmp"};
     static const char *const trees[] = {"analysis", "render"};
     char path[GF_PATH_MAX + 32];
     gf_status st = GF_OK;
@@ -168,8 +176,8 @@ static void gf_path(char *out, size_t n, const char *dir, const char *name)
     snprintf(out, n, "%s/%s", dir, name);
 }
 
-gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, double time,
-                                uint64_t step)
+gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, const int32_t *pass,
+                                double time, uint64_t step)
 {
     char tmp[GF_PATH_MAX + 8];
     FILE *f;
@@ -182,9 +190,15 @@ gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf
     fprintf(f, "ITEM: TIME\n%.17g\nITEM: TIMESTEP\n%" PRIu64 "\nITEM: NUMBER OF ATOMS\n%zu\n", time, step, p->n);
     fprintf(f, "ITEM: BOX BOUNDS ff ff ff\n%.17g %.17g\n%.17g %.17g\n%.17g %.17g\n", -0.5 * cfg->container_width,
             0.5 * cfg->container_width, -0.5 * cfg->container_depth, 0.5 * cfg->container_depth, zlo, ztop);
-    fputs("ITEM: ATOMS id type x y z\n", f);
-    for (size_t i = 0; i < p->n; i++)
-        fprintf(f, "%" PRId64 " %d %.7f %.7f %.7f\n", p->id[i], p->layer[i], p->x[i], p->y[i], p->z[i]);
+    bool poly = false; // a radius column only when the radii differ from the papers' 0.5
+    for (size_t i = 0; i < p->n && !poly; i++) poly = p->r[i] != 0.5;
+    fprintf(f, "ITEM: ATOMS id type x y z%s%s\n", poly ? " radius" : "", pass ? " pass" : "");
+    for (size_t i = 0; i < p->n; i++) {
+        fprintf(f, "%" PRId64 " %d %.7f %.7f %.7f", p->id[i], p->layer[i], p->x[i], p->y[i], p->z[i]);
+        if (poly) fprintf(f, " %.7g", p->r[i]);
+        if (pass) fprintf(f, " %d", (int)pass[i]);
+        fputc('\n', f);
+    }
     return gf_atomic_commit(f, tmp, path);
 }
 
@@ -195,9 +209,28 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     gf_rundir *rd = ctx;
     gf_status st = gf_sim_particles(sim, &rd->scratch);
     if (st != GF_OK) return st;
+    const int32_t *pass = NULL;
+    if (rd->cfg->run_recirculate) {
+        size_t n = rd->scratch.n;
+        if (n > rd->pass_cap) {
+            GF_DELETE(rd->pass, rd->pass_cap);
+            rd->pass_cap = 0;
+            if (!(rd->pass = GF_NEW(int32_t, n))) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+            rd->pass_cap = n;
+        }
+        if ((st = gf_sim_passes(sim, rd->pass, n)) != GF_OK) return st;
+        pass = rd->pass;
+    }
     char path[GF_PATH_MAX + 64];
-    snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
-    st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, time, gf_sim_get_stats(sim).events);
+    const gf_output_format fmt = rd->cfg->output_format;
+    if (fmt != GF_OUTPUT_VTK) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
+        st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, pass, time, gf_sim_get_stats(sim).events);
+    }
+    if (st == GF_OK && fmt != GF_OUTPUT_DUMP) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
+        st = gf_vtk_write_particles(path, &rd->scratch, pass, time);
+    }
     if (st == GF_OK) st = gf_save_progress(rd, sim);
     if (st != GF_OK) return st;
     // A silo that no longer drains would write snapshots of the same heap
@@ -212,6 +245,13 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     return GF_OK;
 }
 
+// One line of exits.csv.
+static void gf_print_exit(FILE *f, const gf_exit *e)
+{
+    fprintf(f, "%" PRId64 ",%.9g,%.7f,%.7f,%" PRId64 ",%.9g,%.7f\n", e->id, e->time, e->x, e->y, e->pass, e->entry_time,
+            e->entry_r);
+}
+
 // exits.csv as a whole, atomically, from the engine's list (a resume drops
 // the lines appended after its checkpoint this way).
 static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
@@ -223,9 +263,8 @@ static gf_status gf_write_exits(gf_rundir *rd, const gf_sim *sim)
     if (st != GF_OK) return st;
     size_t n;
     const gf_exit *e = gf_sim_exits(sim, &n);
-    fputs("id,time,x,y\n", f);
-    for (size_t i = 0; i < n; i++)
-        fprintf(f, "%" PRId64 ",%.9g,%.7f,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y);
+    fputs("id,time,x,y,pass,entry_time,entry_r\n", f);
+    for (size_t i = 0; i < n; i++) gf_print_exit(f, &e[i]);
     return gf_atomic_commit(f, tmp, path);
 }
 
@@ -236,8 +275,7 @@ static gf_status gf_append_exits(gf_rundir *rd, const gf_sim *sim)
     if (!rd->exits) return GF_OK;
     size_t n;
     const gf_exit *e = gf_sim_exits(sim, &n);
-    for (size_t i = rd->exits_written; i < n; i++)
-        fprintf(rd->exits, "%" PRId64 ",%.9g,%.7f,%.7f\n", e[i].id, e[i].time, e[i].x, e[i].y);
+    for (size_t i = rd->exits_written; i < n; i++) gf_print_exit(rd->exits, &e[i]);
     if (fflush(rd->exits) != 0 || ferror(rd->exits))
         return gf_error_set(GF_ERR_IO, "%s/exits.csv: cannot write: %s", rd->dir, strerror(errno ? errno : EIO));
     rd->exits_written = n;
@@ -266,6 +304,7 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     fprintf(f, "  \"seed\": %" PRIu64 ",\n", rd->cfg->run_seed);
     fprintf(f, "  \"particles_initial\": %zu,\n  \"particles_remaining\": %zu,\n  \"particles_exited\": %zu,\n",
             s.particles_initial, s.particles_remaining, s.particles_exited);
+    fprintf(f, "  \"particles_reinserted\": %zu,\n", s.particles_reinserted);
     fprintf(f, "  \"spots_inserted\": %" PRIu64 ",\n  \"spots_deleted\": %" PRIu64 ",\n  \"spots_active\": %zu,\n",
             s.spots_inserted, s.spots_deleted, s.spots_active);
     fprintf(f, "  \"spot_moves\": %" PRIu64 ",\n  \"relax_calls\": %" PRIu64 ",\n  \"events\": %" PRIu64 ",\n",
@@ -303,6 +342,23 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
                          wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
+}
+
+// container.vtk: the walls up to a diameter above the packing, for ParaView.
+static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
+{
+    gf_status st = gf_sim_particles(sim, &rd->scratch);
+    if (st != GF_OK) return st;
+    double top = 1.0;
+    for (size_t i = 0; i < rd->scratch.n; i++) top = fmax(top, rd->scratch.z[i] + rd->scratch.r[i] + 1.0);
+    gf_container box = gf_container_make(rd->cfg);
+    gf_mesh m;
+    if ((st = gf_container_mesh(&box, top, 96, &m)) != GF_OK) return st;
+    char path[GF_PATH_MAX + 32];
+    gf_path(path, sizeof path, rd->dir, "container.vtk");
+    st = gf_vtk_write_mesh(path, &m, "granflow container");
+    gf_mesh_free(&m);
+    return st;
 }
 
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
@@ -385,6 +441,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         gf_packing_free(&pk);
     }
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
+    if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -456,6 +513,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (rd.exits) fclose(rd.exits);
     close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
+    GF_DELETE(rd.pass, rd.pass_cap);
     gf_sim_destroy(sim);
     return st;
 }

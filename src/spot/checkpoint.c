@@ -15,7 +15,7 @@
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
-#define GF_CKPT_VERSION 3u
+#define GF_CKPT_VERSION 4u
 #define GF_CKPT_BOM 0x01020304u
 
 typedef struct gf_buf {
@@ -93,6 +93,8 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
 
 gf_status gf_sim_save(const gf_sim *sim, const char *path)
 {
+    // Saves come between events, when every exit has been put back.
+    if (sim->nreins != 0) return gf_error_set(GF_ERR_STATE, "checkpoint while re-insertions are pending");
     gf_buf b = {0};
     char *phys = NULL;
     size_t plen = 0;
@@ -124,6 +126,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     gf_put(&b, sim->id, sizeof(int64_t) * sim->n);
     gf_put(&b, sim->layer, sizeof(int32_t) * sim->n);
     gf_put(&b, sim->alive, sizeof(uint8_t) * sim->n);
+    gf_put(&b, sim->hist, sizeof(gf_hist) * sim->n);
     gf_put(&b, sim->sx, sizeof(double) * sim->ns);
     gf_put(&b, sim->sy, sizeof(double) * sim->ns);
     gf_put(&b, sim->sz, sizeof(double) * sim->ns);
@@ -302,7 +305,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     sim->pending = pending;
     uint64_t n = counts[0];
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
-        counts[4] > counts[2])
+        (!sim->cfg.run_recirculate && counts[4] > counts[2]))
         return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
     if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, st);
     sim->n = n;
@@ -325,6 +328,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     gf_get(&r, sim->id, sizeof(int64_t) * n);
     gf_get(&r, sim->layer, sizeof(int32_t) * n);
     gf_get(&r, sim->alive, sizeof(uint8_t) * n);
+    gf_get(&r, sim->hist, sizeof(gf_hist) * n);
     gf_get(&r, sim->sx, sizeof(double) * sim->ns);
     gf_get(&r, sim->sy, sizeof(double) * sim->ns);
     gf_get(&r, sim->sz, sizeof(double) * sim->ns);

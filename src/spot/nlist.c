@@ -29,6 +29,7 @@ static gf_status gf_nlist_permute(gf_sim *sim, const uint32_t *order, size_t m)
     GF_PERMUTE(gf_ref, p0);
     GF_PERMUTE(int64_t, id);
     GF_PERMUTE(int32_t, layer);
+    GF_PERMUTE(gf_hist, hist);
 #undef GF_PERMUTE
     for (size_t k = 0; k < m; k++) sim->alive[k] = 1;
     for (size_t k = m; k < sim->n; k++) sim->alive[k] = 0;

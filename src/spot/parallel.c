@@ -265,6 +265,9 @@ static gf_status gf_par_merge_exits(gf_sim *sim, gf_par *q)
         gf_work *w = &q->work[t];
         if (w->nexit == 0) continue;
         memcpy(sim->exits + sim->nexit, w->exits, w->nexit * sizeof(gf_exit));
+        for (size_t k = 0; k < w->nexit; k++) // recirculation (gf_sim_reinsert puts them back in id order)
+            if (w->exit_slot[k] != UINT32_MAX && !gf_sim_reinsert_queue(sim, w->exit_slot[k]))
+                return gf_error_set(GF_ERR_NOMEM, "out of memory for the re-insertions");
         sim->nexit += w->nexit;
         sim->n_alive -= w->nexit;
         w->nexit = 0;

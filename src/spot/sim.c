@@ -38,7 +38,8 @@ gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
     sim->layer = GF_NEW(int32_t, n);
     sim->alive = GF_NEW(uint8_t, n);
     sim->mark = GF_NEW(uint32_t, n);
-    if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->mark)
+    sim->hist = GF_NEW(gf_hist, n);
+    if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->mark || !sim->hist)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu particles", n);
     return GF_OK;
 }
@@ -81,6 +82,7 @@ void gf_work_free(gf_work *w)
     GF_DELETE(w->ip, w->scratch_cap);
     gf_free(w->disp, sizeof(double[3]) * w->scratch_cap);
     GF_DELETE(w->exits, w->exit_cap);
+    GF_DELETE(w->exit_slot, w->exit_cap);
     *w = (gf_work){0};
 }
 
@@ -99,6 +101,9 @@ gf_status gf_sim_make_grid(gf_sim *sim)
         for (size_t i = 0; i < sim->n; i++)
             if (sim->alive[i] && sim->p[i].z > top) top = sim->p[i].z;
         sim->grid_ztop = top + 2.0;
+        // Recirculation keeps the surface near where it began, but a flowing
+        // packing dilates and the re-inserted top is loose: room above it.
+        if (sim->cfg.run_recirculate) sim->grid_ztop += 0.5 * top + 8.0;
     }
     double lo[3], hi[3];
     gf_container_bounds(&sim->box, sim->grid_ztop, lo, hi);
@@ -113,6 +118,8 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->layer, sim->cap);
     GF_DELETE(sim->alive, sim->cap);
     GF_DELETE(sim->mark, sim->cap);
+    GF_DELETE(sim->hist, sim->cap);
+    GF_DELETE(sim->reins, sim->reins_cap);
     GF_DELETE(sim->exits, sim->exit_cap);
     GF_DELETE(sim->nl, sim->cap * GF_NL_CAP);
     GF_DELETE(sim->sx, sim->ns_cap);
@@ -151,6 +158,7 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
         sim->id[i] = packing->id[i];
         sim->layer[i] = packing->layer[i];
         sim->alive[i] = 1;
+        sim->hist[i] = (gf_hist){0.0, hypot(packing->x[i], packing->y[i]), 1, 0};
         if (packing->r[i] > sim->rmax) sim->rmax = packing->r[i];
     }
     if ((st = gf_packing_check(packing, &sim->cfg)) != GF_OK) goto fail;
@@ -171,21 +179,30 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
     if (!gf_container_exited(&sim->box, q->x, q->y, q->z)) return false;
-    gf_exit e = {sim->id[i], sim->t, q->x, q->y};
+    const gf_hist *h = &sim->hist[i];
+    gf_exit e = {sim->id[i], sim->t, q->x, q->y, h->pass, h->t_entry, h->r_entry};
+    const bool back = gf_sim_recirculates(sim, h->pass);
     if (w->defer_exits) {
         // The parallel step: kept by the worker, merged (sorted by id) after the phase.
         if (w->nexit == w->exit_cap) {
             size_t cap = w->exit_cap ? 2 * w->exit_cap : 64;
             gf_exit *x = gf_realloc(w->exits, w->exit_cap * sizeof(gf_exit), cap * sizeof(gf_exit));
-            if (!x) { // out of memory: the particle stays, and the step reports it
+            if (x) w->exits = x;
+            uint32_t *sl = gf_realloc(w->exit_slot, w->exit_cap * sizeof(uint32_t), cap * sizeof(uint32_t));
+            if (sl) w->exit_slot = sl;
+            if (!x || !sl) { // out of memory: the particle stays, and the step reports it
                 w->exit_failed = true;
                 return false;
             }
-            w->exits = x;
             w->exit_cap = cap;
         }
+        w->exit_slot[w->nexit] = back ? i : UINT32_MAX;
         w->exits[w->nexit++] = e;
     } else {
+        if (back && !gf_sim_reinsert_queue(sim, i)) {
+            w->exit_failed = true;
+            return false;
+        }
         // Exits of one step share its time; keep them ordered by id so the list
         // does not depend on the order particles were found in.
         if (!gf_sim_exits_reserve(sim, 1)) {
@@ -562,14 +579,10 @@ static uint64_t gf_sim_work(const gf_sim *sim)
     return sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves : sim->st.events;
 }
 
-// Applies whatever comes next: a global relaxation due, or the pending event.
-static gf_status gf_sim_event(gf_sim *sim)
+// The action of the next event: a fixed step, a global relaxation due, an
+// insertion or a spot move.
+static gf_status gf_sim_action(gf_sim *sim)
 {
-    gf_status st;
-    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
-        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
-        sim->nl_built_at = gf_sim_work(sim);
-    }
     if (sim->cfg.run_mode == GF_MODE_FIXED)
         return sim->cfg.run_order == GF_ORDER_SPATIAL ? gf_sim_spatial_step(sim) : gf_sim_fixed_step(sim);
     if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
@@ -586,6 +599,21 @@ static gf_status gf_sim_event(gf_sim *sim)
     double rate = lambda + (double)sim->ns * sim->cfg.spot_move_rate;
     if (gf_rng_uniform(&sim->rng) * rate < lambda) return gf_spot_insert(sim);
     return gf_spot_move(sim, (size_t)gf_rng_below(&sim->rng, sim->ns));
+}
+
+// Applies whatever comes next: a global relaxation due, or the pending event.
+static gf_status gf_sim_event(gf_sim *sim)
+{
+    gf_status st;
+    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
+        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+        sim->nl_built_at = gf_sim_work(sim);
+    }
+    st = gf_sim_action(sim);
+    // Recirculation: whatever exited in this event or step goes back on the
+    // surface before the next one (one place for every engine).
+    if (st == GF_OK && sim->nreins > 0) st = gf_sim_reinsert(sim);
+    return st;
 }
 
 static void gf_sim_draw_pending(gf_sim *sim)
@@ -698,6 +726,20 @@ gf_status gf_sim_particles(const gf_sim *sim, gf_packing *out)
     }
     GF_DELETE(idx, cap);
     return st;
+}
+
+gf_status gf_sim_passes(const gf_sim *sim, int32_t *pass, size_t n)
+{
+    if (n != sim->n_alive) return gf_error_set(GF_ERR_PARAM, "gf_sim_passes: %zu slots for %zu particles", n, sim->n_alive);
+    gf_id_index *idx = GF_NEW(gf_id_index, n ? n : 1);
+    if (!idx) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    size_t m = 0;
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->alive[i]) idx[m++] = (gf_id_index){sim->id[i], (uint32_t)i};
+    qsort(idx, m, sizeof *idx, gf_cmp_id);
+    for (size_t k = 0; k < m; k++) pass[k] = sim->hist[idx[k].index].pass;
+    GF_DELETE(idx, n ? n : 1);
+    return GF_OK;
 }
 
 const gf_exit *gf_sim_exits(const gf_sim *sim, size_t *n)

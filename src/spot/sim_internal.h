@@ -27,6 +27,14 @@ typedef struct gf_ref {
     float x, y, z, h;
 } gf_ref;
 
+/// Where a particle's current pass began (recirculation; cold, read at exits).
+typedef struct gf_hist {
+    double t_entry; ///< time it entered: 0, or when it was put back on the surface
+    double r_entry; ///< its distance from the axis x = y = 0 then
+    int32_t pass;   ///< 1 for the initial packing, + 1 at each re-insertion
+    int32_t pad_;
+} gf_hist;
+
 /// What one thread needs to run spot steps: scratch for one gather, the
 /// random stream and the counters the steps draw on and add to, and, in the
 /// parallel step, the exits it found (merged after each phase).
@@ -45,6 +53,7 @@ typedef struct gf_work {
     bool defer_exits;     ///< exits go to exits[] below, not into the sim
     bool exit_failed;     ///< exits[] could not grow (out of memory)
     gf_exit *exits;
+    uint32_t *exit_slot; ///< per exits[] entry: the particle's index, when it is to be put back (else UINT32_MAX)
     size_t nexit, exit_cap;
 } gf_work;
 
@@ -59,6 +68,7 @@ struct gf_sim {
     int64_t *id;      ///< cold: stable id
     int32_t *layer;   ///< cold: initial-layer tag
     uint8_t *alive;   ///< 1 while in the container
+    gf_hist *hist;    ///< cold: where the current pass began, and its number
     size_t n_alive, n_initial;
     double rmax;      ///< largest radius
     double contact2;  ///< (2 r)^2 when every live particle has radius r, else 0 (derived at every list build)
@@ -96,6 +106,10 @@ struct gf_sim {
     // Exits.
     gf_exit *exits;
     size_t nexit, exit_cap;
+    // Recirculation: particles that exited and are to be put back on the
+    // surface at the end of the current event or step (recirculate.c).
+    uint32_t *reins;
+    size_t nreins, reins_cap;
 
     // The serial engine's worker (event mode, fixed random/newest): draws on
     // rng and counts into st.
@@ -170,6 +184,17 @@ static inline bool gf_sim_exit_check(gf_sim *sim, gf_work *w, uint32_t i)
 /// Bookkeeping after the moves of one step, for the entries k < m of
 /// inside[] with moved[k] set: cells, and lists of those past their skin.
 gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved);
+
+/// Queues particle i (just exited) for re-insertion; false when out of memory.
+bool gf_sim_reinsert_queue(gf_sim *sim, uint32_t i);
+/// Puts the queued particles back on the free surface (run.recirculate; in
+/// id order, drawing on sim->rng), pass + 1, without overlaps.
+gf_status gf_sim_reinsert(gf_sim *sim);
+/// Whether a particle ending pass `pass` is to be put back.
+static inline bool gf_sim_recirculates(const gf_sim *sim, int32_t pass)
+{
+    return sim->cfg.run_recirculate && (sim->cfg.run_max_passes == 0 || pass < sim->cfg.run_max_passes);
+}
 
 /// Allocates the particle arrays for n particles.
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n);

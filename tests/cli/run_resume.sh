@@ -39,8 +39,8 @@ grep -q '^ITEM: ATOMS id type x y z' A/snapshots/snap_000000.dump || fail "snap_
 [ "$(sed -n '/^ITEM: NUMBER OF ATOMS/{n;p;}' A/snapshots/snap_000000.dump)" = 300 ] || fail "snap_000000.dump: not 300 atoms"
 ok "snap_000000.dump is a LAMMPS dump starting with ITEM: TIME, 300 atoms"
 
-[ "$(head -n 1 A/exits.csv | tr -d '\r')" = "id,time,x,y" ] || fail "exits.csv: header is not 'id,time,x,y'"
-ok "exits.csv has the header id,time,x,y"
+[ "$(head -n 1 A/exits.csv | tr -d '\r')" = "id,time,x,y,pass,entry_time,entry_r" ] || fail "exits.csv: header is not 'id,time,x,y,pass,entry_time,entry_r'"
+ok "exits.csv has the header id,time,x,y,pass,entry_time,entry_r"
 
 for key in particles_initial particles_remaining particles_exited spots_inserted spot_moves relax_calls \
     simulated_time wall_seconds steps_per_second; do
