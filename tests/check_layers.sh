@@ -45,6 +45,7 @@ ALLOWED=(
   "src/io/packing_frames.h -> granflow/packing.h"
   "src/io/packing_read.c -> granflow/packing.h"
   "src/io/packing_write.c -> granflow/packing.h"
+  "src/io/vtk.h -> granflow/packing.h"
   # The run-directory driver lives in io/ but sits above the engine: it moves
   # to src/run/ in the restructuring (issue 17).
   "src/io/rundir.c -> granflow/run.h"

@@ -70,7 +70,10 @@ static void box_runs_bit_identical(void **state)
         h = fnv(h, out.z, out.n * sizeof(double));
         size_t ne;
         const gf_exit *e = gf_sim_exits(sim, &ne);
-        h = fnv(h, e, ne * sizeof *e);
+        for (size_t i = 0; i < ne; i++) { // the fields today's engine had (id, time, x, y)
+            h = fnv(h, &e[i].id, sizeof e[i].id);
+            h = fnv(h, &e[i].time, 3 * sizeof(double));
+        }
         print_message("case %zu: packing %016llx, %zu left, %zu exits, state %016llx\n", k,
                       (unsigned long long)hp, out.n, ne, (unsigned long long)h);
         assert_true(hp == box_golden[k].packing);
