@@ -32,7 +32,8 @@ GF_API gf_report_opts gf_report_opts_default(void);
 /// Writes the report of run directory `dir` (what `granflow run`, `analyze`,
 /// `render` and `compare` left there; each part optional except config.ini or
 /// summary.json): summary.json and analysis/summary.json as tables, every
-/// analysis/*.png and render/*.png|svg inlined as a data URI, the comparison
+/// analysis/*.png, render/*.png|svg (a spot run), *.png and maps/*.png (an
+/// LGA run) inlined as a data URI, the comparison
 /// with the DEM (compare/summary.csv, compare.png, the DEM and spot slices
 /// side by side), and config.ini. Written atomically; `opts` and `info` may
 /// be NULL. GF_ERR_PARAM when `dir` is not a run directory.

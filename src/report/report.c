@@ -194,12 +194,17 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     fputs("<h2>Run</h2>\n", r.out);
     if (!gf_html_json_table(r.out, sum)) fputs("<p>No summary.json.</p>\n", r.out);
     gf_report_analysis(&r, dir);
-    gf_report_join(sub, sizeof sub, dir, "render");
-    if (gf_report_exists(sub)) {
-        fputs("<h2>Pictures</h2>\n<div class=\"figs\">\n", r.out);
+    // Pictures: render/ of a spot run; sheet.png and maps/ of an LGA run.
+    size_t before = r.info.images;
+    fputs("<h2>Pictures</h2>\n<div class=\"figs\">\n", r.out);
+    gf_report_pictures(&r, dir, NULL, 0);
+    static const char *const picture_dirs[] = {"render", "maps"};
+    for (size_t k = 0; k < 2; k++) {
+        gf_report_join(sub, sizeof sub, dir, picture_dirs[k]);
         gf_report_pictures(&r, sub, NULL, 0);
-        fputs("</div>\n", r.out);
     }
+    fputs("</div>\n", r.out);
+    if (r.info.images == before) fputs("<p>None yet (<code>granflow render DIR</code>).</p>\n", r.out);
     gf_report_compare(&r, cmp);
     fputs("<h2>Configuration</h2>\n", r.out);
     if (!gf_html_pre_file(r.out, cfg)) fputs("<p>No config.ini.</p>\n", r.out);

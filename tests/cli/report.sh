@@ -3,7 +3,8 @@
 # page: every picture of analysis/, render/ and compare/ inlined as a data URI
 # (the first decodes back to the very bytes of its PNG), the run and analysis
 # summaries, the DEM comparison table with the DEM and spot slices side by
-# side, and config.ini; nothing refers to another file. Headless Chromium
+# side, and config.ini; nothing refers to another file. An LGA run's sheet and
+# density maps are all on its page. Headless Chromium
 # (scripts/deps.sh installs it) renders the page to a PNG that must carry far
 # more than a blank page does. Bad arguments exit 2.
 # usage: bash tests/cli/report.sh GRANFLOW_BINARY TESTS_DATA_DIR
@@ -71,6 +72,17 @@ gf report run --set spot.radius=2
 expect_rc 2 "report with --set"
 [ -z "$(find . -name '*.tmp')" ] || fail "temporary files left: $(find . -name '*.tmp')"
 ok "-o, an empty directory (2), missing DIR (2), --set (2)"
+
+# An LGA run directory: its sheet and every density map.
+gf lga -q --set lga.scenario=pile --set lga.iterations=300 -o lga
+expect_rc 0 "lga pile, 300 iterations"
+gf report lga -q
+expect_rc 0 "report lga"
+pics=$(ls lga/*.png lga/maps/*.png | wc -l)
+imgs=$(grep -o '<img src="data:image/png;base64,' lga/report.html | wc -l)
+[ "$imgs" -eq "$pics" ] && [ "$pics" -gt 2 ] || fail "report lga: $imgs inlined images, $pics pictures"
+grep -q "^scenario = pile$" lga/report.html || fail "report lga: config not on the page"
+ok "an LGA run: all $pics pictures inlined"
 
 # Rendered by a browser: the page draws far more than a blank one.
 command -v chromium >/dev/null || fail "chromium not installed (scripts/deps.sh installs it)"
