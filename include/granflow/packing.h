@@ -102,7 +102,8 @@ GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, dou
                                   double z0, double z1);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).
-/// Returns +inf for fewer than two particles.
+/// Returns +inf for fewer than two particles, NaN when out of memory or a
+/// coordinate or radius is not finite.
 GF_API double gf_packing_min_distance(const gf_packing *p);
 
 #ifdef __cplusplus
