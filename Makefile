@@ -2,6 +2,9 @@
 # Everything else goes through CMake; this file only sequences it.
 BUILD      ?= build
 BUILD_SAN  ?= build-san
+BUILD_FUZZ ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TEST_SECONDS ?= 3
 GF_WERROR  ?= OFF
 RUN_DIR    ?= runs/silo
 RUN_TAU    ?= 40
@@ -9,7 +12,7 @@ RUN_ENGINE ?= --set run.mode=fixed --set run.order=spatial --set run.threads=0
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps build build-san run test test-fast test-san bench bench-dem reproduce clean
+.PHONY: all deps build build-san build-fuzz run test test-fast test-san test-fuzz fuzz bench bench-dem reproduce clean
 
 all: build
 
@@ -23,6 +26,11 @@ build: deps
 build-san: deps
 	@cmake -S . -B $(BUILD_SAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGF_SANITIZE=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
+
+# The libFuzzer harnesses of tests/fuzz (clang, ASan + UBSan; docs/reliability.md).
+build-fuzz: deps
+	@cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DGF_FUZZ=ON -DGF_WERROR=$(GF_WERROR) >/dev/null
+	@cmake --build $(BUILD_FUZZ) -j $(JOBS)
 
 # The papers' silo: pack, drain for $(RUN_TAU) tau on every core (the
 # parallel spatial fixed step; RUN_ENGINE= for the serial event-driven one),
@@ -38,14 +46,23 @@ run: build
 	./$(BUILD)/granflow report $(RUN_DIR)
 	@echo "run directory: $(RUN_DIR) (snapshots/, exits.csv, summary.json, analysis/, render/, report.html)"
 
-# The whole suite: optimised build, then again under ASan + UBSan.
-test: test-fast test-san
+# The whole suite: optimised build, then again under ASan + UBSan, then a
+# short pass of every fuzzer (replaying every saved input first).
+test: test-fast test-san test-fuzz
 
 test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 test-san: build-san
 	cd $(BUILD_SAN) && ctest --output-on-failure -j $(JOBS) -LE nosan
+
+test-fuzz: build-fuzz
+	FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) bash scripts/fuzz.sh $(BUILD_FUZZ)
+
+# Every fuzzer for FUZZ_SECONDS (default 60) each; crashes are saved as
+# tests/fuzz/<target>/regressions/ inputs (commit them: make test replays them).
+fuzz: build-fuzz
+	FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh $(BUILD_FUZZ)
 
 bench: build
 	./$(BUILD)/granflow bench
@@ -64,4 +81,4 @@ reproduce: build
 	GRANFLOW=./$(BUILD)/granflow bash scripts/reproduce-2009.sh
 
 clean:
-	rm -rf $(BUILD) $(BUILD_SAN)
+	rm -rf $(BUILD) $(BUILD_SAN) $(BUILD_FUZZ)

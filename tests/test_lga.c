@@ -41,6 +41,18 @@ static gf_lga *empty_lattice(const gf_config *c, int w, int h, bool periodic)
 // Every state the table offers has the particle count, set and energy cap of
 // its key; where a state of that count and energy carries the target momentum
 // exactly, every offered state does. Exhaustive over all keys.
+// Issue 16: the limit the message states ("at most 100000000 sites") is the
+// one applied, to the lattice's own sites (the halo was counted before, so a
+// lattice of exactly the maximum was refused).
+static void lattice_limit_is_the_stated_one(void **state)
+{
+    (void)state;
+    assert_true(gf_lga_lattice_fits(10000, 10000));
+    assert_true(gf_lga_lattice_fits(1, 100000000));
+    assert_false(gf_lga_lattice_fits(10000, 10001));
+    assert_false(gf_lga_lattice_fits(100000, 100000));
+}
+
 static void table_candidates_are_consistent(void **state)
 {
     (void)state;
@@ -507,6 +519,7 @@ static void api_errors(void **state)
 }
 
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(lattice_limit_is_the_stated_one),
     cmocka_unit_test(table_candidates_are_consistent),
     cmocka_unit_test(collision_conserves_mass),
     cmocka_unit_test(collision_elastic_without_p_q),

@@ -104,7 +104,8 @@ GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, dou
 GF_API double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).
-/// Returns +inf for fewer than two particles.
+/// Returns +inf for fewer than two particles, NaN when out of memory or a
+/// coordinate or radius is not finite.
 GF_API double gf_packing_min_distance(const gf_packing *p);
 
 #ifdef __cplusplus

@@ -183,8 +183,24 @@ static gf_status gf_write_plot(const char *outdir, const char *name, const gf_me
     return GF_OK;
 }
 
+// The measurements read a drain: particles leave and none arrive. A series
+// whose count grows (frames of two runs, a pour) would give negative flow
+// rates and wrong fields, so it is refused.
+static gf_status gf_analyze_check_drain(const gf_series *s)
+{
+    for (size_t f = 1; f < s->nframes; f++)
+        if (s->frames[f].pk.n > s->frames[f - 1].pk.n)
+            return gf_error_set(GF_ERR_FORMAT,
+                                "the particle count grows from %zu at t = %.6g tau to %zu at t = %.6g tau: "
+                                "a draining silo only loses particles (frames of two runs mixed?)",
+                                s->frames[f - 1].pk.n, s->frames[f - 1].time, s->frames[f].pk.n, s->frames[f].time);
+    return GF_OK;
+}
+
 gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *name, const char *outdir, bool plots)
 {
+    gf_status st0 = gf_analyze_check_drain(s);
+    if (st0 != GF_OK) return st0;
     size_t nm;
     const gf_measure_def *defs = gf_measures(&nm);
     const gf_measure_def *only = NULL;

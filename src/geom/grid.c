@@ -7,6 +7,11 @@
 #include "core/alloc.h"
 #include "core/error.h"
 
+// At most this many cells per particle, plus GF_GRID_CELLS_FREE: the
+// papers' silo has 0.25 per particle; ~100 bytes a cell.
+#define GF_GRID_CELLS_PER_PARTICLE 64.0
+#define GF_GRID_CELLS_FREE 1048576.0
+
 gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np)
 {
     memset(g, 0, sizeof *g);
@@ -18,6 +23,14 @@ gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], doubl
         if (cells > 1 << 20) return gf_error_set(GF_ERR_PARAM, "grid too large (%g cells on an axis)", cells);
         n[k] = (int)cells;
     }
+    // Cells far outnumbering particles only cost memory (a packing a hair
+    // deep in a vast container): refused before anything is allocated.
+    double cells = (double)n[0] * (double)n[1] * (double)n[2];
+    if (cells > GF_GRID_CELLS_PER_PARTICLE * (double)np + GF_GRID_CELLS_FREE)
+        return gf_error_set(GF_ERR_PARAM,
+                            "grid of %.0f cells (%d x %d x %d) is too large for %zu particles: the container is far "
+                            "larger than the packing",
+                            cells, n[0], n[1], n[2], np);
     g->ox = lo[0];
     g->oy = lo[1];
     g->oz = lo[2];

@@ -38,8 +38,8 @@ static inline int gf_grid_axis(double v, double o, double inv_h, int n)
 {
     double f = (v - o) * inv_h;
     if (!(f >= 0.0)) return 0; // also catches NaN
-    int k = (int)f;
-    return k >= n ? n - 1 : k;
+    if (f >= (double)n) return n - 1; // before the cast: a far point would not fit an int
+    return (int)f;
 }
 
 /// Cell index of a point (clamped).

@@ -158,9 +158,9 @@ static gf_status gf_lock_dir(const char *dir, int *fd_out)
         close(fd);
         if (err == EACCES || err == EAGAIN)
             return gf_error_set(GF_ERR_PARAM,
-                                "%s is in use by another granflow run%s%s%s (lock %s): wait for it to end, "
+                                "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
                                 "or choose another -o",
-                                dir, *pid ? " (pid " : "", pid, *pid ? ")" : "", path);
+                                dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
         return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
     }
     char pid[32];

@@ -40,11 +40,13 @@ size_t gf_lga_neighbour(const gf_lga *l, int i, int j, int e)
 // 32-bit fixed-point threshold of probability x: u32 < thr happens with probability x.
 static uint64_t gf_lga_thr(double x) { return (uint64_t)llround(x * 4294967296.0); }
 
+bool gf_lga_lattice_fits(int w, int h) { return (double)w * (double)h <= GF_LGA_MAX_SITES; }
+
 gf_status gf_lga_lattice_alloc(gf_lga *l, int w, int h, bool periodic)
 {
     if (w < 1 || h < 1 || (periodic && h < 2 * GF_LGA_HALO))
         return gf_error_set(GF_ERR_PARAM, "LGA lattice of %d x %d sites is too small", w, h);
-    if ((double)(w + 2 * GF_LGA_HALO) * (double)(h + 2 * GF_LGA_HALO) > GF_LGA_MAX_SITES)
+    if (!gf_lga_lattice_fits(w, h))
         return gf_error_set(GF_ERR_PARAM, "LGA lattice of %d x %d sites is too large (at most %.0f sites)", w, h,
                             (double)GF_LGA_MAX_SITES);
     l->w = w;

@@ -134,6 +134,10 @@ static inline void gf_lga_mark_busy(gf_lga *l, size_t idx)
 /// Recomputes the busy flag of every row from the states.
 void gf_lga_lattice_busy(gf_lga *l);
 
+/// Whether a w x h lattice is within GF_LGA_MAX_SITES (the sites of the
+/// lattice itself; the halo around it does not count against the limit).
+bool gf_lga_lattice_fits(int w, int h);
+
 /// Allocates an all-empty w x h lattice with a wall halo (rows wrap when
 /// periodic), the collision table and the thresholds from cfg.
 gf_status gf_lga_lattice_alloc(gf_lga *l, int w, int h, bool periodic);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "config/keys.h"
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/clock.h"
@@ -226,9 +227,35 @@ static bool gf_lga_auto_done(const gf_lga *l, int64_t *quiet, int64_t *last_out,
     return true;
 }
 
+// The automaton reads the [lga] keys and run.seed; any other key changed
+// from its default (run.duration, spot.*) would be silently ignored, so it
+// is refused, named.
+static gf_status gf_lga_check_keys(const gf_config *cfg)
+{
+    gf_config c = *cfg, d = gf_config_default();
+    gf_status st = gf_config_validate(&c);
+    if (st == GF_OK) st = gf_config_validate(&d);
+    if (st != GF_OK) return st;
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        if (!strcmp(k->section, "lga") || (!strcmp(k->section, "run") && !strcmp(k->name, "seed"))) continue;
+        char a[GF_PATH_MAX], b[GF_PATH_MAX];
+        gf_keys_format(k, &c, a, sizeof a);
+        gf_keys_format(k, &d, b, sizeof b);
+        if (strcmp(a, b) != 0)
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s.%s = %s: the lattice-gas automaton does not use this key (it reads the "
+                                "[lga] keys and run.seed)",
+                                k->section, k->name, a);
+    }
+    return GF_OK;
+}
+
 gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_lga_summary *summary)
 {
     if (!cfg || !opts || !opts->dir || !opts->dir[0]) return gf_error_set(GF_ERR_PARAM, "gf_lga_run_dir: no config or directory");
+    gf_status st0 = gf_lga_check_keys(cfg);
+    if (st0 != GF_OK) return st0;
     gf_lga_out o = {.keep_every = 1};
     if (snprintf(o.dir, sizeof o.dir, "%s", opts->dir) >= (int)sizeof o.dir)
         return gf_error_set(GF_ERR_PARAM, "output directory path too long");

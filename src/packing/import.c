@@ -30,6 +30,65 @@ static gf_status gf_import_keep_last(void *ctx, const gf_packing_frame *f, gf_pa
     return GF_OK;
 }
 
+// Radii the engine takes, d (its unit is the mean diameter): the cell grid
+// (GF_CELL_SIZE 1.5) finds every contact of radii up to 0.75, and the
+// neighbour lists (GF_NL_CAP) hold the neighbours of radii down to 0.25.
+#define GF_IMPORT_RMIN 0.25
+#define GF_IMPORT_RMAX 0.75
+
+static int gf_cmp_centre(const void *a, const void *b, void *ctx)
+{
+    const gf_packing *p = ctx;
+    size_t i = *(const size_t *)a, j = *(const size_t *)b;
+    const double u[3] = {p->x[i], p->y[i], p->z[i]}, v[3] = {p->x[j], p->y[j], p->z[j]};
+    for (int k = 0; k < 3; k++)
+        if (u[k] != v[k]) return u[k] < v[k] ? -1 : 1;
+    return (i > j) - (i < j);
+}
+
+// Sorting with a context: qsort_r is not POSIX, so a small merge sort.
+static void gf_sort_centres(size_t *a, size_t *tmp, size_t n, const gf_packing *p)
+{
+    if (n < 2) return;
+    size_t h = n / 2;
+    gf_sort_centres(a, tmp, h, p);
+    gf_sort_centres(a + h, tmp, n - h, p);
+    size_t i = 0, j = h, k = 0;
+    while (i < h && j < n) tmp[k++] = gf_cmp_centre(&a[i], &a[j], (void *)p) <= 0 ? a[i++] : a[j++];
+    while (i < h) tmp[k++] = a[i++];
+    while (j < n) tmp[k++] = a[j++];
+    memcpy(a, tmp, n * sizeof *a);
+}
+
+// What the engine cannot simulate: radii outside its range, and two
+// particles on one centre (relax() has no direction to part them along, so
+// they would stay together for the whole run).
+static gf_status gf_import_check(const char *path, const gf_packing *p)
+{
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->r[i] >= GF_IMPORT_RMIN && p->r[i] <= GF_IMPORT_RMAX))
+            return gf_error_set(GF_ERR_FORMAT,
+                                "%s: particle id %lld has radius %g d: the engine takes radii in [%g, %g] d "
+                                "(its unit is the mean diameter)",
+                                path, (long long)p->id[i], p->r[i], GF_IMPORT_RMIN, GF_IMPORT_RMAX);
+    size_t *a = GF_NEW(size_t, p->n), *tmp = GF_NEW(size_t, p->n);
+    gf_status st = GF_OK;
+    if (!a || !tmp) st = gf_error_set(GF_ERR_NOMEM, "%s: out of memory checking %zu centres", path, p->n);
+    for (size_t i = 0; st == GF_OK && i < p->n; i++) a[i] = i;
+    if (st == GF_OK) gf_sort_centres(a, tmp, p->n, p);
+    for (size_t k = 1; st == GF_OK && k < p->n; k++) {
+        size_t i = a[k - 1], j = a[k];
+        if (p->x[i] == p->x[j] && p->y[i] == p->y[j] && p->z[i] == p->z[j])
+            st = gf_error_set(GF_ERR_FORMAT,
+                              "%s: particles id %lld and id %lld have the same centre (%g, %g, %g): "
+                              "no packing can hold them",
+                              path, (long long)p->id[i], (long long)p->id[j], p->x[i], p->y[i], p->z[i]);
+    }
+    GF_DELETE(a, p->n);
+    GF_DELETE(tmp, p->n);
+    return st;
+}
+
 static int gf_import_is_lammps(const char *path)
 {
     return !gf_textscan_has_ext(path, ".xyz") && !gf_textscan_has_ext(path, ".csv");
@@ -89,6 +148,10 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     }
     pk.n = keep;
     if (rep) *rep = r;
+    if (keep > 0 && (st = gf_import_check(path, &pk)) != GF_OK) {
+        gf_packing_free(&pk);
+        return st;
+    }
     if (keep == 0) {
         gf_packing_free(&pk);
         return gf_error_set(GF_ERR_PARAM,

@@ -98,12 +98,19 @@ double gf_packing_min_distance(const gf_packing *p)
     }
     // Cells of side >= one diameter: every pair closer than that is in
     // neighbouring cells, so the result is exact whenever it is below h.
-    double h = fmax(2.0 * rmax, 1.0);
+    // Sparse or far-flung particles get bigger cells, so that there are never
+    // many more cells than particles (their count, in doubles, cannot wrap).
+    double h = fmax(2.0 * rmax, 1.0), fc[3];
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(hi[k] - lo[k]) || !isfinite(h)) return NAN; // (no reader lets these through)
+    for (;;) {
+        for (int k = 0; k < 3; k++) fc[k] = floor((hi[k] - lo[k]) / h) + 1.0;
+        if (fc[0] * fc[1] * fc[2] <= 2.0 * (double)p->n + 64.0) break;
+        h *= 1.5;
+    }
     size_t nc[3], ncell = 1;
     for (int k = 0; k < 3; k++) {
-        double span = hi[k] - lo[k];
-        nc[k] = (size_t)(span / h) + 1;
-        if (nc[k] > 4096) nc[k] = 4096;
+        nc[k] = (size_t)fc[k];
         ncell *= nc[k];
     }
     size_t *head = GF_NEW(size_t, ncell + 1), *order = GF_NEW(size_t, p->n), *cell = GF_NEW(size_t, p->n);

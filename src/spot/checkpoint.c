@@ -204,6 +204,34 @@ static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, gf_status st)
     return st;
 }
 
+// Values the engine relies on (a checkpoint is checksummed, so only a
+// deliberately made file gets here with others): times, particles inside
+// the container (or over the hole, down to the exit plane), radii the
+// engine takes, spots at finite places.
+static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
+{
+    const gf_container *b = &sim->box;
+    const double zlo = fmin(0.0, b->exit_z) - 2.0, zhi = 1e7;
+    if (!(isfinite(sim->t) && sim->t >= 0 && isfinite(sim->t_reached) && isfinite(sim->t_pending) &&
+          sim->grid_ztop > 0 && sim->grid_ztop <= zhi && sim->rmax > 0 && sim->rmax <= 1.0))
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint holds impossible times or sizes", path);
+    for (size_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i]) continue;
+        const gf_pos *q = &sim->p[i];
+        const gf_ref *a = &sim->p0[i];
+        if (!(fabs(q->x) <= b->xhi + 1.0 && fabs(q->y) <= b->yhi + 1.0 && q->z >= zlo && q->z <= zhi &&
+              q->r > 0 && q->r <= sim->rmax && fabs(a->x) <= b->xhi + 1.0 && fabs(a->y) <= b->yhi + 1.0 &&
+              a->z >= zlo && a->z <= zhi && a->h >= 0 && a->h <= 1.0))
+            return gf_error_set(GF_ERR_FORMAT, "%s: particle id %lld is at an impossible place or size", path,
+                                (long long)sim->id[i]);
+    }
+    for (size_t k = 0; k < sim->ns; k++)
+        if (!(fabs(sim->sx[k]) <= b->xhi + 1.0 && fabs(sim->sy[k]) <= b->yhi + 1.0 && sim->sz[k] >= zlo - 100.0 &&
+              sim->sz[k] <= zhi))
+            return gf_error_set(GF_ERR_FORMAT, "%s: spot %zu is at an impossible place", path, k);
+    return GF_OK;
+}
+
 gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
 {
     *out = NULL;
@@ -307,6 +335,15 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
         (!sim->cfg.run_recirculate && counts[4] > counts[2]))
         return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
+    // The arrays the counts announce must be in the payload: a few bytes
+    // claiming 10^9 spots must not allocate gigabytes first.
+    double need = (double)n * (double)(sizeof(gf_pos) + sizeof(gf_ref) + sizeof(int64_t) + sizeof(int32_t) + 1) +
+                  (double)counts[3] * (double)(4 * sizeof(double) + sizeof(uint32_t)) +
+                  (double)counts[4] * (double)sizeof(gf_exit);
+    if (counts[2] > GF_MAX_PARTICLES || need > (double)(r.len - r.pos))
+        return gf_ckpt_fail(sim, data,
+                            gf_error_set(GF_ERR_FORMAT, "%s: checkpoint header announces more than its payload holds",
+                                         path));
     if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, st);
     sim->n = n;
     sim->n_alive = counts[1];
@@ -339,6 +376,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;
     if (r.bad || live != sim->n_alive)
         return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path));
+    if ((st = gf_ckpt_check_values(sim, path)) != GF_OK) return gf_ckpt_fail(sim, data, st);
     if ((st = gf_sim_make_grid(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
     uint64_t ncell = 0;

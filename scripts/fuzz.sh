@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer harness of tests/fuzz (built by `make build-fuzz`) for
+# FUZZ_SECONDS each (default 60), starting from its seeds and saved
+# regressions (which are all replayed first). A crash, leak, sanitizer report
+# or timeout is saved as tests/fuzz/<target>/regressions/<kind>-<sha1>: commit
+# it, and `make test` replays it from then on. Exit 1 if any target failed.
+# usage: bash scripts/fuzz.sh BUILD_DIR [TARGET...]
+set -u
+BUILD=${1:?usage: $0 BUILD_DIR [TARGET...]}
+shift
+SECONDS_EACH=${FUZZ_SECONDS:-60}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+TARGETS=("$@")
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(config_ini config_set packing_dump packing_xyz packing_csv checkpoint exits lga_config)
+# The harnesses hand each input to the parsers as a file: in memory if possible.
+if [ -w /dev/shm ]; then export TMPDIR=/dev/shm/gf-fuzz-$$; else export TMPDIR="$BUILD/fuzz-tmp-$$"; fi
+mkdir -p "$TMPDIR"
+trap 'rm -rf "$TMPDIR"' EXIT
+failed=()
+for t in "${TARGETS[@]}"; do
+    bin="$BUILD/tests/fuzz/fuzz_$t"
+    [ -x "$bin" ] || { echo "fuzz: $bin missing (make build-fuzz)"; exit 1; }
+    corpus="$BUILD/corpus/$t"
+    regress="$ROOT/tests/fuzz/$t/regressions"
+    mkdir -p "$corpus" "$regress"
+    log="$BUILD/fuzz-$t.log"
+    # The working corpus (first: new inputs go there), then the committed ones.
+    "$bin" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+        -artifact_prefix="$regress/" -print_final_stats=1 \
+        "$corpus" "$ROOT/tests/fuzz/$t/seeds" "$regress" >"$log" 2>&1
+    rc=$?
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+    if [ $rc -ne 0 ]; then
+        failed+=("$t")
+        echo "fuzz $t: FAILED (exit $rc) after ${runs:-?} runs; input saved in $regress/, log $log"
+        grep -m 3 -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)" "$log" | sed 's/^/  /'
+    else
+        echo "fuzz $t: ok, ${runs:-?} runs in ${SECONDS_EACH} s"
+    fi
+done
+[ ${#failed[@]} -eq 0 ] || { echo "fuzz: failed: ${failed[*]}"; exit 1; }

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: MIT
+// Issue 16 at the library level: sizes that cannot wrap around, loops that
+// stop on the stop flag, messages that keep their reason and never carry raw
+// binary bytes. (tests/cli/reliability.sh checks the same through the CLI.)
+#include "support.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "granflow/granflow.h"
+
+// n * size beyond SIZE_MAX is refused, not wrapped to a small block.
+static void alloc_refuses_wrapping_sizes(void **state)
+{
+    (void)state;
+    assert_null(gf_alloc_array(SIZE_MAX / 8 + 2, 8));
+    assert_null(gf_alloc_array((size_t)1 << 62, 16));
+    assert_null(gf_alloc(SIZE_MAX - 10)); // rounding up to 64 bytes would wrap
+    double *p = GF_NEW(double, 3);
+    assert_non_null(p);
+    GF_DELETE(p, 3);
+}
+
+// A mean beyond 2^63 used to be cast to uint64 (undefined; 0 on x86).
+static void poisson_of_a_huge_mean_is_huge(void **state)
+{
+    (void)state;
+    gf_rng r;
+    gf_rng_seed(&r, 1, 2);
+    assert_true(gf_rng_poisson(&r, 1e308) >= UINT64_C(1) << 63);
+    assert_true(gf_rng_poisson(&r, 1e19) >= UINT64_C(1) << 63);
+    uint64_t k = gf_rng_poisson(&r, 1e6); // still the normal approximation: within 10 sd
+    assert_true(k > 1e6 - 1e4 && k < 1e6 + 1e4);
+}
+
+// Band tags of far particles or hair-thin bands are clamped, never undefined.
+static void layer_tags_are_clamped(void **state)
+{
+    (void)state;
+    gf_packing p = {0};
+    assert_int_equal(gf_packing_push(&p, 1, 0, 0, 0, 0.5, 0.5), GF_OK);
+    assert_int_equal(gf_packing_push(&p, 2, 0, 0, 0, 25.0, 0.5), GF_OK);
+    gf_packing_tag_layers(&p, 1e-300);
+    assert_true(p.layer[0] > 0 && p.layer[1] > 0);
+    assert_true(p.layer[1] >= p.layer[0]);
+    gf_packing_tag_layers(&p, 10);
+    assert_int_equal(p.layer[0], 1);
+    assert_int_equal(p.layer[1], 3);
+    gf_packing_free(&p);
+}
+
+// The generator refuses a footprint it cannot count cells for (a config not
+// validated, as a library caller may pass), and stops on the flag.
+static void generator_checks_sizes_and_stops(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(12, 200, 1);
+    gf_packing pk = {0};
+    c.container_width = 1e20;
+    assert_int_equal(gf_packing_generate(&c, &pk), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "larger than the generator's limit"));
+    c = gf_test_silo_config(12, 200, 1);
+    volatile sig_atomic_t stop = 1;
+    assert_int_equal(gf_packing_generate_stoppable(&c, &stop, &pk), GF_ERR_INTERRUPTED);
+    assert_int_equal(pk.n, 0);
+    stop = 0;
+    assert_int_equal(gf_packing_generate_stoppable(&c, &stop, &pk), GF_OK);
+    assert_int_equal(pk.n, 200);
+    gf_packing_free(&pk);
+}
+
+typedef struct snap_ctx {
+    volatile sig_atomic_t *stop;
+    int calls;
+} snap_ctx;
+
+static gf_status stop_at_first_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
+{
+    (void)sim;
+    (void)index;
+    (void)time;
+    snap_ctx *s = ctx;
+    s->calls++;
+    *s->stop = 1; // as SIGTERM would, between two snapshots due at once
+    return GF_OK;
+}
+
+// Many snapshots due before the next event: the stop flag ends the burst.
+static void snapshot_burst_stops_on_the_flag(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(12, 200, 1);
+    c.output_snapshot_interval = 1e-4; // ~ a hundred snapshots due before the first event
+    c.run_duration = 1;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_sim *sim = gf_test_generated_sim(&c);
+    volatile sig_atomic_t stop = 0;
+    snap_ctx s = {&stop, 0};
+    gf_run_hooks h = {.ctx = &s, .snapshot = stop_at_first_snapshot, .stop = &stop};
+    assert_int_equal(gf_sim_run(sim, c.run_duration, &h), GF_ERR_INTERRUPTED);
+    assert_int_equal(s.calls, 1);
+    gf_sim_destroy(sim);
+}
+
+// Control bytes and invalid UTF-8 are written \xNN; valid UTF-8 stays.
+static void messages_escape_binary_bytes(void **state)
+{
+    (void)state;
+    gf_error_set(GF_ERR_FORMAT, "bad '%s'", "a\001\033[2J\377z \xce\xb1");
+    assert_string_equal(gf_last_error(), "bad 'a\\x01\\x1B[2J\\xFFz \xce\xb1'");
+    char out[8];
+    assert_int_equal(gf_escape("\n\n", out, sizeof out), 8); // full length, as snprintf
+    assert_string_equal(out, "\\x0A\\x0");
+}
+
+// A message longer than the buffer loses its middle, never its reason.
+static void long_messages_keep_their_end(void **state)
+{
+    (void)state;
+    size_t n = 20000;
+    char *path = malloc(n + 1);
+    memset(path, 'p', n);
+    path[n] = '\0';
+    gf_error_set(GF_ERR_IO, "cannot write %s: %s", path, "No space left on device");
+    const char *e = gf_last_error();
+    assert_true(strlen(e) < 4096);
+    assert_true(strncmp(e, "cannot write ppp", 16) == 0);
+    assert_non_null(strstr(e, " ... "));
+    size_t len = strlen(e);
+    assert_string_equal(e + len - strlen("pp: No space left on device"), "pp: No space left on device");
+    free(path);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(alloc_refuses_wrapping_sizes),
+    cmocka_unit_test(poisson_of_a_huge_mean_is_huge),
+    cmocka_unit_test(layer_tags_are_clamped),
+    cmocka_unit_test(generator_checks_sizes_and_stops),
+    cmocka_unit_test(snapshot_burst_stops_on_the_flag),
+    cmocka_unit_test(messages_escape_binary_bytes),
+    cmocka_unit_test(long_messages_keep_their_end),
+};
+
+GF_TEST_MAIN("reliability", tests)
