@@ -94,11 +94,11 @@ static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_co
     (void)ctx;
     double worst = 0.0;
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++)
-        if (isfinite(dem->var[z].value))
+        if (gf_dem_flowstats_measured(dem->var[z], GF_DEM_VAR_TOL))
             worst = fmax(worst, fabs(spot->var[z].value / dem->var[z].value - 1.0));
     fprintf(stderr,
             "[refine] run %d/%d: r_s %.3g, step_xy %.3g, w %.4g, lambda %.4g, mu %.4g -> Q %.4g (DEM %.4g, %+.1f%%), "
-            "worst Var %.1f%% off%s\n",
+            "worst measured Var %.1f%% off%s\n",
             iter, max_iter, c->spot_radius, c->spot_step_xy, c->spot_w, c->spot_insertion_rate, c->spot_move_rate,
             spot->flow.value, dem->flow.value, 100.0 * (spot->flow.value / dem->flow.value - 1.0), 100.0 * worst,
             match ? ": matched" : "");
