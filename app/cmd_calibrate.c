@@ -150,6 +150,22 @@ int gf_cmd_calibrate(int argc, char **argv)
     if (span > 0) cfg.run_duration = span;
     if (s.nframes > 1) cfg.output_snapshot_interval = s.frames[1].time - s.frames[0].time;
     if (st == GF_OK) st = gf_dem_calibration_apply(&c, &cfg);
+    // params.ini starts from the DEM's first snapshot, written beside it; the
+    // refinement starts from that file read back as `granflow run` reads it,
+    // so that the run of params.ini repeats the refinement's last run.
+    char pk[4096];
+    snprintf(pk, sizeof pk, "%s.packing.dump", a.out);
+    if (st == GF_OK) st = gf_packing_write(&s.frames[0].pk, pk, GF_FORMAT_LAMMPS, &cfg);
+    if (st == GF_OK) {
+        char abs[PATH_MAX];
+        const char *use = realpath(pk, abs) ? abs : pk;
+        char kv[PATH_MAX + 32];
+        snprintf(kv, sizeof kv, "packing.file=%s", use);
+        st = gf_config_set(&cfg, kv, "calibrate");
+        if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
+    }
+    gf_packing start = {0};
+    if (st == GF_OK && refine) st = gf_packing_import(&cfg, &start, NULL);
     if (st == GF_OK && refine) {
         if (!a.quiet)
             fprintf(stderr,
@@ -157,7 +173,8 @@ int gf_cmd_calibrate(int argc, char **argv)
                     "tau, until the flow rate is within %.0f%% and Var(z) within %.0f%% at every height\n",
                     win.t1, 100.0 * GF_DEM_FLOW_TOL, 100.0 * GF_DEM_VAR_TOL);
         gf_dem_refine_result res;
-        gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = gf_cli_catch_stop()};
+        gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = gf_cli_catch_stop(),
+                                 .start = &start};
         st = gf_dem_refine(&s, &o, &cfg, &ro, &res);
         if (st == GF_OK) {
             printf("DEM vs spot, first guess (thesis relations):\n");
@@ -170,17 +187,7 @@ int gf_cmd_calibrate(int argc, char **argv)
                    cfg.spot_radius, cfg.spot_step_xy, cfg.spot_w, cfg.spot_insertion_rate, cfg.spot_move_rate);
         }
     }
-    char pk[4096];
-    snprintf(pk, sizeof pk, "%s.packing.dump", a.out);
-    if (st == GF_OK) st = gf_packing_write(&s.frames[0].pk, pk, GF_FORMAT_LAMMPS, &cfg);
-    if (st == GF_OK) {
-        char abs[PATH_MAX];
-        const char *use = realpath(pk, abs) ? abs : pk;
-        char kv[PATH_MAX + 32];
-        snprintf(kv, sizeof kv, "packing.file=%s", use);
-        st = gf_config_set(&cfg, kv, "calibrate");
-        if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
-    }
+    gf_packing_free(&start);
     if (st == GF_OK) st = gf_config_save(&cfg, a.out);
     gf_series_free(&s);
     if (st != GF_OK) return gf_cli_fail("calibrate", st);

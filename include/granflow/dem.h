@@ -222,6 +222,7 @@ typedef struct gf_dem_refine_opts {
                      const gf_dem_flowstats *spot, bool match); ///< after each spot run; may be NULL
     void *ctx;
     volatile sig_atomic_t *stop;     ///< GF_ERR_INTERRUPTED when it becomes non-zero; may be NULL
+    const gf_packing *start;         ///< the spot runs' initial packing (NULL: the DEM's first frame)
 } gf_dem_refine_opts;
 /// The result of gf_dem_refine.
 typedef struct gf_dem_refine_result {

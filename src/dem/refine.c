@@ -49,16 +49,33 @@ static gf_status gf_ref_snapshot(void *ctx, const gf_sim *sim, uint64_t index, d
 /// Runs the spot model of `cfg` from the DEM's first frame until `until`
 /// (DEM time) and returns its snapshots as a series (counted from the
 /// snapshots, as the DEM's are).
-static gf_status gf_ref_run(const gf_series *dem, const gf_config *cfg, double until, volatile sig_atomic_t *stop,
-                            gf_series *out)
+static gf_status gf_ref_run(const gf_series *dem, const gf_packing *start, const gf_config *cfg, double until,
+                            volatile sig_atomic_t *stop, gf_series *out)
 {
     memset(out, 0, sizeof *out);
     gf_sim *sim;
-    gf_status st = gf_sim_create(cfg, &dem->frames[0].pk, &sim);
+    gf_status st = gf_sim_create(cfg, start, &sim);
     if (st != GF_OK) return st;
     gf_ref_capture cap = {.s = out, .t_first = dem->frames[0].time};
     gf_run_hooks h = {.ctx = &cap, .snapshot = gf_ref_snapshot, .stop = stop};
     st = gf_sim_run(sim, until - dem->frames[0].time, &h);
+    // The exits too, as a run directory's exits.csv: the outflow is then
+    // measured exactly as on `granflow run`'s output.
+    size_t ne = 0;
+    const gf_exit *ex = st == GF_OK ? gf_sim_exits(sim, &ne) : NULL;
+    if (ne > 0) {
+        out->exits = GF_NEW(gf_exit, ne);
+        if (!out->exits) {
+            st = gf_error_set(GF_ERR_NOMEM, "refine: out of memory for %zu exits", ne);
+        } else {
+            for (size_t k = 0; k < ne; k++) {
+                out->exits[k] = ex[k];
+                out->exits[k].time += dem->frames[0].time;
+            }
+            out->nexits = ne;
+            out->has_exits = true;
+        }
+    }
     gf_sim_destroy(sim);
     // gf_series_free wants the frames array of exactly nframes elements.
     if (cap.cap > out->nframes) {
@@ -73,7 +90,7 @@ static gf_status gf_ref_run(const gf_series *dem, const gf_config *cfg, double u
         if (!out->nframes && out->frames) gf_free(out->frames, cap.cap * sizeof *nf);
         out->frames = nf;
     }
-    out->n_initial = dem->frames[0].pk.n;
+    out->n_initial = start->n;
     out->cfg = *cfg;
     if (st != GF_OK) gf_series_free(out);
     return st;
@@ -141,7 +158,8 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
     for (int it = 1; it <= max_iter; it++) {
         if (ro->stop && *ro->stop) return gf_error_set(GF_ERR_INTERRUPTED, "refine: interrupted");
         gf_series spot;
-        if ((st = gf_ref_run(dem, &cur, res->dem.t1, ro->stop, &spot)) != GF_OK) return st;
+        const gf_packing *start = ro->start ? ro->start : &dem->frames[0].pk;
+        if ((st = gf_ref_run(dem, start, &cur, res->dem.t1, ro->stop, &spot)) != GF_OK) return st;
         gf_dem_flowstats fs;
         st = gf_dem_flowstats_measure(&spot, o, it == 1, &fs);
         gf_series_free(&spot);
