@@ -116,13 +116,17 @@ int gf_cmd_analyze(int argc, char **argv)
     gf_dem_source src = {.dump_dt = opts.dump_dt, .config = config, .sets = sets, .nsets = nsets};
     gf_status st = gf_dem_series_load(dir, &src, &s, NULL);
     if (st != GF_OK) return gf_cli_fail("analyze", st);
-    if (!quiet) {
-        double t0, t1;
-        gf_analysis_window(&opts, &s, &t0, &t1);
-        fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits; window %g..%g tau\n",
-                s.nframes, s.nframes ? s.frames[0].time : 0.0, s.nframes ? s.frames[s.nframes - 1].time : 0.0,
-                s.nexits, t0, t1);
+    // The window: the steady flow of the outflow unless given (window.t0/t1).
+    gf_steady win;
+    st = gf_dem_window(&s, &opts, &win);
+    if (st != GF_OK) {
+        gf_series_free(&s);
+        return gf_cli_fail("analyze", st);
     }
+    if (!quiet)
+        fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits; window %g..%g tau: %s\n",
+                s.nframes, s.nframes ? s.frames[0].time : 0.0, s.nframes ? s.frames[s.nframes - 1].time : 0.0,
+                s.nexits, opts.t0, opts.t1, win.reason);
     st = gf_analyze(&s, &opts, name, outdir, plots);
     gf_series_free(&s);
     if (st != GF_OK) return gf_cli_fail("analyze", st);

@@ -88,19 +88,51 @@ gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path
     return st;
 }
 
+static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_config *c, const gf_dem_flowstats *dem,
+                                  const gf_dem_flowstats *spot, bool match)
+{
+    (void)ctx;
+    double worst = 0.0;
+    for (size_t z = 0; z < dem->nz && z < spot->nz; z++)
+        if (gf_dem_flowstats_measured(dem->var[z], GF_DEM_VAR_TOL))
+            worst = fmax(worst, fabs(spot->var[z].value / dem->var[z].value - 1.0));
+    fprintf(stderr,
+            "[refine] run %d/%d: r_s %.3g, step_xy %.3g, w %.4g, lambda %.4g, mu %.4g -> Q %.4g (DEM %.4g, %+.1f%%), "
+            "worst measured Var %.1f%% off%s\n",
+            iter, max_iter, c->spot_radius, c->spot_step_xy, c->spot_w, c->spot_insertion_rate, c->spot_move_rate,
+            spot->flow.value, dem->flow.value, 100.0 * (spot->flow.value / dem->flow.value - 1.0), 100.0 * worst,
+            match ? ": matched" : "");
+}
+
 int gf_cmd_calibrate(int argc, char **argv)
 {
+    // --no-refine is calibrate's own; the rest is shared with compare.
+    bool refine = true;
+    char *rest[512];
+    int nrest = 0;
+    for (int i = 0; i < argc && nrest < 512; i++) {
+        if (!strcmp(argv[i], "--no-refine")) refine = false;
+        else rest[nrest++] = argv[i];
+    }
     gf_demargs a;
-    int rc = gf_demargs_parse("calibrate", argc, argv, &a);
+    int rc = gf_demargs_parse("calibrate", nrest, rest, &a);
     if (rc != GF_EXIT_OK) return rc;
     if (a.npos != 1 || !a.out) {
         fprintf(stderr, "granflow calibrate: error: give one DEM run and -o PARAMS.ini\n"
-                        "usage: granflow calibrate DEM_DIR [--timestep DT] [--config INI] [--set key=value]... -o PARAMS.ini\n");
+                        "usage: granflow calibrate DEM_DIR [--timestep DT] [--config INI] [--set key=value]... "
+                        "[--no-refine] -o PARAMS.ini\n");
         return GF_EXIT_USAGE;
     }
     gf_series s;
     gf_status st = gf_demargs_load("calibrate", &a, a.pos[0], true, &s);
     if (st != GF_OK) return gf_cli_fail("calibrate", st);
+    gf_steady win;
+    st = gf_dem_window(&s, &a.opts, &win);
+    if (st != GF_OK) {
+        gf_series_free(&s);
+        return gf_cli_fail("calibrate", st);
+    }
+    if (!a.quiet) fprintf(stderr, "granflow calibrate: window %g..%g tau: %s\n", win.t0, win.t1, win.reason);
     gf_analysis_opts o;
     gf_dem_calibration_opts(&s, &a.opts, &o);
     if (!a.quiet) {
@@ -113,8 +145,14 @@ int gf_cmd_calibrate(int argc, char **argv)
     st = gf_dem_calibrate(&s, &o, &s.cfg, &c);
     if (st == GF_OK || isfinite(c.flow_rate.value)) gf_dem_calibration_print(&c, stdout);
     gf_config cfg = s.cfg;
+    // The spot runs start from the DEM's first snapshot, snapshots as often.
+    double span = s.frames[s.nframes - 1].time - s.frames[0].time;
+    if (span > 0) cfg.run_duration = span;
+    if (s.nframes > 1) cfg.output_snapshot_interval = s.frames[1].time - s.frames[0].time;
     if (st == GF_OK) st = gf_dem_calibration_apply(&c, &cfg);
-    // The spot run starts from the DEM's first snapshot, for as long as the DEM ran.
+    // params.ini starts from the DEM's first snapshot, written beside it; the
+    // refinement starts from that file read back as `granflow run` reads it,
+    // so that the run of params.ini repeats the refinement's last run.
     char pk[4096];
     snprintf(pk, sizeof pk, "%s.packing.dump", a.out);
     if (st == GF_OK) st = gf_packing_write(&s.frames[0].pk, pk, GF_FORMAT_LAMMPS, &cfg);
@@ -125,10 +163,31 @@ int gf_cmd_calibrate(int argc, char **argv)
         snprintf(kv, sizeof kv, "packing.file=%s", use);
         st = gf_config_set(&cfg, kv, "calibrate");
         if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
-        double span = s.frames[s.nframes - 1].time - s.frames[0].time;
-        if (span > 0) cfg.run_duration = span;
-        if (s.nframes > 1) cfg.output_snapshot_interval = s.frames[1].time - s.frames[0].time;
     }
+    gf_packing start = {0};
+    if (st == GF_OK && refine) st = gf_packing_import(&cfg, &start, NULL);
+    if (st == GF_OK && refine) {
+        if (!a.quiet)
+            fprintf(stderr,
+                    "granflow calibrate: closed-loop refinement: spot runs from the DEM's first snapshot to t = %g "
+                    "tau, until the flow rate is within %.0f%% and Var(z) within %.0f%% at every height\n",
+                    win.t1, 100.0 * GF_DEM_FLOW_TOL, 100.0 * GF_DEM_VAR_TOL);
+        gf_dem_refine_result res;
+        gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = gf_cli_catch_stop(),
+                                 .start = &start};
+        st = gf_dem_refine(&s, &o, &cfg, &ro, &res);
+        if (st == GF_OK) {
+            printf("DEM vs spot, first guess (thesis relations):\n");
+            gf_dem_flowstats_table(&res.dem, &res.first, GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL, stdout);
+            printf("DEM vs spot, refined (%d spot run%s, %s):\n", res.runs, res.runs == 1 ? "" : "s",
+                   res.matched ? "both tolerances met" : "tolerances NOT met: the closest run kept");
+            gf_dem_flowstats_table(&res.dem, &res.last, GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL, stdout);
+            printf("refined parameters: spot.radius = %.4g, spot.step_xy = %.4g, spot.w = %.4g, "
+                   "spot.insertion_rate = %.4g, spot.move_rate = %.4g\n",
+                   cfg.spot_radius, cfg.spot_step_xy, cfg.spot_w, cfg.spot_insertion_rate, cfg.spot_move_rate);
+        }
+    }
+    gf_packing_free(&start);
     if (st == GF_OK) st = gf_config_save(&cfg, a.out);
     gf_series_free(&s);
     if (st != GF_OK) return gf_cli_fail("calibrate", st);

@@ -141,6 +141,28 @@ GF_API gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignmen
 /// The window [t0, t1] resolved against the series (auto -> a quarter in, to the end).
 GF_API void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1);
 
+/// The steady-flow window of a drainage, found from its outflow.
+typedef struct gf_steady {
+    bool found;        ///< false: no steady part; t0, t1 are the default window
+    double t0, t1;     ///< the window, tau
+    double rate;       ///< the flow rate fitted over it, particles per tau (NaN when not found)
+    char reason[320];  ///< one sentence: which window and why
+} gf_steady;
+
+/// The steady part of an outflow curve (count[k] particles exited by time
+/// t[k], k < n, times increasing): first the longest stretch where the rate,
+/// smoothed over ~100 exits, stays within max(5%, 3 sigma of its noise) of
+/// its median; then each edge is the outermost frame whose edge chunk (an
+/// eighth of the window) flows at the rate of the rest of the window, within
+/// max(0.5%, 2.5 sigma). The start-up (rate ramping up from rest) and the
+/// emptying (rate falling) are left out as far as the noise lets them be
+/// seen. Too few frames or exits, or no steady part over a fifth of the
+/// run: found = false and the default window.
+GF_API gf_status gf_steady_window_curve(const double *t, const double *count, size_t n, gf_steady *w);
+/// gf_steady_window_curve of a series: the particles exited by each snapshot
+/// (n_initial less those present).
+GF_API gf_status gf_steady_window(const gf_series *s, gf_steady *w);
+
 // ---------------------------------------------------------------------------
 // The measurements. Each fills `out` (zero-initialised by the caller).
 

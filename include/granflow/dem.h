@@ -5,6 +5,7 @@
 #ifndef GRANFLOW_DEM_H
 #define GRANFLOW_DEM_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -143,6 +144,9 @@ typedef struct gf_dem_calibration {
     gf_dem_value w;             ///< b_s / b_p
     gf_dem_value insertion_rate; ///< lambda = Q w / p, 1/tau
     gf_dem_value move_rate;     ///< mu = Q h / (dz dN), 1/tau
+    // what could not be measured: one sentence each, with the fallback used
+    char notes[6][240];
+    size_t nnotes;
 } gf_dem_calibration;
 
 /// The thesis' ratio beta / r_s of the exponential fitted to the spot model's
@@ -157,7 +161,11 @@ GF_API void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *
 
 /// Measures the series over the window of `o` and infers the five spot
 /// parameters; uncertainties from the scatter over sub-windows. `cfg` gives
-/// spot.step_z and spot.wall_distance (where spots may go).
+/// spot.step_z and spot.wall_distance (where spots may go). A quantity that
+/// cannot be measured (no fit, no density drop, a correlation longer than
+/// its region) leaves its parameter at a fallback (the thesis' value, or
+/// `cfg`'s), with a sentence in c->notes: never a NaN or a negative rate.
+/// Only a run without outflow is an error (GF_ERR_PARAM).
 GF_API gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const gf_config *cfg,
                                   gf_dem_calibration *c);
 
@@ -168,6 +176,78 @@ GF_API gf_status gf_dem_calibration_apply(const gf_dem_calibration *c, gf_config
 /// Writes a human-readable table of the calibration (one line per value with
 /// its uncertainty and the thesis' DEM value).
 GF_API void gf_dem_calibration_print(const gf_dem_calibration *c, FILE *out);
+
+/// Resolves an automatic window (o->t0 or o->t1 NaN) to the steady-flow
+/// window of the series' outflow (gf_steady_window); `w` (may be NULL) gets
+/// the window and the reason. A window given by the caller is kept.
+GF_API gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_steady *w);
+
+// ---------------------------------------------------------------------------
+// Matching a spot run to a DEM run (thesis Sec. 3.5).
+
+#define GF_DEM_FS_MAXZ 16
+/// The numbers a spot run must match a DEM run on, over the window of the
+/// options, each with the standard error of its mean over 4 (or 2)
+/// sub-windows (NaN: unknown or not measurable).
+typedef struct gf_dem_flowstats {
+    double t0, t1;                     ///< the window, tau
+    gf_dem_value flow;                 ///< flow rate Q, particles per tau
+    size_t nz;                         ///< velocity heights
+    double z[GF_DEM_FS_MAXZ];          ///< their heights, d
+    gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of v_z(x) there, d^2
+    gf_dem_value bp;                   ///< particle diffusion length b_p, d
+    gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
+    gf_dem_value drop;                 ///< particles fewer in the slice in flow than at rest
+    gf_dem_value beta;                 ///< velocity correlation length (when asked), d
+} gf_dem_flowstats;
+/// Measures `fs` on the series over the window of `o` (the correlation
+/// length too when `correlation`: the slowest measurement).
+GF_API gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o, bool correlation,
+                                          gf_dem_flowstats *fs);
+/// Whether a DEM value is measured precisely enough to test a match within
+/// `tol`: positive, with a relative standard error of at most tol.
+GF_API bool gf_dem_flowstats_measured(gf_dem_value v, double tol);
+/// True when the spot run's flow rate is within flow_tol (relative) of the
+/// DEM's and its Var within var_tol at every height the DEM measured
+/// (gf_dem_flowstats_measured with var_tol; at least one).
+GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
+                                   double var_tol);
+/// Prints the table DEM | spot | difference with its uncertainty | verdict
+/// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
+/// each Var; the other rows have none).
+GF_API void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
+                                   double var_tol, FILE *f);
+
+/// Tolerances of the closed-loop calibration and of `granflow compare`.
+#define GF_DEM_FLOW_TOL 0.05
+#define GF_DEM_VAR_TOL 0.10
+
+/// Options of gf_dem_refine.
+typedef struct gf_dem_refine_opts {
+    int max_iter;                    ///< spot runs at most (0: 6)
+    double flow_tol, var_tol;        ///< 0: GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL
+    void (*progress)(void *ctx, int iter, int max_iter, const gf_config *cfg, const gf_dem_flowstats *dem,
+                     const gf_dem_flowstats *spot, bool match); ///< after each spot run; may be NULL
+    void *ctx;
+    volatile sig_atomic_t *stop;     ///< GF_ERR_INTERRUPTED when it becomes non-zero; may be NULL
+    const gf_packing *start;         ///< the spot runs' initial packing (NULL: the DEM's first frame)
+} gf_dem_refine_opts;
+/// The result of gf_dem_refine.
+typedef struct gf_dem_refine_result {
+    gf_dem_flowstats dem;            ///< the DEM's numbers
+    gf_dem_flowstats first, last;    ///< the spot runs of the first guess and of the final parameters
+    int runs;                        ///< spot runs made
+    bool matched;                    ///< the final parameters meet both tolerances
+} gf_dem_refine_result;
+/// Closed-loop calibration: runs the spot model from the DEM's first frame
+/// with the parameters of `cfg` (the thesis relations' first guess) over the
+/// DEM's window, compares, and adjusts them (spot.insertion_rate for the flow
+/// rate, spot.step_xy for the profile widths, spot.w for b_p, spot.move_rate
+/// for the density drop, spot.radius for beta) until the flow rate is within
+/// flow_tol and Var at every height within var_tol, or max_iter runs; `cfg`
+/// ends with the best parameters found (the run closest to the targets).
+GF_API gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_config *cfg,
+                               const gf_dem_refine_opts *ro, gf_dem_refine_result *res);
 
 // ---------------------------------------------------------------------------
 // Comparison (thesis Sec. 3.5).

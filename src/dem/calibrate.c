@@ -8,6 +8,7 @@
 // sub-windows; the uncertainty is the scatter of the sub-window values over
 // sqrt(K) (the standard error of their mean).
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -22,12 +23,14 @@
 #define GF_CAL_BALLS 400   // spot balls placed per frame for p
 #define GF_CAL_WALLSD 5.0  // a profile is fitted only where its sd is below W / this (tails inside the walls)
 
-/// Top of the packing in a frame: the mean of its 20 highest centres.
-static double gf_cal_top(const gf_packing *p)
+/// Top of the packing in a frame: the mean of its 20 highest centres with
+/// |x| < xhalf (the centre of a draining silo is lower than its sides).
+static double gf_cal_top(const gf_packing *p, double xhalf)
 {
     double top[20];
     size_t m = 0;
     for (size_t i = 0; i < p->n; i++) {
+        if (fabs(p->x[i]) >= xhalf) continue;
         double z = p->z[i];
         if (m < 20) {
             top[m++] = z;
@@ -54,8 +57,12 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     gf_analysis_window(o, s, &t0, &t1);
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
-    double h0 = gf_cal_top(&s->frames[0].pk), h1 = gf_cal_top(&s->frames[k1 > 0 ? k1 - 1 : 0].pk);
     double W = s->cfg.container_width;
+    // h1: the lowest the surface gets in the window, in the centre (a
+    // crater forms above the orifice), so that no region leaves the packing.
+    double h0 = gf_cal_top(&s->frames[0].pk, INFINITY);
+    const gf_packing *last = &s->frames[k1 > 0 ? k1 - 1 : 0].pk;
+    double h1 = fmin(gf_cal_top(last, INFINITY), gf_cal_top(last, fmax(2.0, 0.25 * W)));
     // The papers' regions belong to a fill of 110 d: scaled to this one, and
     // kept below the surface at the end of the window.
     if (k.vel_nheights == d.vel_nheights && !memcmp(k.vel_heights, d.vel_heights, sizeof d.vel_heights)) {
@@ -66,11 +73,13 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
         o->vel_nheights = n;
     }
     if (k.corr_size == d.corr_size) o->corr_size = fmax(4.0, fmin(16.0, fmin(W - 4.0, 0.4 * h1)));
-    if (k.corr_zc == d.corr_zc) o->corr_zc = fmin(0.55 * h0, h1 - 0.5 * o->corr_size - 4.0);
+    // Never below the base (nor in the orifice's jet) nor above the surface.
+    if (k.corr_zc == d.corr_zc)
+        o->corr_zc = fmax(0.5 * o->corr_size + 2.0, fmin(0.55 * h0, h1 - 0.5 * o->corr_size - 4.0));
     // Diffusion: particles starting in the centre (|x| < 5, or W/4), from the
     // slice's bottom up (the papers: z > 60 of 110), followed as they drop.
     if (k.diff_xhalf == d.diff_xhalf) o->diff_xhalf = fmin(5.0, 0.25 * W);
-    if (k.dens_z0 == d.dens_z0) o->dens_z0 = 0.45 * h0;
+    if (k.dens_z0 == d.dens_z0) o->dens_z0 = fmax(2.0, fmin(0.45 * h0, h1 - 6.0));
     if (k.dens_z1 == d.dens_z1) o->dens_z1 = fmax(o->dens_z0 + 2.0, fmin(0.64 * h0, h1 - 4.0));
     if (k.diff_z0 == d.diff_z0) o->diff_z0 = o->dens_z0;
     // g(r) and g3: the papers' -15 < x < 15, 15 < z < 45 of 110, scaled.
@@ -80,6 +89,42 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     }
     if (k.gr_z0 == d.gr_z0) o->gr_z0 = fmax(2.0, 0.14 * h0);
     if (k.gr_z1 == d.gr_z1) o->gr_z1 = fmax(o->gr_z0 + 2.0, fmin(0.41 * h0, h1 - 3.0));
+}
+
+gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_steady *w)
+{
+    gf_steady tmp;
+    gf_steady *win = w ? w : &tmp;
+    gf_status st = gf_steady_window(s, win);
+    if (st != GF_OK) return st;
+    if (!isnan(o->t0) && !isnan(o->t1)) {
+        win->t0 = o->t0;
+        win->t1 = o->t1;
+        snprintf(win->reason, sizeof win->reason, "the window given (window.t0, window.t1)");
+        return GF_OK;
+    }
+    if (!isnan(o->t0) || !isnan(o->t1)) {
+        if (!isnan(o->t0)) win->t0 = o->t0;
+        if (!isnan(o->t1)) win->t1 = o->t1;
+        size_t len = strlen(win->reason);
+        snprintf(win->reason + len, sizeof win->reason - len, "; %s given", !isnan(o->t0) ? "window.t0" : "window.t1");
+    }
+    o->t0 = win->t0;
+    o->t1 = win->t1;
+    return GF_OK;
+}
+
+#define GF_CAL_RS_FALLBACK 2.6 // thesis Sec. 3.3
+
+/// Records what could not be measured and the fallback used.
+static void gf_cal_note(gf_dem_calibration *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void gf_cal_note(gf_dem_calibration *c, const char *fmt, ...)
+{
+    if (c->nnotes >= sizeof c->notes / sizeof c->notes[0]) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->notes[c->nnotes++], sizeof c->notes[0], fmt, ap);
+    va_end(ap);
 }
 
 // ---------------------------------------------------------------------------
@@ -262,19 +307,55 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     double h = o->dens_z1 - o->dens_z0;
     double phi = c->slice_steady.value * (GF_CAL_PI / 6.0) / (h * s->cfg.container_width * s->cfg.container_depth);
 
-    // r_s = beta / 0.72 (thesis Sec. 3.3).
-    c->spot_radius = (gf_dem_value){rs_full, c->corr_length.err / GF_DEM_BETA_PER_RS};
+    if (!(c->flow_rate.value > 0))
+        return gf_error_set(GF_ERR_PARAM,
+                            "no outflow in the window %g..%g tau (flow rate %g): nothing to calibrate on; check the "
+                            "window (--set window.t0=..., window.t1=...) and the container (orifice, exit_z)",
+                            t0, t1, c->flow_rate.value);
+    // r_s = beta / 0.72 (thesis Sec. 3.3). A beta beyond half the region is
+    // no measurement (the fit ran off): the thesis' r_s, left to refinement.
+    double rs = rs_full;
+    if (!isfinite(full.beta) || full.beta <= 0.2 || full.beta > 0.5 * o->corr_size) {
+        gf_cal_note(c, "velocity correlation length not measurable (beta = %.3g d in a %.3g d region): spot.radius = "
+                       "%.3g d (the thesis' value)", full.beta, o->corr_size, GF_CAL_RS_FALLBACK);
+        rs = GF_CAL_RS_FALLBACK;
+        c->spot_radius = (gf_dem_value){rs, NAN};
+    } else {
+        c->spot_radius = (gf_dem_value){rs, c->corr_length.err / GF_DEM_BETA_PER_RS};
+    }
     // Var(x_s) grows by Var(dx_s) per step of dz: d Var / dz = 2 b_s (thesis Sec. 3.3).
     c->b_s = (gf_dem_value){0.5 * c->var_slope.value, 0.5 * c->var_slope.err};
+    if (!isfinite(c->b_s.value) || !(c->b_s.value > 0)) {
+        double bs = cfg->spot_step_xy * cfg->spot_step_xy / (4.0 * dz);
+        gf_cal_note(c, "the v_z(x) profile variance does not grow with height (slope %.3g over %zu heights): b_s = %.3g "
+                       "from the configured spot.step_xy = %.3g", c->var_slope.value, c->var_heights, bs,
+                    cfg->spot_step_xy);
+        c->b_s = (gf_dem_value){bs, NAN};
+    }
     // BCC walk: dx_s = +-dx with probability 1/2, so Var(dx_s) = dx^2 / 2 = 2 b_s dz.
     double dx = sqrt(4.0 * c->b_s.value * dz);
     c->step_xy = (gf_dem_value){dx, 0.5 * dx * gf_cal_rel(c->b_s)};
     // b_p = Var(dx_s / w) / (2 dz_s / w) = b_s / w with w the displacement ratio.
     double w = c->b_s.value / c->diff_length.value;
-    c->w = (gf_dem_value){w, w * hypot(gf_cal_rel(c->b_s), gf_cal_rel(c->diff_length))};
+    if (!isfinite(w) || !(w > 1.0)) {
+        gf_cal_note(c, "particle diffusion not measurable (b_p = %.3g d): spot.w = %.4g (configured)",
+                    c->diff_length.value, cfg->spot_w);
+        c->w = (gf_dem_value){cfg->spot_w, NAN};
+    } else {
+        c->w = (gf_dem_value){w, w * hypot(gf_cal_rel(c->b_s), gf_cal_rel(c->diff_length))};
+    }
+    w = c->w.value;
     // Mass balance: each spot carries p / w particle volumes, so Q = lambda p / w.
-    c->ball_count_bulk = phi * 8.0 * rs_full * rs_full * rs_full; // phi (4/3 pi r^3) / (pi / 6)
-    double lam = c->flow_rate.value * w / c->ball_count.value;
+    c->ball_count_bulk = phi * 8.0 * rs * rs * rs; // phi (4/3 pi r^3) / (pi / 6)
+    double p = c->ball_count.value;
+    if (rs != rs_full || !isfinite(p) || !(p > 0)) {
+        p = isfinite(c->ball_count_bulk) && c->ball_count_bulk > 0 ? c->ball_count_bulk
+                                                                   : 0.6 * 8.0 * rs * rs * rs;
+        if (rs == rs_full)
+            gf_cal_note(c, "particles in a spot ball not measurable: p = %.4g (phi V_ball / V_p)", p);
+        c->ball_count = (gf_dem_value){p, NAN};
+    }
+    double lam = c->flow_rate.value * w / p;
     c->insertion_rate = (gf_dem_value){lam, lam * sqrt(pow(gf_cal_rel(c->flow_rate), 2) + pow(gf_cal_rel(c->w), 2) +
                                                       pow(gf_cal_rel(c->ball_count), 2))};
     // Spots cross the slice at mu dz, each carrying p / w of free volume, so the
@@ -282,19 +363,19 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     double dn = c->slice_initial.value - c->slice_steady.value;
     double mu = c->flow_rate.value * h / (dz * dn);
     double rel_dn = isfinite(c->slice_steady.err) && dn != 0 ? c->slice_steady.err / fabs(dn) : 0.0;
-    c->move_rate = (gf_dem_value){mu, mu * hypot(gf_cal_rel(c->flow_rate), rel_dn)};
-    if (!(dn > 0))
-        return gf_error_set(GF_ERR_PARAM,
-                            "no density drop in the slice %g < z < %g (%g particles at rest, %g in flow): move the "
-                            "slice (--set density.z0=..., density.z1=...) or the window",
-                            o->dens_z0, o->dens_z1, c->slice_initial.value, c->slice_steady.value);
-    if (!isfinite(c->spot_radius.value) || !isfinite(c->b_s.value) || !(c->b_s.value > 0) ||
-        !isfinite(c->w.value) || !(c->w.value > 0) || !isfinite(lam) || !(lam > 0))
-        return gf_error_set(GF_ERR_PARAM,
-                            "calibration failed: beta = %g, Var slope = %g (%zu heights), b_p = %g, p = %g; check "
-                            "the window and the regions (--set velocity.heights=..., correlation.zc=...)",
-                            c->corr_length.value, c->var_slope.value, c->var_heights, c->diff_length.value,
-                            c->ball_count.value);
+    // A drop within 2 of its uncertainties (or none) is no measurement.
+    double dn_err = isfinite(c->slice_steady.err) ? c->slice_steady.err : 0.0;
+    if (!isfinite(mu) || !(dn > 2.0 * dn_err) || !(mu > 0)) {
+        gf_cal_note(c, "no measurable density drop in the slice %.3g < z < %.3g (%.4g particles at rest, %.4g +- %.2g in "
+                       "flow): spot.move_rate = %.4g (configured)", o->dens_z0, o->dens_z1, c->slice_initial.value,
+                    c->slice_steady.value, c->slice_steady.err, cfg->spot_move_rate);
+        c->move_rate = (gf_dem_value){cfg->spot_move_rate, NAN};
+    } else {
+        c->move_rate = (gf_dem_value){mu, mu * hypot(gf_cal_rel(c->flow_rate), rel_dn)};
+    }
+    if (!isfinite(lam) || !(lam > 0))
+        return gf_error_set(GF_ERR_PARAM, "calibration failed: lambda = %g from Q = %g, w = %g, p = %g", lam,
+                            c->flow_rate.value, w, p);
     return GF_OK;
 }
 
@@ -340,4 +421,5 @@ void gf_dem_calibration_print(const gf_dem_calibration *c, FILE *f)
     gf_cal_line(f, "spot.w = b_s / b_p", c->w, "", "(thesis: 1 / 2.50e-3 = 400)");
     gf_cal_line(f, "spot.insertion_rate = Q w / p", c->insertion_rate, "1/tau", "(2009 paper: 375)");
     gf_cal_line(f, "spot.move_rate = Q h / (dz dN)", c->move_rate, "1/tau", "(2009 paper: 28)");
+    for (size_t k = 0; k < c->nnotes; k++) fprintf(f, "note: %s\n", c->notes[k]);
 }

@@ -52,4 +52,21 @@ expect_code 2 analyze outflow "$T/steps.dump" -q --no-plots -o "$T/a"
 expect_code 0 analyze outflow "$T/steps.dump" -q --no-plots -o "$T/a" --timestep 1e-4 --set container.orifice_diameter=4
 grep -q '"particles_exited": 1' "$T/a/summary.json" || fail "outflow of the dump is not 1 particle"
 ok "analyze --timestep"
+# A silo too small for most of the thesis' measurements (600 particles, 10 d
+# wide, 5 tau, the correlation region and the profiles cut by the walls):
+# calibrate says what it could not measure and still writes five positive
+# numbers, never nan (--no-refine: the refinement has its own test).
+gf run -q --set container.width=10 --set container.depth=6 --set container.orifice_diameter=4 \
+    --set packing.particles=600 --set run.duration=5 --set output.snapshot_interval=0.5 -o tiny
+expect_rc 0 "run tiny"
+gf calibrate tiny --no-refine -o tiny.ini
+expect_rc 0 "calibrate tiny --no-refine"
+grep -q '^note: ' out || fail "calibrate of a tiny silo printed no note of what it could not measure: $(cat out)"
+grep -qi 'nan' tiny.ini && fail "tiny.ini holds a nan: $(grep -i nan tiny.ini)"
+for k in radius step_xy w insertion_rate move_rate; do
+    v=$(sed -n "s/^$k *= *//p" tiny.ini | head -1)
+    awk -v v="$v" 'BEGIN { exit !(v == v + 0 && v > 0) }' || fail "tiny.ini: $k = '$v' is not a positive number"
+done
+grep -q 'refine' err && fail "--no-refine still refined"
+ok "calibrate of a tiny silo: notes, fallbacks, five positive numbers ($(grep -c '^note: ' out) notes)"
 echo "cli $NAME: $PASS passed, 0 failed"

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+// The numbers a spot run must match a DEM run on (thesis Sec. 3.5): flow
+// rate, variance of the Gaussian v_z(x) profiles at each height, particle
+// diffusion length b_p, velocity correlation length beta and packing
+// fraction in the flowing slice, each over the window with an uncertainty
+// from the scatter over sub-windows; and the table of DEM vs spot with a
+// within-tolerance verdict for each.
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "granflow/dem.h"
+
+#define GF_FS_PI 3.14159265358979323846
+#define GF_FS_PARTS 4
+
+static double gf_fs_value(const gf_measure_out *m, const char *key)
+{
+    for (size_t k = 0; k < m->nvalues; k++)
+        if (!strcmp(m->values[k].key, key)) return m->values[k].value;
+    return NAN;
+}
+
+/// One estimate of everything over [t0, t1].
+static gf_status gf_fs_once(const gf_series *s, const gf_analysis_opts *base, double t0, double t1, bool corr,
+                            gf_dem_flowstats *fs)
+{
+    gf_analysis_opts o = *base;
+    o.t0 = t0;
+    o.t1 = t1;
+    gf_measure_out m;
+    gf_status st;
+    memset(&m, 0, sizeof m);
+    if ((st = gf_measure_outflow(s, &o, &m)) == GF_OK) fs->flow.value = gf_fs_value(&m, "flow_rate");
+    gf_measure_free(&m);
+    if (st != GF_OK) return st;
+    memset(&m, 0, sizeof m);
+    if ((st = gf_measure_velocity(s, &o, &m)) == GF_OK) {
+        for (size_t k = 0; k < m.ntables; k++) {
+            const gf_table *t = &m.tables[k];
+            if (strcmp(t->name, "velocity_variance") != 0) continue;
+            fs->nz = 0;
+            for (size_t r = 0; r < t->nrow && fs->nz < GF_DEM_FS_MAXZ; r++) {
+                fs->z[fs->nz] = t->v[r * t->ncol];
+                fs->var[fs->nz++].value = t->v[r * t->ncol + 1];
+            }
+        }
+    }
+    gf_measure_free(&m);
+    if (st != GF_OK) return st;
+    memset(&m, 0, sizeof m);
+    if ((st = gf_measure_diffusion(s, &o, &m)) == GF_OK) fs->bp.value = gf_fs_value(&m, "diffusion_length");
+    gf_measure_free(&m);
+    if (st != GF_OK) return st;
+    memset(&m, 0, sizeof m);
+    if ((st = gf_measure_density(s, &o, &m)) == GF_OK) {
+        double h = o.dens_z1 - o.dens_z0, vol = h * s->cfg.container_width * s->cfg.container_depth;
+        fs->phi.value = gf_fs_value(&m, "density_steady") * (GF_FS_PI / 6.0) / vol;
+        fs->drop.value = gf_fs_value(&m, "density_initial") - gf_fs_value(&m, "density_steady");
+    }
+    gf_measure_free(&m);
+    if (st != GF_OK) return st;
+    fs->beta.value = NAN;
+    if (corr) {
+        memset(&m, 0, sizeof m);
+        if ((st = gf_measure_correlation(s, &o, &m)) == GF_OK) fs->beta.value = gf_fs_value(&m, "correlation_length");
+        gf_measure_free(&m);
+    }
+    return st;
+}
+
+/// Standard error of the mean of the finite values among v[0..n).
+static double gf_fs_err(const double *v, size_t n)
+{
+    double s = 0.0, s2 = 0.0;
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(v[k])) {
+            s += v[k];
+            m++;
+        }
+    if (m < 2) return NAN;
+    double mean = s / (double)m;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(v[k])) s2 += (v[k] - mean) * (v[k] - mean);
+    return sqrt(s2 / (double)(m - 1) / (double)m);
+}
+
+gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o, bool correlation,
+                                   gf_dem_flowstats *fs)
+{
+    memset(fs, 0, sizeof *fs);
+    double t0, t1;
+    gf_analysis_window(o, s, &t0, &t1);
+    gf_status st = gf_fs_once(s, o, t0, t1, correlation, fs);
+    if (st != GF_OK) return st;
+    size_t nf = 0;
+    for (size_t f = 0; f < s->nframes; f++) nf += s->frames[f].time >= t0 && s->frames[f].time <= t1;
+    size_t K = nf >= 12 ? GF_FS_PARTS : nf >= 6 ? 2 : 1;
+    double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS];
+    for (size_t j = 0; j < K; j++) {
+        gf_dem_flowstats e;
+        memset(&e, 0, sizeof e);
+        double a = t0 + (t1 - t0) * (double)j / (double)K, b = t0 + (t1 - t0) * (double)(j + 1) / (double)K;
+        if ((st = gf_fs_once(s, o, a, b, correlation, &e)) != GF_OK) return st;
+        v[0][j] = e.flow.value;
+        v[1][j] = e.bp.value;
+        v[2][j] = e.phi.value;
+        v[3][j] = e.drop.value;
+        v[4][j] = e.beta.value;
+        for (size_t z = 0; z < GF_DEM_FS_MAXZ; z++) v[5 + z][j] = z < e.nz && z < fs->nz ? e.var[z].value : NAN;
+    }
+    if (K < 2) {
+        fs->flow.err = fs->bp.err = fs->phi.err = fs->drop.err = fs->beta.err = NAN;
+        for (size_t z = 0; z < fs->nz; z++) fs->var[z].err = NAN;
+    } else {
+        fs->flow.err = gf_fs_err(v[0], K);
+        fs->bp.err = gf_fs_err(v[1], K);
+        fs->phi.err = gf_fs_err(v[2], K);
+        fs->drop.err = gf_fs_err(v[3], K);
+        fs->beta.err = gf_fs_err(v[4], K);
+        for (size_t z = 0; z < fs->nz; z++) fs->var[z].err = gf_fs_err(v[5 + z], K);
+    }
+    fs->t0 = t0;
+    fs->t1 = t1;
+    return GF_OK;
+}
+
+static bool gf_fs_within(gf_dem_value d, gf_dem_value s, double tol)
+{
+    return isfinite(d.value) && isfinite(s.value) && fabs(s.value - d.value) <= tol * fabs(d.value);
+}
+
+bool gf_dem_flowstats_measured(gf_dem_value v, double tol)
+{
+    return isfinite(v.value) && v.value > 0 && (!isfinite(v.err) || v.err <= tol * v.value);
+}
+
+bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
+                            double var_tol)
+{
+    if (!gf_fs_within(dem->flow, spot->flow, flow_tol)) return false;
+    size_t used = 0;
+    for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {
+        if (!gf_dem_flowstats_measured(dem->var[z], var_tol)) continue; // too noisy in the DEM to test
+        used++;
+        if (!gf_fs_within(dem->var[z], spot->var[z], var_tol)) return false;
+    }
+    return used > 0;
+}
+
+static void gf_fs_num(char *buf, size_t n, gf_dem_value v)
+{
+    if (!isfinite(v.value)) snprintf(buf, n, "-");
+    else if (isfinite(v.err)) snprintf(buf, n, "%.4g +- %.2g", v.value, v.err);
+    else snprintf(buf, n, "%.4g", v.value);
+}
+
+/// One row; `gate`: a DEM value too noisy for the tolerance gets no verdict
+/// (the Var rows; the flow rate is always judged).
+static void gf_fs_row(FILE *f, const char *name, gf_dem_value d, gf_dem_value s, double tol, bool gate)
+{
+    char a[48], b[48], diff[64], verdict[64];
+    gf_fs_num(a, sizeof a, d);
+    gf_fs_num(b, sizeof b, s);
+    double delta = s.value - d.value;
+    double err = hypot(isfinite(d.err) ? d.err : 0.0, isfinite(s.err) ? s.err : 0.0);
+    if (isfinite(delta) && d.value != 0)
+        snprintf(diff, sizeof diff, "%+.1f%% +- %.1f%%", 100.0 * delta / fabs(d.value), 100.0 * err / fabs(d.value));
+    else snprintf(diff, sizeof diff, "-");
+    if (gate && tol > 0 && isfinite(delta) && !gf_dem_flowstats_measured(d, tol))
+        snprintf(verdict, sizeof verdict, "DEM too noisy to test %.0f%%", 100.0 * tol);
+    else if (tol > 0 && isfinite(delta))
+        snprintf(verdict, sizeof verdict, "%s (tolerance %.0f%%)", gf_fs_within(d, s, tol) ? "within" : "OUTSIDE",
+                 100.0 * tol);
+    else if (isfinite(delta)) snprintf(verdict, sizeof verdict, "(no tolerance)");
+    else snprintf(verdict, sizeof verdict, "not measurable");
+    fprintf(f, "  %-30s %-20s %-20s %-20s %s\n", name, a, b, diff, verdict);
+}
+
+void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
+                            double var_tol, FILE *f)
+{
+    fprintf(f, "  %-30s %-20s %-20s %-20s %s\n", "quantity", "DEM", "spot", "spot - DEM", "verdict");
+    gf_fs_row(f, "flow rate Q (1/tau)", dem->flow, spot->flow, flow_tol, false);
+    for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {
+        char name[64];
+        snprintf(name, sizeof name, "Var of v_z(x) at z = %.3g (d^2)", dem->z[z]);
+        gf_fs_row(f, name, dem->var[z], spot->var[z], var_tol, true);
+    }
+    gf_fs_row(f, "diffusion length b_p (d)", dem->bp, spot->bp, 0.0, false);
+    gf_fs_row(f, "packing fraction in flow", dem->phi, spot->phi, 0.0, false);
+    gf_fs_row(f, "density drop in the slice", dem->drop, spot->drop, 0.0, false);
+    if (isfinite(dem->beta.value) || isfinite(spot->beta.value))
+        gf_fs_row(f, "correlation length beta (d)", dem->beta, spot->beta, 0.0, false);
+}
