@@ -396,12 +396,13 @@ static double gf_gen_move(gf_gen *g, double gain)
     // The top slab reaches to infinity: above the measured ones nothing stretches.
     strain[nslab - 1] = 0.0;
     double worst = 0.0, ztop = zlo;
+    const bool shaped = g->shaped;
     for (size_t i = 0; i < n; i++) {
         double xi = x[i] + ux[i], yi = y[i] + uy[i], zi = z[i] + uz[i];
         xi = gf_gen_wall(xi, xlo, xhi);
         yi = gf_gen_wall(yi, ylo, yhi);
         zi = gf_gen_wall(zi, zlo, zhi);
-        if (g->shaped) gf_gen_shape_wall(g, &xi, &yi, &zi);
+        if (shaped) gf_gen_shape_wall(g, &xi, &yi, &zi);
         double r = rz[i];
         if (gain > 0.0) {
             zi = gf_gen_lift(lift, strain, nslab, zlo, zi);
