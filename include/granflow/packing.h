@@ -94,9 +94,11 @@ GF_API gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg);
 GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0, double y1,
                                   double z0, double z1);
 
-/// Bulk packing fraction of a packing in the container of `cfg`: over a box
-/// 2 d clear of every wall and of the funnel, from 2 d above the base (or
-/// the funnel's top) to 3 d below the highest centre (gf_packing_fraction).
+/// Bulk packing fraction of a packing in the container of `cfg`, centres
+/// counted 2 d clear of every wall, from 2 d above the base (or the funnel's
+/// top) to 3 d below the highest centre: a box (gf_packing_fraction) for the
+/// box, the annulus 2 d inside the wall (and outside a column) for a
+/// cylinder. NaN when that region is empty.
 GF_API double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).
