@@ -216,6 +216,28 @@ static void cylinder_packings_keep_the_promises(void **state)
     }
 }
 
+// An imported packing (e.g. a DEM dump) in a cylinder with a pipe: a centre
+// in the pipe stays, one below its end has already left (dropped and
+// counted), one outside the wall is an error naming it.
+static void cylinder_import_checks(void **state)
+{
+    (void)state;
+    gf_config c = cylinder(8, 45, 6, 3, 0);
+    const char *dir = gf_test_tmpdir();
+    const char *path = gf_test_write_file(dir, "cyl.xyz", "3\nthree\nC 0 0 5\nC 0.5 0 -2\nC 0 0.5 -3.5\n");
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", path);
+    gf_packing pk = {0};
+    gf_packing_import_report rep;
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_OK);
+    assert_int_equal(pk.n, 2);
+    assert_int_equal(rep.below_base, 1);
+    assert_int_equal(gf_packing_check(&pk, &c), GF_OK);
+    assert_int_equal(gf_packing_push(&pk, 9, 1, 6, 6, 10, 0.5), GF_OK); // rho = 8.5 > 8
+    assert_int_equal(gf_packing_check(&pk, &c), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "id 9"));
+    gf_packing_free(&pk);
+}
+
 // ---- runs ---------------------------------------------------------------
 
 // Smallest distance of a live particle centre to a wall (negative: crossed),
@@ -318,6 +340,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(cylinder_funnel_pipe_column_by_hand),
     cmocka_unit_test(cylinder_config_errors),
     cmocka_unit_test(cylinder_packings_keep_the_promises),
+    cmocka_unit_test(cylinder_import_checks),
     cmocka_unit_test(hopper_keeps_spots_and_particles_inside),
     cmocka_unit_test(hopper_parallel_matches_serial),
 };

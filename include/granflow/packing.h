@@ -66,7 +66,7 @@ GF_API gf_status gf_packing_types_parse(const char *text, int32_t *types, size_t
 typedef struct gf_packing_import_report {
     size_t read;        ///< particles in the frame read
     size_t other_types; ///< dropped: atom type not in packing.types
-    size_t below_base;  ///< dropped: centre below container.exit_z (already exited, e.g. a DEM
+    size_t below_base;  ///< dropped: centre below the exit plane (gf_config_exit_plane; already exited, e.g. a DEM
                         ///< packing's particles falling through the orifice)
 } gf_packing_import_report;
 
@@ -74,7 +74,7 @@ typedef struct gf_packing_import_report {
 /// reads it (the last frame of a multi-frame LAMMPS dump), keeps only the atom
 /// types of `packing.types` (a LAMMPS dump with a `type` column; empty: all;
 /// a DEM floor of frozen particles is typically another type), drops every
-/// particle whose centre lies below `container.exit_z` (counted as already
+/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe; counted as already
 /// exited), and tags the layers by height. `rep` (may be NULL) gets the counts.
 /// GF_ERR_PARAM when packing.types is set and the file has no type column,
 /// or when no particle is left.
