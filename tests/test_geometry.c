@@ -181,6 +181,63 @@ static void cylinder_config_errors(void **state)
     assert_non_null(strstr(gf_last_error(), "container.inner_radius"));
 }
 
+// ---- packings -----------------------------------------------------------
+
+// granflow pack's promises (SPEC 1.2) in a cylinder: no pair closer than
+// 0.99, every centre 1/2 inside every wall, the bulk at 0.58-0.64.
+static void cylinder_packings_keep_the_promises(void **state)
+{
+    (void)state;
+    const struct {
+        double R, angle, outlet, pipe, inner;
+        int64_t n;
+    } cases[] = {{8, 0, 6, 0, 0, 6000}, {8, 60, 6, 3, 0, 6000}, {10, 30, 6, 2, 2, 8000}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        gf_config c = cylinder(cases[k].R, cases[k].angle, cases[k].outlet, cases[k].pipe, cases[k].inner);
+        c.packing_particles = cases[k].n;
+        gf_packing pk = {0};
+        assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+        assert_int_equal(pk.n, (size_t)cases[k].n);
+        gf_container box = gf_container_make(&c);
+        double zmin = INFINITY;
+        for (size_t i = 0; i < pk.n; i++) {
+            if (!gf_container_contains(&box, pk.x[i], pk.y[i], pk.z[i], 0.5, 1e-9))
+                fail_msg("case %zu: sphere at (%g, %g, %g) crosses a wall", k, pk.x[i], pk.y[i], pk.z[i]);
+            zmin = fmin(zmin, pk.z[i]);
+        }
+        assert_true(zmin >= box.exit_z + 0.5 - 1e-9); // the pipe is filled from its end
+        assert_true(zmin < box.exit_z + 0.6);
+        double dmin = gf_packing_min_distance(&pk), phi = gf_packing_bulk_fraction(&pk, &c);
+        print_message("case %zu: %zu spheres, min distance %.4f, bulk phi %.4f\n", k, pk.n, dmin, phi);
+        assert_true(dmin >= 0.99);
+        assert_true(phi >= 0.58 && phi <= 0.64);
+        assert_int_equal(gf_packing_check(&pk, &c), GF_OK);
+        gf_packing_free(&pk);
+    }
+}
+
+// An imported packing (e.g. a DEM dump) in a cylinder with a pipe: a centre
+// in the pipe stays, one below its end has already left (dropped and
+// counted), one outside the wall is an error naming it.
+static void cylinder_import_checks(void **state)
+{
+    (void)state;
+    gf_config c = cylinder(8, 45, 6, 3, 0);
+    const char *dir = gf_test_tmpdir();
+    const char *path = gf_test_write_file(dir, "cyl.xyz", "3\nthree\nC 0 0 5\nC 0.5 0 -2\nC 0 0.5 -3.5\n");
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", path);
+    gf_packing pk = {0};
+    gf_packing_import_report rep;
+    assert_int_equal(gf_packing_import(&c, &pk, &rep), GF_OK);
+    assert_int_equal(pk.n, 2);
+    assert_int_equal(rep.below_base, 1);
+    assert_int_equal(gf_packing_check(&pk, &c), GF_OK);
+    assert_int_equal(gf_packing_push(&pk, 9, 1, 6, 6, 10, 0.5), GF_OK); // rho = 8.5 > 8
+    assert_int_equal(gf_packing_check(&pk, &c), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "id 9"));
+    gf_packing_free(&pk);
+}
+
 // ---- runs ---------------------------------------------------------------
 
 // Smallest distance of a live particle centre to a wall (negative: crossed),
@@ -282,6 +339,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(cylinder_flat_base_by_hand),
     cmocka_unit_test(cylinder_funnel_pipe_column_by_hand),
     cmocka_unit_test(cylinder_config_errors),
+    cmocka_unit_test(cylinder_packings_keep_the_promises),
+    cmocka_unit_test(cylinder_import_checks),
     cmocka_unit_test(hopper_keeps_spots_and_particles_inside),
     cmocka_unit_test(hopper_parallel_matches_serial),
 };

@@ -65,7 +65,7 @@ GF_API gf_status gf_packing_read(const char *path, gf_packing_format format, gf_
 typedef struct gf_packing_import_report {
     size_t read;        ///< particles in the frame read
     size_t other_types; ///< dropped: atom type not in packing.types
-    size_t below_base;  ///< dropped: centre below container.exit_z (already exited, e.g. a DEM
+    size_t below_base;  ///< dropped: centre below the exit plane (gf_config_exit_plane; already exited, e.g. a DEM
                         ///< packing's particles falling through the orifice)
 } gf_packing_import_report;
 
@@ -73,7 +73,7 @@ typedef struct gf_packing_import_report {
 /// reads it (the last frame of a multi-frame LAMMPS dump), keeps only the atom
 /// types of `packing.types` (a LAMMPS dump with a `type` column; empty: all;
 /// a DEM floor of frozen particles is typically another type), drops every
-/// particle whose centre lies below `container.exit_z` (counted as already
+/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe; counted as already
 /// exited), and tags the layers by height. `rep` (may be NULL) gets the counts.
 /// GF_ERR_PARAM when packing.types is set and the file has no type column,
 /// or when no particle is left.
@@ -98,9 +98,11 @@ GF_API gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg);
 GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0, double y1,
                                   double z0, double z1);
 
-/// Bulk packing fraction of a packing in the container of `cfg`: over a box
-/// 2 d clear of every wall and of the funnel, from 2 d above the base (or
-/// the funnel's top) to 3 d below the highest centre (gf_packing_fraction).
+/// Bulk packing fraction of a packing in the container of `cfg`, centres
+/// counted 2 d clear of every wall, from 2 d above the base (or the funnel's
+/// top) to 3 d below the highest centre: a box (gf_packing_fraction) for the
+/// box, the annulus 2 d inside the wall (and outside a column) for a
+/// cylinder. NaN when that region is empty.
 GF_API double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).

@@ -32,8 +32,8 @@ static int gf_box_walls(const gf_container *c, const double p[3], double reach, 
     return n;
 }
 
-void gf_box_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
-                 double *dy, double *dz)
+static void gf_box_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
+                        double *dy, double *dz)
 {
     double g;
     if ((g = x - c->xlo) < r) *dx += alpha * (r - g);

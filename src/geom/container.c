@@ -36,6 +36,12 @@ gf_container gf_container_make(const gf_config *cfg)
     return c;
 }
 
+void gf_container_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
+                       double *dy, double *dz)
+{
+    c->ops->push(c, x, y, z, r, alpha, dx, dy, dz);
+}
+
 void gf_container_bounds(const gf_container *c, double ztop, double lo[3], double hi[3])
 {
     lo[0] = c->xlo;

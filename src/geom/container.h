@@ -84,19 +84,11 @@ static inline int gf_container_walls(const gf_container *c, const double p[3], d
     return c->ops->walls(c, p, reach, hit);
 }
 
-/// The box's push, called directly: relax() calls the push for every sphere
-/// it moves, and the box is the hot path (a direct call can be inlined).
-void gf_box_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
-                 double *dy, double *dz);
-
-static inline void gf_container_push(const gf_container *c, double x, double y, double z, double r, double alpha,
-                                     double *dx, double *dy, double *dz)
-{
-    if (c->kind == GF_SHAPE_BOX)
-        gf_box_push(c, x, y, z, r, alpha, dx, dy, dz);
-    else
-        c->ops->push(c, x, y, z, r, alpha, dx, dy, dz);
-}
+/// The wall push of the container's shape (out of line: relax() calls it for
+/// every sphere it moves, and a plain call there keeps the box's hot loop as
+/// it was before there were shapes; it jumps on to the shape's push).
+void gf_container_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
+                       double *dy, double *dz);
 
 static inline bool gf_container_contains(const gf_container *c, double x, double y, double z, double r, double tol)
 {

@@ -401,12 +401,13 @@ static double gf_gen_move(gf_gen *g, double gain)
     // The top slab reaches to infinity: above the measured ones nothing stretches.
     strain[nslab - 1] = 0.0;
     double worst = 0.0, ztop = zlo;
+    const bool shaped = g->shaped;
     for (size_t i = 0; i < n; i++) {
         double xi = x[i] + ux[i], yi = y[i] + uy[i], zi = z[i] + uz[i];
         xi = gf_gen_wall(xi, xlo, xhi);
         yi = gf_gen_wall(yi, ylo, yhi);
         zi = gf_gen_wall(zi, zlo, zhi);
-        if (g->shaped) gf_gen_shape_wall(g, &xi, &yi, &zi);
+        if (shaped) gf_gen_shape_wall(g, &xi, &yi, &zi);
         double r = rz[i];
         if (gain > 0.0) {
             zi = gf_gen_lift(lift, strain, nslab, zlo, zi);
@@ -543,17 +544,23 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
 static void gf_gen_snap(gf_gen *g)
 {
     const double xhi = 0.5 * g->width - 0.5, yhi = 0.5 * g->depth - 0.5, zlo = g->zlo;
-    if (g->shaped) { // onto the floor, and onto the walls closer than 1/2 + SNAP
+    if (g->shaped) {
+        // Onto the floor; and out of every wall closer than 1/2, by projecting
+        // onto the most violated one until none is (in a corner the walls'
+        // normals differ: a few rounds converge).
         for (size_t i = 0; i < g->n; i++) {
             if (g->z[i] < zlo + GF_GEN_SNAP) g->z[i] = zlo;
-            double p[3] = {g->x[i], g->y[i], g->z[i] + g->zoff};
-            gf_wall_hit hit[GF_WALL_HITS];
-            int nh = gf_container_walls(&g->box, p, 0.5 + GF_GEN_SNAP, hit);
-            for (int k = 0; k < nh; k++) {
-                double f = 0.5 - hit[k].gap;
-                g->x[i] += f * hit[k].n[0];
-                g->y[i] += f * hit[k].n[1];
-                g->z[i] += f * hit[k].n[2];
+            for (int round = 0; round < 50; round++) {
+                double p[3] = {g->x[i], g->y[i], g->z[i] + g->zoff};
+                gf_wall_hit hit[GF_WALL_HITS];
+                int nh = gf_container_walls(&g->box, p, 0.5, hit), worst = -1;
+                for (int k = 0; k < nh; k++)
+                    if (worst < 0 || hit[k].gap < hit[worst].gap) worst = k;
+                if (worst < 0) break;
+                double f = 0.5 - hit[worst].gap + 1e-12;
+                g->x[i] += f * hit[worst].n[0];
+                g->y[i] += f * hit[worst].n[1];
+                g->z[i] += f * hit[worst].n[2];
             }
         }
         return;
