@@ -49,19 +49,16 @@ typedef struct gf_opt_key {
     const char *key;
     gf_opt_kind kind;
     size_t off;      ///< offset of the field in gf_analysis_opts
-    size_t count;    ///< GF_OPT_LIST: offset of its count (size_t)
     double lo, hi;   ///< accepted range (inclusive)
 } gf_opt_key;
 
-#define GF_OPT(k, kind, field, lo, hi) {k, kind, offsetof(gf_analysis_opts, field), 0, lo, hi}
-#define GF_OPT_L(k, field, nfield, lo, hi) \
-    {k, GF_OPT_LIST, offsetof(gf_analysis_opts, field), offsetof(gf_analysis_opts, nfield), lo, hi}
+#define GF_OPT(k, kind, field, lo, hi) {k, kind, offsetof(gf_analysis_opts, field), lo, hi}
 static const gf_opt_key gf_opt_keys[] = {
     GF_OPT("window.t0", GF_OPT_REAL, t0, 0.0, 1e12),
     GF_OPT("window.t1", GF_OPT_REAL, t1, 0.0, 1e12),
     GF_OPT("dump.dt", GF_OPT_REAL, dump_dt, 0.0, 1e6),
     GF_OPT("velocity.bin", GF_OPT_REAL, vel_bin, 0.05, 100.0),
-    GF_OPT_L("velocity.heights", vel_heights, vel_nheights, -1e6, 1e6),
+    GF_OPT("velocity.heights", GF_OPT_LIST, vel_heights, -1e6, 1e6),
     GF_OPT("velocity.band", GF_OPT_REAL, vel_band, 0.05, 100.0),
     GF_OPT("velocity.y_xhalf", GF_OPT_REAL, vely_xhalf, 0.1, 1e6),
     GF_OPT("velocity.y_z0", GF_OPT_REAL, vely_z0, -1e6, 1e6),
@@ -82,7 +79,7 @@ static const gf_opt_key gf_opt_keys[] = {
     GF_OPT("density.z1", GF_OPT_REAL, dens_z1, -1e6, 1e6),
     GF_OPT("surface.dx", GF_OPT_REAL, surf_dx, 0.1, 1e6),
     GF_OPT("surface.columns", GF_OPT_COUNT, surf_ncols, 2.0, 1000.0),
-    GF_OPT_L("zones.radii", zone_radii, zone_nradii, 1e-6, 1e6),
+    GF_OPT("zones.radii", GF_OPT_LIST, zone_radii, 1e-6, 1e6),
     GF_OPT("zones.dr", GF_OPT_REAL, zone_dr, 0.01, 1e3),
     GF_OPT("zones.dz", GF_OPT_REAL, zone_dz, 0.01, 1e3),
 };
@@ -118,6 +115,11 @@ gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
             *(double *)(void *)field = NAN;
             return GF_OK;
         }
+        if (d->off == offsetof(gf_analysis_opts, zone_radii) && !strcmp(val, "auto")) {
+            o->zone_nradii = 0; // four zones of equal area
+            memset(o->zone_radii, 0, sizeof o->zone_radii);
+            return GF_OK;
+        }
         if (d->kind == GF_OPT_REAL) return gf_opt_number(d->key, val, d->lo, d->hi, (double *)(void *)field);
         if (d->kind == GF_OPT_COUNT) {
             double x;
@@ -140,12 +142,15 @@ gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
             n++;
         }
         if (n == 0) return gf_error_set(GF_ERR_PARAM, "analysis option %s: empty list", d->key);
-        if (d->off == offsetof(gf_analysis_opts, zone_radii))
+        memcpy(field, list, sizeof(double) * n);
+        if (d->off == offsetof(gf_analysis_opts, zone_radii)) {
             for (size_t k2 = 1; k2 < n; k2++)
                 if (!(list[k2] > list[k2 - 1]))
                     return gf_error_set(GF_ERR_PARAM, "analysis option %s: the radii must increase", d->key);
-        memcpy(field, list, sizeof(double) * n);
-        *(size_t *)(void *)((char *)o + d->count) = n;
+            o->zone_nradii = n;
+        } else {
+            o->vel_nheights = n;
+        }
         return GF_OK;
     }
     return gf_error_set(GF_ERR_PARAM, "unknown analysis option '%.*s' (see docs/analysis.md)", (int)klen, assignment);

@@ -78,8 +78,8 @@ const gf_key gf_keys[] = {
      .def = "10", .unit = "d", .doc = "thickness of the colour bands tagging initial layers"},
     {"packing", "types", GF_KEY_PATH, GF_OFF(packing_types), .def = "", .unit = "",
      .doc = "atom types to keep when importing a LAMMPS dump, e.g. 1 or 1,3 (empty: all)"},
-    {"packing", "radius2", GF_KEY_DOUBLE, GF_OFF(packing_radius2), .min = 0.35, .max = 1.0, .def = "0.5",
-     .unit = "d", .doc = "radius of the second species of a generated packing (the first has radius 0.5)"},
+    {"packing", "radius2", GF_KEY_DOUBLE, GF_OFF(packing_radius2), .min = 0.25, .max = 0.5, .def = "0.5",
+     .unit = "d", .doc = "radius of the second species of a generated packing (the first has radius 0.5; a larger one is imported)"},
     {"packing", "fraction2", GF_KEY_DOUBLE, GF_OFF(packing_fraction2), .min = 0, .max = 1, .def = "0",
      .unit = "", .doc = "number fraction of the second species (0: monodisperse)"},
 

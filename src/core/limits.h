@@ -32,6 +32,11 @@
 /// GF_SKIN a unit sphere has ~7 centres at random close packing and at most
 /// ~12 were seen in flow; more is reported as a packing that overlaps too much.
 #define GF_NL_CAP 16
+/// Most slots of a row: with unequal radii a row holds up to ~2 / (1 - cos t)
+/// neighbours, sin t = r_min / (r_max + r_min) (small spheres around the
+/// largest one, by solid angle), rounded up to a power of two: 16 for equal
+/// radii, 64 up to r_max / r_min = 3, the most the engine accepts.
+#define GF_NL_CAP_MAX 64
 
 /// Most particle centres per d^3 a gather may hold (it sizes the per-thread
 /// scratch): random close packing has 1.2, and relax() keeps pairs >= ~0.98 d

@@ -18,6 +18,7 @@
 #include "core/limits.h"
 #include "core/rng.h"
 #include "geom/container.h"
+#include "packing/bidisperse.h"
 
 // Parameters of the method (docs/packing.md says why each has its value).
 #define GF_GEN_PHI_BOX 0.64       // nominal packing fraction of the closed start box
@@ -707,6 +708,7 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     if (st == GF_OK) st = gf_gen_emit(&g, zmax, cfg, out);
     gf_gen_release(&g);
     if (st == GF_OK) st = gf_gen_check(out, &g, cfg->container_width, cfg->container_depth);
+    if (st == GF_OK) st = gf_packing_bidisperse(cfg, out); // packing.radius2, fraction2
     if (st != GF_OK) gf_packing_free(out); // nothing half-made comes back
     return st;
 }

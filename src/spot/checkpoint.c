@@ -121,6 +121,8 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     GF_PUT(&b, sim->next_birth);
     GF_PUT(&b, sim->nl_built_at);
     GF_PUT(&b, sim->fstep);
+    uint32_t shift = sim->nl_shift;
+    GF_PUT(&b, shift);
     gf_put(&b, sim->p, sizeof(gf_pos) * sim->n);
     gf_put(&b, sim->p0, sizeof(gf_ref) * sim->n);
     gf_put(&b, sim->id, sizeof(int64_t) * sim->n);
@@ -330,6 +332,11 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     GF_GET(&r, sim->next_birth);
     GF_GET(&r, sim->nl_built_at);
     GF_GET(&r, sim->fstep);
+    uint32_t shift = 0;
+    GF_GET(&r, shift);
+    if (shift < 4 || (1u << (shift < 31 ? shift : 31)) > GF_NL_CAP_MAX)
+        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
+    sim->nl_shift = shift;
     sim->pending = pending;
     uint64_t n = counts[0];
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||

@@ -209,15 +209,16 @@ gf_status gf_relax_apply(gf_sim *sim, gf_work *w, const double c[3])
     // Row lengths first: a loop of independent loads fetches the rows, cold
     // in memory (spots move in random order all over the silo), in parallel
     // rather than one at a time in the loop below.
-    for (size_t k = 0; k < m; k++) cnts[k] = nl[(size_t)inside[k] * GF_NL_CAP];
+    const unsigned shift = sim->nl_shift;
+    for (size_t k = 0; k < m; k++) cnts[k] = nl[(size_t)inside[k] << shift];
     const bool mono = sim->contact2 > 0.0;
     const double s2 = sim->contact2;
     for (size_t k = 0; k < m; k++) {
-        const uint32_t *row = nl + (size_t)inside[k] * GF_NL_CAP + 1;
+        const uint32_t *row = nl + ((size_t)inside[k] << shift) + 1;
         const uint32_t cnt = cnts[k];
         const double xi = ip[k].x, yi = ip[k].y, zi = ip[k].z, ri = ip[k].r;
         // Pass 1: the overlapping neighbours this row is to push.
-        uint32_t hit[GF_NL_CAP];
+        uint32_t hit[GF_NL_CAP_MAX];
         size_t nh = mono ? gf_row_overlaps(p, mark, row, cnt, (uint32_t)k, xi, yi, zi, ri, true, s2, hit)
                          : gf_row_overlaps(p, mark, row, cnt, (uint32_t)k, xi, yi, zi, ri, false, 0.0, hit);
         // Pass 2: their pushes, in row (index) order.
@@ -282,7 +283,7 @@ gf_status gf_relax_global(gf_sim *sim)
     const double alpha = sim->alpha, half = 0.5 * sim->alpha;
     for (size_t i = 0; i < n; i++) {
         if (!sim->alive[i]) continue;
-        const uint32_t *row = sim->nl + i * GF_NL_CAP;
+        const uint32_t *row = sim->nl + (i << sim->nl_shift);
         for (uint32_t e = 1; e <= row[0]; e++) {
             uint32_t j = row[e];
             if (j <= i) continue;

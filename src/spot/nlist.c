@@ -90,14 +90,35 @@ static inline bool gf_nlist_listed(const gf_sim *sim, uint32_t i, uint32_t j)
     return dx * dx + dy * dy + dz * dz < cut * cut;
 }
 
-static inline uint32_t *gf_nlist_row(const gf_sim *sim, uint32_t i) { return sim->nl + (size_t)i * GF_NL_CAP; }
+static inline uint32_t *gf_nlist_row(const gf_sim *sim, uint32_t i) { return sim->nl + ((size_t)i << sim->nl_shift); }
+
+gf_status gf_nlist_slots(gf_sim *sim)
+{
+    double rmin = INFINITY, rmax = 0.0;
+    for (size_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i]) continue;
+        rmin = fmin(rmin, sim->p[i].r);
+        rmax = fmax(rmax, sim->p[i].r);
+    }
+    unsigned shift = 4; // GF_NL_CAP
+    if (rmax > rmin && rmin > 0.0) {
+        double s = rmin / (rmax + rmin), need = 1.0 + 2.0 / (1.0 - sqrt(1.0 - s * s));
+        while ((double)(1u << shift) < need && (1u << shift) < GF_NL_CAP_MAX) shift++;
+        if ((double)(1u << shift) < need)
+            return gf_error_set(GF_ERR_PARAM, "particle radii from %g to %g: a ratio above 3, more than the "
+                                              "engine's neighbour lists hold", rmin, rmax);
+    }
+    _Static_assert((1u << 4) == GF_NL_CAP, "rows of equal radii have GF_NL_CAP slots");
+    sim->nl_shift = shift;
+    return GF_OK;
+}
 
 static gf_status gf_nlist_overflow(const gf_sim *sim, uint32_t i)
 {
     return gf_error_set(GF_ERR_STATE,
                         "particle %lld has more than %d neighbours within contact + skin: the packing "
                         "overlaps far too much",
-                        (long long)sim->id[i], GF_NL_CAP - 1);
+                        (long long)sim->id[i], (1 << sim->nl_shift) - 1);
 }
 
 // Fills row i with its neighbours by the listing rule, sorted. The grid holds
@@ -120,7 +141,7 @@ static gf_status gf_nlist_find(gf_sim *sim, uint32_t i)
                 for (uint32_t k = 0; k < cnt; k++) {
                     uint32_t j = s[k];
                     if (j == i || !gf_nlist_listed(sim, i, j)) continue;
-                    if (n == GF_NL_CAP - 1) {
+                    if (n == (1u << sim->nl_shift) - 1) {
                         row[0] = 0;
                         return gf_nlist_overflow(sim, i);
                     }
@@ -135,7 +156,7 @@ static gf_status gf_nlist_find(gf_sim *sim, uint32_t i)
 static gf_status gf_row_insert(gf_sim *sim, uint32_t j, uint32_t v)
 {
     uint32_t *row = gf_nlist_row(sim, j), n = row[0];
-    if (n == GF_NL_CAP - 1) return gf_nlist_overflow(sim, j);
+    if (n == (1u << sim->nl_shift) - 1) return gf_nlist_overflow(sim, j);
     uint32_t *e = row + 1, k = n;
     while (k > 0 && e[k - 1] > v) {
         e[k] = e[k - 1];
@@ -208,12 +229,12 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
     }
     sim->contact2 = mono && r > 0.0 ? 4.0 * r * r : 0.0;
     if (!sim->nl) {
-        sim->nl = GF_NEW(uint32_t, sim->cap * GF_NL_CAP);
+        sim->nl = GF_NEW(uint32_t, sim->cap << sim->nl_shift);
         if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
     }
     for (size_t i = 0; i < sim->n; i++) {
         if (!sim->alive[i] || !sim->use_nlist) {
-            sim->nl[i * GF_NL_CAP] = 0;
+            sim->nl[i << sim->nl_shift] = 0;
             continue;
         }
         if ((st = gf_nlist_find(sim, (uint32_t)i)) != GF_OK) return st;

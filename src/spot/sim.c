@@ -60,8 +60,12 @@ gf_status gf_work_init(const gf_sim *sim, gf_work *w)
 {
     // A gather keeps the particles within r_e: GF_GATHER_DENSITY per d^3 of
     // the ball of r_e + 1 at most (gf_gather checks), and never more than all.
-    double r = sim->re + 1.0;
-    size_t cap = (size_t)ceil(GF_GATHER_DENSITY * 4.0 / 3.0 * 3.14159265358979 * r * r * r) + GF_CELL_CAP;
+    // Spheres smaller than the papers' pack more centres per d^3: by (0.5 / r_min)^3.
+    double r = sim->re + 1.0, rmin = 0.5;
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->alive[i] && sim->p[i].r < rmin) rmin = sim->p[i].r;
+    double dens = GF_GATHER_DENSITY * pow(0.5 / rmin, 3.0);
+    size_t cap = (size_t)ceil(dens * 4.0 / 3.0 * 3.14159265358979 * r * r * r) + GF_CELL_CAP;
     if (cap > sim->cap) cap = sim->cap ? sim->cap : 1;
     w->scratch_cap = cap;
     w->inside = GF_NEW(uint32_t, cap);
@@ -121,7 +125,7 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->hist, sim->cap);
     GF_DELETE(sim->reins, sim->reins_cap);
     GF_DELETE(sim->exits, sim->exit_cap);
-    GF_DELETE(sim->nl, sim->cap * GF_NL_CAP);
+    GF_DELETE(sim->nl, sim->cap << sim->nl_shift);
     GF_DELETE(sim->sx, sim->ns_cap);
     GF_DELETE(sim->sy, sim->ns_cap);
     GF_DELETE(sim->sz, sim->ns_cap);
@@ -162,6 +166,7 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
         if (packing->r[i] > sim->rmax) sim->rmax = packing->r[i];
     }
     if ((st = gf_packing_check(packing, &sim->cfg)) != GF_OK) goto fail;
+    if ((st = gf_nlist_slots(sim)) != GF_OK) goto fail;
     if ((st = gf_sim_make_grid(sim)) != GF_OK) goto fail;
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
     if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;

@@ -83,6 +83,7 @@ struct gf_sim {
     // |p0_i - p0_j| < r_i + r_j + h_i + h_j (gf_nlist_listed), so the lists
     // are a function of p0 alone and a resume rebuilds them bit for bit.
     uint32_t *nl;
+    unsigned nl_shift;    ///< a row has 1 << nl_shift slots (GF_NL_CAP for equal radii; gf_nlist_slots)
     double hmax;          ///< largest skin (derived at every full build)
     uint64_t nl_built_at; ///< event count at the last full (re-sorting) rebuild
 
@@ -163,6 +164,10 @@ gf_status gf_relax_at(gf_sim *sim, gf_work *w, const double c[3]);
 /// without, the order and p0 are kept (resume: the grid must then already
 /// hold the live particles), which gives the very lists the run had.
 gf_status gf_nlist_build(gf_sim *sim, bool reorder);
+
+/// Sets sim->nl_shift for the radii of the live particles (rows of
+/// GF_NL_CAP slots when they are equal). GF_ERR_PARAM beyond GF_NL_CAP_MAX.
+gf_status gf_nlist_slots(gf_sim *sim);
 
 /// Particle i has moved past its skin: its p0 becomes its position and its
 /// pairs are redone (its row and its old and new neighbours' rows).

@@ -75,8 +75,8 @@ ok "analyze NAME DIR reruns one measurement and keeps the other numbers"
 
 gf analyze --list
 expect_rc 0 "analyze --list"
-[ "$(grep -c '^  [a-z]' out)" -eq 10 ] || fail "analyze --list: expected 10 measurements"
-ok "--list names the 10 measurements"
+[ "$(grep -c '^  [a-z]' out)" -eq 11 ] || fail "analyze --list: expected 11 measurements"
+ok "--list names the 11 measurements"
 
 gf analyze nosuch run
 expect_rc 2 "unknown measurement"
