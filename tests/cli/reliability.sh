@@ -96,7 +96,7 @@ start run -q "${TINY[@]}" --set run.stall_time=0 --set run.checkpoint_interval=0
 wait_for K/snapshots/snap_000030.dump 20 || fail "run -o K: no snapshot 30 after 20 s"
 sleep 0.2
 kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; BGPID=
-[ "$(head -n 1 K/exits.csv)" = "id,time,x,y" ] || fail "kill -9: exits.csv missing or without its header"
+[ "$(head -n 1 K/exits.csv)" = "id,time,x,y,pass,entry_time,entry_r" ] || fail "kill -9: exits.csv missing or without its header"
 [ "$(wc -l <K/exits.csv)" -gt 10 ] || fail "kill -9 after t = 3: exits.csv holds $(($(wc -l <K/exits.csv) - 1)) exits"
 [ "$(json K/summary.json status)" = running ] || fail "kill -9: summary.json missing or not 'running'"
 [ "$(json K/summary.json particles_exited)" -gt 10 ] || fail "kill -9: summary.json counts no exits"
