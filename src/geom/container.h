@@ -84,9 +84,10 @@ static inline int gf_container_walls(const gf_container *c, const double p[3], d
     return c->ops->walls(c, p, reach, hit);
 }
 
-/// The wall push of the container's shape (out of line: relax() calls it for
-/// every sphere it moves, and a plain call there keeps the box's hot loop as
-/// it was before there were shapes; it jumps on to the shape's push).
+/// The wall push of the container's shape: one out-of-line call per sphere
+/// from relax(), as before there were shapes (of the ways tried, the one
+/// that adds least to the box's hot loop, docs/geometry.md); it jumps on to
+/// the shape's push.
 void gf_container_push(const gf_container *c, double x, double y, double z, double r, double alpha, double *dx,
                        double *dy, double *dz);
 
