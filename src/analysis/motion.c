@@ -101,7 +101,7 @@ gf_status gf_steps_between(const gf_frame *a, const gf_frame *b, gf_steps *st)
     const gf_packing *pa = &a->pk, *pb = &b->pk;
     for (size_t j = 0; j < pb->n; j++) {
         size_t i = gf_idmap_find(&m, pb->id[j]);
-        if (i == SIZE_MAX) continue;
+        if (i == SIZE_MAX || pb->z[j] - pa->z[i] > GF_MOTION_JUMP) continue;
         size_t k = st->n++;
         st->x[k] = 0.5 * (pa->x[i] + pb->x[j]);
         st->y[k] = 0.5 * (pa->y[i] + pb->y[j]);

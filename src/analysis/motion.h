@@ -30,7 +30,13 @@ void gf_idmap_free(gf_idmap *m);
 /// Returns the count k1 - k0.
 size_t gf_window_frames(const gf_series *s, double t0, double t1, size_t *k0, size_t *k1);
 
-/// The particles present in two frames: midpoint position and velocity
+/// A rise between two frames larger than this, d, is a particle put back on
+/// the surface (run.recirculate), not motion: granular drainage never lifts a
+/// particle by more than a fraction of a diameter.
+#define GF_MOTION_JUMP 2.0
+
+/// The particles present in two frames (and not put back on the surface in
+/// between: a rise above GF_MOTION_JUMP): midpoint position and velocity
 /// (r_b - r_a) / (t_b - t_a), d and d/tau. Arrays hold n entries.
 typedef struct gf_steps {
     size_t n, cap;

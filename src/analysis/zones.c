@@ -14,7 +14,7 @@
 //   rtd_pass      residence time per pass: count, mean, sd, median
 //   rtd_zone_hist residence-time distribution by entry zone (pdf)
 // From the snapshots (ids followed frame to frame; a particle that rises by
-// more than GF_ZONES_JUMP between two frames was put back on the surface):
+// more than GF_MOTION_JUMP between two frames was put back on the surface):
 //   streamlines   mean radius against height of the particles that started
 //                 at the surface (re-inserted, or in the top zones.dz of the
 //                 first frame), per entry zone: the mean paths
@@ -26,12 +26,10 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "analysis/motion.h"
 #include "granflow/analysis.h"
 
 enum { GF_ZONES_MAX = 17, GF_ZONES_BINS = 40 };
-/// A rise between two frames larger than this is a re-insertion, d (the
-/// spot model never lifts a particle by more than a fraction of a diameter).
-#define GF_ZONES_JUMP 2.0
 
 typedef struct gf_zones {
     double edge[GF_ZONES_MAX]; ///< outer radius of zone k (the last: the wall)
@@ -204,7 +202,7 @@ static gf_status gf_zones_frames(const gf_series *s, const gf_analysis_opts *o, 
             int64_t id = p->id[i];
             double r = hypot(p->x[i], p->y[i]);
             int32_t j = q ? prev[id] : -1;
-            bool jumped = j >= 0 && p->z[i] - q->z[j] > GF_ZONES_JUMP;
+            bool jumped = j >= 0 && p->z[i] - q->z[j] > GF_MOTION_JUMP;
             if (f == 0 && p->z[i] > ztop - o->zone_dz) entry[id] = (int32_t)gf_zone_of(z, r);
             if (f > 0 && (j < 0 || jumped)) entry[id] = jumped ? (int32_t)gf_zone_of(z, r) : -1;
             if (entry[id] >= 0) {

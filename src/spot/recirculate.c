@@ -164,22 +164,34 @@ static void gf_settle(gf_sim *sim, double r, double *x, double *y, double *z)
 // (it slipped under an overhang, or the sweeps did not converge).
 static bool gf_set_down(gf_sim *sim, double x, double y, double r, double *z)
 {
-    uint32_t *near = sim->w0.cross;
-    size_t m = gf_settle_gather(sim, x, y, *z + r, r + sim->rmax + GF_SETTLE_REACH, near, sim->w0.scratch_cap);
-    double lo = fmax(*z, gf_container_floor_z(&sim->box, x, y, r));
-    for (size_t k = 0; k < m; k++) {
-        const gf_pos *q = &sim->p[near[k]];
-        double dx = q->x - x, dy = q->y - y, c = r + q->r, d2 = dx * dx + dy * dy;
-        if (d2 < c * c && q->z <= *z) lo = fmax(lo, q->z + sqrt(c * c - d2));
+    // Every particle within reach of the centre, straight from the grid (no
+    // scratch buffer that could be too small): pass 0 finds the lift, pass 1
+    // checks the lifted position against all of them.
+    const gf_grid *g = &sim->grid;
+    const double reach = r + sim->rmax + GF_SETTLE_LIFT * r + GF_REINSERT_GAP;
+    const double c[3] = {x, y, *z};
+    int lo[3], hi[3];
+    gf_grid_range(g, c, reach, lo, hi);
+    double top = fmax(*z, gf_container_floor_z(&sim->box, x, y, r));
+    for (int pass = 0; pass < 2; pass++) {
+        for (int cz = lo[2]; cz <= hi[2]; cz++)
+            for (int cy = lo[1]; cy <= hi[1]; cy++)
+                for (int cx = lo[0]; cx <= hi[0]; cx++) {
+                    uint32_t cnt;
+                    const uint32_t *s = gf_grid_slots(g, cx, cy, cz, &cnt);
+                    for (uint32_t k = 0; k < cnt; k++) {
+                        const gf_pos *q = &sim->p[s[k]];
+                        double dx = q->x - x, dy = q->y - y, d = r + q->r, d2 = dx * dx + dy * dy;
+                        if (pass == 0 && d2 < d * d && q->z <= *z) top = fmax(top, q->z + sqrt(d * d - d2));
+                        if (pass == 1 && d2 + (q->z - top) * (q->z - top) < d * d) return false;
+                    }
+                }
+        if (pass == 0) {
+            top += GF_REINSERT_GAP;
+            if (top - *z > GF_SETTLE_LIFT * r) return false;
+        }
     }
-    lo += GF_REINSERT_GAP;
-    if (lo - *z > GF_SETTLE_LIFT * r) return false;
-    for (size_t k = 0; k < m; k++) {
-        const gf_pos *q = &sim->p[near[k]];
-        double dx = q->x - x, dy = q->y - y, dz = q->z - lo, c = r + q->r;
-        if (dx * dx + dy * dy + dz * dz < c * c) return false;
-    }
-    *z = lo;
+    *z = top;
     return true;
 }
 
