@@ -153,6 +153,15 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     n[0] = 0.5, n[1] = 0, n[2] = -1; // below the outlet: left to the birth disc
     c.ops->spot_clamp(&c, n, 1.0);
     gf_assert_near(n[0], 0.5, 0);
+    // Re-insertion (recirculation): in the annulus 2 + r <= rho <= 10 - r.
+    assert_true(gf_container_inside_xy(&c, 0, 5, 0.5));
+    assert_true(gf_container_inside_xy(&c, 9.5, 0, 0.5));
+    assert_false(gf_container_inside_xy(&c, 9.6, 0, 0.5));
+    assert_false(gf_container_inside_xy(&c, 0, 2.4, 0.5));
+    // Resting on the funnel: (rho, z) = (5, 2 + 0.5 sqrt 2) is 0.5 off z = rho - 3.
+    gf_assert_near(gf_container_floor_z(&c, 5, 0, 0.5), 2 + 0.5 / s, 1e-12);
+    gf_assert_near(gf_container_floor_z(&c, 0, 1, 0.5), 0.5, 0); // over the outlet
+    gf_assert_near(gf_container_outer_radius(&c), 10, 0);
 }
 
 static void cylinder_config_errors(void **state)

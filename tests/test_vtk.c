@@ -157,8 +157,36 @@ static void run_writes_vtk(void **state)
     gf_assert_near(vtk_area(path), 2.0 * (W + D) * 7.0 + base, 1e-3 * PI * R * R);
 }
 
+// A cylinder's surface: wall 2 pi R (top - z_f), the funnel's frustum
+// pi (R + r_o) slant, the pipe 2 pi r_o L, the column's side 2 pi r_i
+// (top - z_f) and bottom pi r_i^2 (to the 96-gon's 0.1%).
+static void cylinder_mesh_area(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.container_shape = GF_SHAPE_CYLINDER;
+    c.container_radius = 6;
+    c.hopper_angle = 45;
+    c.outlet_diameter = 4;
+    c.outlet_length = 3;
+    c.inner_radius = 1.5;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_container cyl = gf_container_make(&c);
+    gf_mesh m;
+    char path[700];
+    snprintf(path, sizeof path, "%s/cylinder.vtk", gf_test_tmpdir());
+    assert_int_equal(gf_container_mesh(&cyl, 12.0, 96, &m), GF_OK);
+    assert_int_equal(gf_vtk_write_mesh(path, &m, "test"), GF_OK);
+    gf_mesh_free(&m);
+    const double R = 6, ro = 2, zf = 4, top = 12, L = 3, ri = 1.5;
+    double want = 2 * PI * R * (top - zf) + PI * (R + ro) * hypot(R - ro, zf) + 2 * PI * ro * L +
+                  2 * PI * ri * (top - zf) + PI * ri * ri;
+    gf_assert_near(vtk_area(path), want, 1e-3 * want);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(particles_read_back),
+    cmocka_unit_test(cylinder_mesh_area),
     cmocka_unit_test(run_writes_vtk),
 };
 

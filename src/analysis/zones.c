@@ -45,14 +45,17 @@ static size_t gf_zone_of(const gf_zones *z, double r)
 
 static void gf_zones_make(const gf_series *s, const gf_analysis_opts *o, gf_zones *z)
 {
-    double wall = hypot(0.5 * s->cfg.container_width, 0.5 * s->cfg.container_depth);
+    // The wall: the cylinder's, or the box's corners; a central column is the inner edge.
+    const bool cyl = s->cfg.container_shape == GF_SHAPE_CYLINDER;
+    double wall = cyl ? s->cfg.container_radius : hypot(0.5 * s->cfg.container_width, 0.5 * s->cfg.container_depth);
+    double core = cyl ? s->cfg.inner_radius : 0.0;
     if (o->zone_nradii > 0) {
         z->n = 0;
         for (size_t k = 0; k < o->zone_nradii && o->zone_radii[k] < wall; k++) z->edge[z->n++] = o->zone_radii[k];
         z->edge[z->n++] = wall;
-    } else { // four zones of equal area within the wall's radius
+    } else { // four zones of equal area between the column (if any) and the wall
         z->n = 4;
-        for (size_t k = 0; k < 4; k++) z->edge[k] = wall * sqrt((double)(k + 1) / 4.0);
+        for (size_t k = 0; k < 4; k++) z->edge[k] = sqrt(core * core + (wall * wall - core * core) * (double)(k + 1) / 4.0);
     }
 }
 

@@ -96,10 +96,25 @@ static int gf_box_mirrors(const gf_container *c, const double ctr[3], double rs,
     return n;
 }
 
+static bool gf_box_inside_xy(const gf_container *c, double x, double y, double r)
+{
+    return x >= c->xlo + r && x <= c->xhi - r && y >= c->ylo + r && y <= c->yhi - r;
+}
+
+static double gf_box_floor_z(const gf_container *c, double x, double y, double r)
+{
+    (void)c;
+    (void)x;
+    (void)y;
+    return r;
+}
+
 const gf_shape_ops gf_box_ops = {
     .walls = gf_box_walls,
     .push = gf_box_push,
     .contains = gf_box_contains,
     .spot_clamp = gf_box_spot_clamp,
     .mirrors = gf_box_mirrors,
+    .inside_xy = gf_box_inside_xy,
+    .floor_z = gf_box_floor_z,
 };

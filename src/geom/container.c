@@ -86,15 +86,8 @@ void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2])
     hi[1] = c->yhi;
 }
 
-bool gf_container_inside_xy(const gf_container *c, double x, double y, double r)
+double gf_container_outer_radius(const gf_container *c)
 {
-    return x >= c->xlo + r && x <= c->xhi - r && y >= c->ylo + r && y <= c->yhi - r;
-}
-
-double gf_container_floor_z(const gf_container *c, double x, double y, double r)
-{
-    (void)c;
-    (void)x;
-    (void)y;
-    return r;
+    if (c->kind == GF_SHAPE_CYLINDER) return c->radius;
+    return hypot(fmax(-c->xlo, c->xhi), fmax(-c->ylo, c->yhi));
 }

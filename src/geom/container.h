@@ -43,6 +43,11 @@ typedef struct gf_shape_ops {
     /// Mirror images of a ball of radius rs centred at c in the side walls it
     /// crosses (2009 paper Sec. 4); returns their number (<= GF_WALL_HITS).
     int (*mirrors)(const gf_container *c, const double ctr[3], double rs, double m[][3]);
+    /// True when a sphere of radius r centred at (x, y), high in the container,
+    /// clears the side walls (re-insertion on the free surface).
+    bool (*inside_xy)(const gf_container *c, double x, double y, double r);
+    /// Lowest height of the centre of a sphere of radius r resting on the floor at (x, y).
+    double (*floor_z)(const gf_container *c, double x, double y, double r);
 } gf_shape_ops;
 
 struct gf_container {
@@ -111,10 +116,20 @@ void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2]);
 /// True when a sphere of radius r centred at (x, y) at the top of the
 /// container clears the side walls (re-insertion on the free surface asks
 /// this of every position it tries; a new shape answers for its own walls).
-bool gf_container_inside_xy(const gf_container *c, double x, double y, double r);
+static inline bool gf_container_inside_xy(const gf_container *c, double x, double y, double r)
+{
+    return c->ops->inside_xy(c, x, y, r);
+}
 
 /// Lowest height the centre of a sphere of radius r at (x, y) can have on
-/// the container's floor (the flat base: r).
-double gf_container_floor_z(const gf_container *c, double x, double y, double r);
+/// the container's floor (the flat base: r; a funnel: above its surface).
+static inline double gf_container_floor_z(const gf_container *c, double x, double y, double r)
+{
+    return c->ops->floor_z(c, x, y, r);
+}
+
+/// Radius from the axis x = y = 0 that encloses the cross-section (the
+/// cylinder's wall; the box's corners).
+double gf_container_outer_radius(const gf_container *c);
 
 #endif

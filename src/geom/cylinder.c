@@ -106,10 +106,29 @@ static void gf_cyl_spot_clamp(const gf_container *c, double n[3], double dw)
     n[1] = to * uy;
 }
 
+// Clear of the wall and, high up, of the column beside which it falls.
+static bool gf_cyl_inside_xy(const gf_container *c, double x, double y, double r)
+{
+    double rho = sqrt(x * x + y * y);
+    return rho <= c->radius - r && (c->r_in <= 0.0 || rho >= c->r_in + r);
+}
+
+// On the funnel (the flat base when a = 0) at distance r from it, measured
+// square to it: s = z cos a - (rho - r_o) sin a = r; over the outlet, the
+// plane z = r as for the box.
+static double gf_cyl_floor_z(const gf_container *c, double x, double y, double r)
+{
+    double rho = sqrt(x * x + y * y);
+    if (rho <= c->r_out || c->cos_a <= 0.0) return r;
+    return (r + (rho - c->r_out) * c->sin_a) / c->cos_a;
+}
+
 const gf_shape_ops gf_cylinder_ops = {
     .walls = gf_cyl_walls,
     .push = gf_cyl_push,
     .contains = gf_cyl_contains,
     .spot_clamp = gf_cyl_spot_clamp,
     .mirrors = gf_container_mirror_walls,
+    .inside_xy = gf_cyl_inside_xy,
+    .floor_z = gf_cyl_floor_z,
 };

@@ -63,10 +63,45 @@ static void gf_mesh_rect_point(const gf_container *c, double th, double out[3])
     out[2] = 0.0;
 }
 
+// A surface of revolution about the z axis: the segment (r0, z0) - (r1, z1)
+// of the (rho, z) half-plane swept round in n steps.
+static bool gf_mesh_revolve(gf_mesh *m, double r0, double z0, double r1, double z1, int n)
+{
+    bool ok = true;
+    for (int k = 0; k < n && ok; k++) {
+        double t0 = 2.0 * GF_MESH_PI * k / n, t1 = 2.0 * GF_MESH_PI * (k + 1) / n;
+        double c0 = cos(t0), s0 = sin(t0), c1 = cos(t1), s1 = sin(t1);
+        double a[3] = {r0 * c0, r0 * s0, z0}, b[3] = {r0 * c1, r0 * s1, z0};
+        double cc[3] = {r1 * c1, r1 * s1, z1}, d[3] = {r1 * c0, r1 * s0, z1};
+        ok = gf_mesh_quad(m, a, b, cc, d);
+    }
+    return ok;
+}
+
+// The cylinder (cylinder.c): wall, funnel (or flat annulus), outlet pipe and
+// the inner column's side and bottom, each a surface of revolution.
+static bool gf_mesh_cylinder(const gf_container *c, double top, int n, gf_mesh *m)
+{
+    double R = c->radius, ro = c->r_out, zt = c->z_top;
+    bool ok = gf_mesh_revolve(m, R, zt, R, fmax(top, zt), n) && gf_mesh_revolve(m, ro, 0.0, R, zt, n);
+    if (ok && c->pipe > 0.0) ok = gf_mesh_revolve(m, ro, -c->pipe, ro, 0.0, n);
+    if (ok && c->r_in > 0.0)
+        ok = gf_mesh_revolve(m, c->r_in, zt, c->r_in, fmax(top, zt), n) && gf_mesh_revolve(m, 0.0, zt, c->r_in, zt, n);
+    return ok;
+}
+
 gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_mesh *m)
 {
     *m = (gf_mesh){0};
     bool ok = true;
+    if (c->kind == GF_SHAPE_CYLINDER) {
+        int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments;
+        if (!gf_mesh_cylinder(c, top, n, m)) {
+            gf_mesh_free(m);
+            return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
+        }
+        return GF_OK;
+    }
     // Side walls: x = xlo, xhi and y = ylo, yhi from z = 0 to top.
     const double X0 = c->xlo, X1 = c->xhi, Y0 = c->ylo, Y1 = c->yhi;
     const double corners[4][2] = {{X0, Y0}, {X1, Y0}, {X1, Y1}, {X0, Y1}};
