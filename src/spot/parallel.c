@@ -51,6 +51,9 @@
 #ifndef GF_PAR_PHASES
 #define GF_PAR_PHASES 16
 #endif
+/// A colour phase with fewer spot moves than this runs on one thread: its
+/// work (~16 us a move) would not pay for waking the others and the barrier.
+#define GF_PAR_MIN_SHARED 32
 /// Thread counts the step projects its speedup for (gf_par_profile).
 static const int gf_par_proj_threads[GF_PAR_NPROJ] = {8, 16, 64};
 
@@ -491,11 +494,12 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
             // The colour's blocks with spots of this phase, heaviest first (the
             // threads take them in turn; which thread runs a block does not
             // change its result).
-            size_t nrun = 0;
+            size_t nrun = 0, moves = 0;
             for (uint32_t i = q->cstart[colour]; i < q->cstart[colour + 1]; i++) {
                 const uint32_t b = q->cblock[i], *ps = &q->pstart[(size_t)b * (GF_PAR_PHASES + 1)];
                 uint32_t load = ps[p + 1] - ps[p];
                 if (load == 0) continue;
+                moves += load;
                 size_t k = nrun++;
                 while (k > 0) {
                     const uint32_t *pk = &q->pstart[(size_t)q->run[k - 1] * (GF_PAR_PHASES + 1)];
@@ -507,7 +511,7 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
             }
             q->shared_phases += nrun >= 2;
             int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
-            if (threads < 1) threads = 1;
+            if (threads < 1 || moves < GF_PAR_MIN_SHARED) threads = 1;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
