@@ -94,7 +94,8 @@ GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 #define GF_PAR_NPROJ 3
 
 /// The spatial fixed step's decomposition and, while profiling, the work of
-/// its blocks: each block's run of each colour phase is timed, and the
+/// its blocks: each block's run of each colour phase is timed (thread CPU
+/// time, so preemption on a shared machine does not count), and the
 /// phase is scheduled on T threads (blocks heaviest first, each to the
 /// thread that frees first) to project the speedup work / makespan.
 typedef struct gf_par_profile {

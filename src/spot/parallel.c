@@ -62,7 +62,7 @@ typedef struct gf_block {
     gf_status status;  ///< first error of the block
     char err[256];     ///< its message
     size_t first, end; ///< its spots: order[first, end)
-    double seconds;    ///< wall time of its last run (profiling)
+    double seconds;    ///< CPU time of its last run (profiling)
 } gf_block;
 
 typedef struct gf_par {
@@ -331,7 +331,7 @@ static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
     gf_block *bl = &q->block[b];
     if (bl->status != GF_OK) return;
     const uint32_t *ps = &q->pstart[b * (GF_PAR_PHASES + 1)];
-    double t0 = q->profiling ? gf_clock_now() : 0.0;
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     gf_rng rng;
     w->rng = &rng;
     w->st = &bl->st;
@@ -355,7 +355,7 @@ static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
         sim->sy[k] = s[1];
         sim->sz[k] = s[2];
     }
-    if (q->profiling) bl->seconds = gf_clock_now() - t0;
+    if (q->profiling) bl->seconds = gf_clock_thread_cpu() - t0;
 }
 
 // Adds the counters a block's moves changed, block by block (fixed order:
