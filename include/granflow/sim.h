@@ -90,8 +90,8 @@ GF_API void gf_sim_set_threads(gf_sim *sim, int threads);
 /// Switches per-call timing of spot() and relax() on or off (costs ~50 ns a call).
 GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 
-/// Thread counts the spatial step's speedup is projected for: 8, 16, 64.
-#define GF_PAR_NPROJ 3
+/// Thread counts the spatial step's speedup is projected for: 2, 8, 16, 64.
+#define GF_PAR_NPROJ 4
 
 /// The spatial fixed step's decomposition and, while profiling, the work of
 /// its blocks: each block's run of each colour phase is timed (thread CPU
@@ -108,7 +108,7 @@ typedef struct gf_par_profile {
     uint64_t blocks_run;    ///< block runs in them (blocks with spots)
     double work_seconds;    ///< sum of the blocks' times
     double span_seconds;    ///< sum over the phases of the longest block
-    int proj_threads[GF_PAR_NPROJ];              ///< 8, 16, 64
+    int proj_threads[GF_PAR_NPROJ];              ///< 2, 8, 16, 64
     double makespan_seconds[GF_PAR_NPROJ];       ///< sum of the phases' makespans on that many threads
 } gf_par_profile;
 

@@ -55,7 +55,7 @@
 /// work (~16 us a move) would not pay for waking the others and the barrier.
 #define GF_PAR_MIN_SHARED 32
 /// Thread counts the step projects its speedup for (gf_par_profile).
-static const int gf_par_proj_threads[GF_PAR_NPROJ] = {8, 16, 64};
+static const int gf_par_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64};
 
 typedef struct gf_block {
     gf_sim_stats st;   ///< the block's counters this step (summed in block order)
