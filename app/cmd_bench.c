@@ -67,6 +67,7 @@ typedef struct gf_bench_spot {
     double moves_per_tau;          ///< spot moves per tau over the windows
     double bytes_per_particle;     ///< the library's allocations / particles
     size_t remaining;
+    gf_par_profile prof;           ///< the spatial step's blocks, over the timed one-thread window
 } gf_bench_spot;
 
 static int gf_bench_cores(void)
@@ -122,8 +123,10 @@ static gf_status gf_bench_silo(const gf_config *cfg, double warmup, double windo
     if (st == GF_OK && out->threads > 1) st = gf_bench_window(sim, &until, window, &sps_one, &c, &d);
     out->sps_one = sps_one;
     gf_sim_set_timing(sim, 1);
+    if (spatial) gf_sim_set_par_profiling(sim, 1);
     double dummy;
     if (st == GF_OK) st = gf_bench_window(sim, &until, window, &dummy, &c, &d);
+    out->prof = gf_sim_par_profile(sim);
     gf_sim_destroy(sim);
     if (st != GF_OK) return st;
     out->spot_us = d.spot_moves > c.spot_moves ? 1e6 * (d.spot_seconds - c.spot_seconds) / (double)(d.spot_moves - c.spot_moves) : 0;
@@ -144,6 +147,36 @@ static double gf_bench_drain_seconds(const gf_bench_spot *b)
 {
     if (b->flow <= 0 || b->sps_all <= 0) return 0;
     return 0.5 * b->moves_per_tau * ((double)b->remaining / b->flow) / b->sps_all;
+}
+
+// The spatial step's decomposition and projected speedups, as JSON members
+// (prefix "" or "large_"): work over the sum of each colour phase's
+// makespan on T threads, the blocks' times measured on one thread.
+static void gf_bench_blocks_json(const char *prefix, const gf_par_profile *f)
+{
+    if (f->blocks == 0) return;
+    printf(", \"%sblocks\": %zu, \"%sblocks_along_xyz\": [%d, %d, %d], \"%scolours\": %d, \"%sphases\": %d, "
+           "\"%sblocks_per_colour\": %.2f, \"%sbusy_blocks_per_colour_phase\": %.2f, \"%swork_over_span\": %.2f",
+           prefix, f->blocks, prefix, f->blocks_along[0], f->blocks_along[1], f->blocks_along[2], prefix, f->colours,
+           prefix, f->phases, prefix, (double)f->blocks / f->colours, prefix,
+           f->colour_phases ? (double)f->blocks_run / (double)f->colour_phases : 0.0, prefix,
+           f->span_seconds > 0 ? f->work_seconds / f->span_seconds : 0.0);
+    for (int i = 0; i < GF_PAR_NPROJ; i++)
+        printf(", \"%sprojected_speedup_%d\": %.2f", prefix, f->proj_threads[i],
+               f->makespan_seconds[i] > 0 ? f->work_seconds / f->makespan_seconds[i] : 0.0);
+}
+
+static void gf_bench_blocks_text(const char *what, const gf_par_profile *f)
+{
+    if (f->blocks == 0) return;
+    printf("  blocks   %8zu (%d x %d x %d), %d colours x %d phases, %.1f busy per colour phase (%s)\n", f->blocks,
+           f->blocks_along[0], f->blocks_along[1], f->blocks_along[2], f->colours, f->phases,
+           f->colour_phases ? (double)f->blocks_run / (double)f->colour_phases : 0.0, what);
+    printf("  projected speedup");
+    for (int i = 0; i < GF_PAR_NPROJ; i++)
+        printf(" %.1fx on %d threads%s", f->makespan_seconds[i] > 0 ? f->work_seconds / f->makespan_seconds[i] : 0.0,
+               f->proj_threads[i], i + 1 < GF_PAR_NPROJ ? "," : "");
+    printf(" (work/span %.1f)\n", f->span_seconds > 0 ? f->work_seconds / f->span_seconds : 0.0);
 }
 
 static double gf_bench_peak_rss(void)
@@ -227,12 +260,15 @@ int gf_cmd_bench(int argc, char **argv)
                engine, sb.particles, sb.threads, warmup, window, sb.spot_us, sb.relax_us, step_us, sb.sps_all,
                sb.sps_one, eff, sb.spots, sb.flow, sb.moves_per_tau, sb.bytes_per_particle,
                rss / (double)sb.particles, drain, sb.pack_s, sb.warm_s);
-        if (large)
+        gf_bench_blocks_json("", &sb.prof);
+        if (large) {
+            gf_bench_blocks_json("large_", &lg.prof);
             printf(", \"large_particles\": %zu, \"large_step_us\": %.4f, \"large_steps_per_second\": %.1f, "
                    "\"large_steps_per_second_1thread\": %.1f, \"large_memory_bytes_per_particle\": %.1f, "
                    "\"large_spot_us\": %.4f, \"large_relax_us\": %.4f",
                    lg.particles, lg.sps_one > 0 ? 1e6 / lg.sps_one : 0, lg.sps_all, lg.sps_one,
                    lg.bytes_per_particle, lg.spot_us, lg.relax_us);
+        }
         printf(", \"lga_site_updates_per_second\": %.0f, \"lga_sites\": %lld, \"lga_iterations\": %lld}\n",
                lb.site_updates_per_second, (long long)lb.sites, (long long)lb.iterations);
     } else {
@@ -247,11 +283,14 @@ int gf_cmd_bench(int argc, char **argv)
                sb.remaining);
         printf("  memory   %8.1f bytes per particle allocated by the engine; peak RSS %.1f bytes per particle\n",
                sb.bytes_per_particle, rss / (double)sb.particles);
-        if (large)
+        gf_bench_blocks_text("papers' silo", &sb.prof);
+        if (large) {
             printf("  10x silo %8.3f us per step on one thread (%.2f x the papers' silo), %.0f steps/s on %d threads, "
                    "%.1f bytes per particle (%zu particles)\n",
                    lg.sps_one > 0 ? 1e6 / lg.sps_one : 0, sb.sps_one > 0 && lg.sps_one > 0 ? sb.sps_one / lg.sps_one : 0,
                    lg.sps_all, lg.threads, lg.bytes_per_particle, lg.particles);
+            gf_bench_blocks_text("10x silo", &lg.prof);
+        }
         printf("  packing %.1f s, warm-up %.1f s\n", sb.pack_s, sb.warm_s);
         gf_bench_lga_print(&lb);
     }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The spatial fixed step (run.order = spatial, src/spot/parallel.c): its
 // result does not depend on the number of threads, it resumes exactly under
-// another thread count, and slabs of one colour really do run side by side.
+// another thread count, and blocks of one colour really do run side by side.
 #include "support.h"
 
 #include <stdio.h>
@@ -38,7 +38,23 @@ typedef struct outcome {
     uint64_t shared_phases;
 } outcome;
 
-static outcome run_config(gf_config c)
+// A silo 36 d wide and 4 d deep (~30 d tall): wide enough to be cut into
+// blocks along x as well as z; a slit orifice 30 d wide sends spots up over
+// most of the width, so blocks of one colour 24 d apart in x both have spots.
+static gf_config wide_silo(int64_t threads)
+{
+    gf_config c = tall_silo(threads);
+    c.container_width = 36;
+    c.container_depth = 4;
+    c.orifice_shape = GF_ORIFICE_SLIT;
+    c.orifice_diameter = 30;
+    c.packing_particles = 5000;
+    c.run_duration = 4.0;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    return c;
+}
+
+static outcome run_config(gf_config c, gf_par_profile *prof)
 {
     gf_sim *sim = gf_test_generated_sim(&c);
     assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
@@ -48,11 +64,12 @@ static outcome run_config(gf_config c)
     o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
     assert_non_null(o.ex);
     if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    if (prof) *prof = gf_sim_par_profile(sim);
     gf_sim_destroy(sim);
     return o;
 }
 
-static outcome run_threads(int64_t threads) { return run_config(tall_silo(threads)); }
+static outcome run_threads(int64_t threads) { return run_config(tall_silo(threads), NULL); }
 
 static void same_outcome(const outcome *a, const outcome *b)
 {
@@ -103,13 +120,35 @@ static void recirculation_does_not_depend_on_threads(void **state)
     (void)state;
     gf_config c1 = tall_silo(1), c2 = tall_silo(2);
     c1.run_recirculate = c2.run_recirculate = 1;
-    outcome o1 = run_config(c1), o2 = run_config(c2);
+    outcome o1 = run_config(c1, NULL), o2 = run_config(c2, NULL);
     assert_true(o1.nex > 50);
     assert_int_equal(o1.pk.n, 4000);
     assert_int_equal(o1.st.particles_reinserted, o1.nex);
     same_outcome(&o1, &o2);
     free_outcome(&o1);
     free_outcome(&o2);
+}
+
+// The wide silo is cut along x too (blocks of one colour side by side in
+// x and z): 1, 2 and 3 threads still give the same result to the last bit.
+static void blocks_in_x_and_z_do_not_change_the_result(void **state)
+{
+    (void)state;
+    gf_par_profile f;
+    outcome o1 = run_config(wide_silo(1), &f), o2 = run_config(wide_silo(2), NULL), o3 = run_config(wide_silo(3), NULL);
+    print_message("wide silo: %d x %d x %d blocks, %d colours; %zu exited, %llu phases with two or more blocks\n",
+                  f.blocks_along[0], f.blocks_along[1], f.blocks_along[2], f.colours, o1.nex,
+                  (unsigned long long)o2.shared_phases);
+    assert_true(f.blocks_along[0] > 4); // more blocks along x than colours: two of a colour side by side
+    assert_true(f.blocks_along[2] > 4);
+    assert_int_equal(f.colours, 16);
+    assert_true(o1.nex > 50);
+    assert_true(o2.shared_phases > 10);
+    same_outcome(&o1, &o2);
+    same_outcome(&o1, &o3);
+    free_outcome(&o1);
+    free_outcome(&o2);
+    free_outcome(&o3);
 }
 
 // A run stopped at 4.1 tau with 1 thread and resumed with 2 writes the same
@@ -136,6 +175,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(thread_count_does_not_change_the_result),
     cmocka_unit_test(resume_under_another_thread_count),
     cmocka_unit_test(recirculation_does_not_depend_on_threads),
+    cmocka_unit_test(blocks_in_x_and_z_do_not_change_the_result),
 };
 
 GF_TEST_MAIN("parallel", tests)

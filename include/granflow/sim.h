@@ -122,6 +122,33 @@ GF_API double gf_sim_stat(const gf_sim *sim, const char *name);
 /// Number of counters; counter i is named gf_sim_stat_name(i) (NULL when out of range).
 GF_API size_t gf_sim_stat_count(void);
 GF_API const char *gf_sim_stat_name(size_t i);
+/// Thread counts the spatial step's speedup is projected for: 2, 8, 16, 64.
+#define GF_PAR_NPROJ 4
+
+/// The spatial fixed step's decomposition and, while profiling, the work of
+/// its blocks: each block's run of each colour phase is timed (thread CPU
+/// time, so preemption on a shared machine does not count), and the
+/// phase is scheduled on T threads (blocks heaviest first, each to the
+/// thread that frees first) to project the speedup work / makespan.
+typedef struct gf_par_profile {
+    size_t blocks;          ///< blocks of the decomposition
+    int colours;            ///< colours (blocks of one colour run side by side)
+    int phases;             ///< phases per step (each runs every colour)
+    int blocks_along[3];    ///< blocks along x, y, z
+    int block_cells[3];     ///< grid cells per block along x, y, z
+    uint64_t colour_phases; ///< colour phases run while profiling (with spots)
+    uint64_t blocks_run;    ///< block runs in them (blocks with spots)
+    double work_seconds;    ///< sum of the blocks' times
+    double span_seconds;    ///< sum over the phases of the longest block
+    int proj_threads[GF_PAR_NPROJ];              ///< 2, 8, 16, 64
+    double makespan_seconds[GF_PAR_NPROJ];       ///< sum of the phases' makespans on that many threads
+} gf_par_profile;
+
+/// Starts (on != 0, counters reset) or stops profiling the spatial step's blocks.
+GF_API void gf_sim_set_par_profiling(gf_sim *sim, int on);
+/// The spatial step's decomposition and the profile so far (zeros before
+/// the first spatial step).
+GF_API gf_par_profile gf_sim_par_profile(const gf_sim *sim);
 
 /// Writes a checkpoint (versioned header, CRC-32, written then renamed).
 GF_API gf_status gf_sim_save(const gf_sim *sim, const char *path);

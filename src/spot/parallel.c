@@ -3,20 +3,22 @@
 // timestep "makes a parallel algorithm possible"; SPEC 1.4 and Sec. 3).
 //
 // A step inserts Poisson(lambda / mu) spots, then moves every spot once. The
-// container is cut into horizontal slabs of cps grid layers, coloured
-// 0, 1, ..., C - 1, 0, 1, ... from the bottom. A spot belongs to the slab of
-// its cell when the step begins. Colours run one after the other, in a fresh
-// random order each step; the slabs of one colour run at the same time, each
-// on one thread, its spots one after the other in a fresh random order. So
-// any two spots that can interact move in either order with probability 1/2,
-// as in the random order of SPEC 1.4 (a bottom-up order would drain like the
-// newest-first one, ~10% slower). Two slabs of one colour are C - 1 slabs apart,
-// wider than twice the reach of a spot step (everything spot(), relax() and the
-// list and cell bookkeeping read or write) plus a cell, so they never share a
-// particle, a list or a cell. The order of every conflicting pair of moves is
-// therefore fixed by the geometry alone, each move draws on its own random
-// stream (seed, spot, step), and counters are summed slab by slab: the result
-// is the same bit for bit whatever the number of threads.
+// container is cut into blocks of whole grid cells: layers in z, and columns
+// in x and y where the container is wide enough to hold more than one block
+// of a colour. Along each cut axis the blocks are coloured 0, 1, ..., C - 1,
+// 0, 1, ...; a block's colour combines its colours along the axes. A spot
+// belongs to the block of its cell when the step begins, and moves in one of
+// GF_PAR_PHASES phases, drawn at random. Each phase runs the colours one after
+// the other, in a fresh random order; the blocks of one colour run at the same
+// time, each on one thread, its spots of the phase one after the other in a
+// random order. Two blocks of one colour are C - 1 blocks apart along some
+// axis, wider than twice the reach of a spot step (everything spot(),
+// relax() and the list and cell bookkeeping read or write) plus a cell, so
+// they never share a particle, a list or a cell. The order of every
+// conflicting pair of moves is therefore fixed by the geometry and the drawn
+// phases and orders alone, each move draws on its own random stream (seed,
+// spot, step), and counters are summed block by block: the result is the same
+// bit for bit whatever the number of threads.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,39 +28,67 @@
 #endif
 
 #include "core/alloc.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
 
-/// Colours of the slab cycle: slabs of one colour are GF_PAR_COLOURS - 1
-/// slabs apart. More colours make thinner slabs (more of them per colour:
+/// Colours along each cut axis: blocks of one colour are GF_PAR_COLOURS - 1
+/// blocks apart. More colours make thinner blocks (more of them per colour:
 /// better balance between threads) at the price of more barriers per step;
-/// 4 gives 5-6 slabs per colour in the papers' silo.
+/// 4 gives 6 d blocks in the papers' silo.
 #define GF_PAR_COLOURS 4
 /// Slack added to the reach of a spot step, d (rounding, weighting and
 /// reflection factors that stretch a spot() displacement).
 #define GF_PAR_MARGIN 0.5
+/// Phases of a step: each spot moves in one of them, drawn at random (its
+/// own stream), and every phase runs all the colours. Two spots of different
+/// blocks that can interact move in the order of their phases, and only when
+/// they drew the same one (probability 1/P) in the order of their blocks'
+/// colours, which is the same for every such pair of the two blocks. With one
+/// phase that shared order biased the flow (the papers' silo drained 4.6%
+/// slower than with the event engine: docs/performance.md); as P grows the
+/// order of a step tends to a uniformly random one (SPEC 1.4).
+#ifndef GF_PAR_PHASES
+#define GF_PAR_PHASES 16
+#endif
+/// A colour phase with fewer spot moves than this runs on one thread: its
+/// work (~16 us a move) would not pay for waking the others and the barrier.
+#define GF_PAR_MIN_SHARED 32
+/// Thread counts the step projects its speedup for (gf_par_profile).
+static const int gf_par_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64};
 
-typedef struct gf_slab {
-    gf_sim_stats st;   ///< the slab's counters this step (summed in slab order)
-    gf_status status;  ///< first error of the slab
+typedef struct gf_block {
+    gf_sim_stats st;   ///< the block's counters this step (summed in block order)
+    gf_status status;  ///< first error of the block
     char err[256];     ///< its message
     size_t first, end; ///< its spots: order[first, end)
-} gf_slab;
+    double seconds;    ///< CPU time of its last run (profiling)
+} gf_block;
 
 typedef struct gf_par {
     int threads;
-    gf_work *work; ///< one per thread
-    int cps;       ///< grid layers per slab
-    size_t nslab;
-    gf_slab *slab;
-    uint32_t *order, *cellof;       ///< spots sorted by (cell, index); each spot's cell
+    gf_work *work;   ///< one per thread
+    int bs[3];       ///< cells per block along x, y, z
+    int nb[3];       ///< blocks along x, y, z
+    int nc[3];       ///< colours along x, y, z (1: the axis is not cut)
+    int ncolour;     ///< nc[0] nc[1] nc[2]
+    size_t nblock;
+    gf_block *block;
+    uint32_t *cstart, *cblock; ///< colour c's blocks: cblock[cstart[c], cstart[c + 1])
+    uint32_t *blockof;         ///< per grid cell: its block
+    uint32_t *pstart; ///< block b's spots of phase p: order[pstart[b (P+1) + p], pstart[b (P+1) + p + 1])
+    uint32_t *order, *tmp;          ///< spots grouped by block (then phase); scratch
+    uint32_t *blk;                  ///< each spot's block
     uint8_t *dead;                  ///< per spot: removed this step
+    uint8_t *phase;                 ///< per spot: its phase this step
     size_t spot_cap;
-    uint32_t *bucket;               ///< counting sort: first entry of each cell
-    uint32_t *run;                  ///< slabs of the current colour, heaviest first
+    uint32_t *bucket;               ///< counting sort: first entry of each block
+    uint32_t *run;                  ///< blocks of the current colour, heaviest first
     double *coltop;                 ///< per grid column: its top z at the step start
-    size_t ncol, ncell;
-    uint64_t shared_phases; ///< colour phases with two or more slabs to run
+    size_t ncol;
+    uint64_t shared_phases; ///< colour phases with two or more blocks to run
+    gf_par_profile prof;    ///< per-block work and projections (when profiling)
+    bool profiling;
 } gf_par;
 
 // Everything a step of a spot at s touches lies within this distance of s:
@@ -82,12 +112,18 @@ void gf_par_free(gf_sim *sim)
     if (!q) return;
     for (int t = 0; t < q->threads; t++) gf_work_free(&q->work[t]);
     GF_DELETE(q->work, q->threads);
-    GF_DELETE(q->slab, q->nslab);
+    GF_DELETE(q->block, q->nblock);
+    GF_DELETE(q->cstart, (size_t)q->ncolour + 1);
+    GF_DELETE(q->cblock, q->nblock);
+    GF_DELETE(q->blockof, sim->grid.ncell);
+    GF_DELETE(q->pstart, q->nblock * (GF_PAR_PHASES + 1));
     GF_DELETE(q->order, q->spot_cap);
-    GF_DELETE(q->cellof, q->spot_cap);
+    GF_DELETE(q->tmp, q->spot_cap);
+    GF_DELETE(q->blk, q->spot_cap);
     GF_DELETE(q->dead, q->spot_cap);
-    GF_DELETE(q->bucket, q->ncell + 1);
-    GF_DELETE(q->run, q->nslab);
+    GF_DELETE(q->phase, q->spot_cap);
+    GF_DELETE(q->bucket, q->nblock + 1);
+    GF_DELETE(q->run, q->nblock);
     GF_DELETE(q->coltop, q->ncol);
     gf_free(q, sizeof *q);
     sim->par = NULL;
@@ -103,6 +139,68 @@ static int gf_par_threads(const gf_config *c)
 #endif
 }
 
+// The blocks along one axis of n cells: C colours of bs cells, where C - 1
+// blocks span `need`; an axis too short to hold two blocks of one colour is
+// not cut (one block, one colour).
+static void gf_par_axis(int n, double need, double h, int *bs, int *nb, int *nc)
+{
+    *bs = (int)ceil(need / ((GF_PAR_COLOURS - 1) * h));
+    *nb = (n + *bs - 1) / *bs;
+    *nc = GF_PAR_COLOURS;
+    if (*nb <= GF_PAR_COLOURS) {
+        *bs = n;
+        *nb = 1;
+        *nc = 1;
+    }
+}
+
+// The blocks and their colours; each colour's blocks listed in index order.
+static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
+{
+    const gf_grid *g = &sim->grid;
+    // Same-colour blocks are (C - 1) blocks apart along some axis: at least
+    // two reaches and a cell diagonal (a cell both reaches could end in).
+    double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
+    const int n[3] = {g->nx, g->ny, g->nz};
+    for (int a = 0; a < 3; a++) gf_par_axis(n[a], need, g->h, &q->bs[a], &q->nb[a], &q->nc[a]);
+    q->ncolour = q->nc[0] * q->nc[1] * q->nc[2];
+    q->nblock = (size_t)q->nb[0] * (size_t)q->nb[1] * (size_t)q->nb[2];
+    q->block = GF_NEW(gf_block, q->nblock);
+    q->cstart = GF_NEW(uint32_t, (size_t)q->ncolour + 1);
+    q->cblock = GF_NEW(uint32_t, q->nblock);
+    q->blockof = GF_NEW(uint32_t, g->ncell);
+    q->pstart = GF_NEW(uint32_t, q->nblock * (GF_PAR_PHASES + 1));
+    q->bucket = GF_NEW(uint32_t, q->nblock + 1);
+    q->run = GF_NEW(uint32_t, q->nblock);
+    if (!q->block || !q->cstart || !q->cblock || !q->blockof || !q->pstart || !q->bucket || !q->run)
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
+    for (int cz = 0; cz < g->nz; cz++)
+        for (int cy = 0; cy < g->ny; cy++)
+            for (int cx = 0; cx < g->nx; cx++) {
+                size_t bx = (size_t)(cx / q->bs[0]), by = (size_t)(cy / q->bs[1]), bz = (size_t)(cz / q->bs[2]);
+                q->blockof[((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx] =
+                    (uint32_t)((bz * (size_t)q->nb[1] + by) * (size_t)q->nb[0] + bx);
+            }
+    memset(q->cstart, 0, sizeof(uint32_t) * ((size_t)q->ncolour + 1));
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t b = 0; b < q->nblock; b++) {
+            size_t bx = b % (size_t)q->nb[0], by = b / (size_t)q->nb[0] % (size_t)q->nb[1];
+            size_t bz = b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
+            size_t c = (bx % (size_t)q->nc[0]) +
+                       (size_t)q->nc[0] * ((by % (size_t)q->nc[1]) + (size_t)q->nc[1] * (bz % (size_t)q->nc[2]));
+            if (pass == 0)
+                q->cstart[c + 1]++;
+            else
+                q->cblock[q->bucket[c]++] = (uint32_t)b;
+        }
+        if (pass == 0) {
+            for (int c = 0; c < q->ncolour; c++) q->cstart[c + 1] += q->cstart[c];
+            memcpy(q->bucket, q->cstart, sizeof(uint32_t) * (size_t)q->ncolour);
+        }
+    }
+    return GF_OK;
+}
+
 static gf_status gf_par_make(gf_sim *sim)
 {
     int threads = gf_par_threads(&sim->cfg);
@@ -112,34 +210,20 @@ static gf_status gf_par_make(gf_sim *sim)
     if (!q) return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
     sim->par = q;
     const gf_grid *g = &sim->grid;
-    // Same-colour slabs are (C - 1) cps layers apart: at least two reaches
-    // and a cell diagonal (a cell both reaches could end in).
-    double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
-    q->cps = (int)ceil(need / ((GF_PAR_COLOURS - 1) * g->h));
-    q->nslab = (size_t)((g->nz + q->cps - 1) / q->cps);
     q->ncol = (size_t)g->nx * (size_t)g->ny;
-    q->ncell = g->ncell;
     q->threads = threads;
     q->work = GF_NEW(gf_work, threads);
-    q->slab = GF_NEW(gf_slab, q->nslab);
-    q->bucket = GF_NEW(uint32_t, q->ncell + 1);
-    q->run = GF_NEW(uint32_t, q->nslab);
     q->coltop = GF_NEW(double, q->ncol);
-    if (!q->work || !q->slab || !q->bucket || !q->run || !q->coltop) {
-        if (!q->work) q->threads = 0;
-        gf_par_free(sim);
-        return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
-    }
-    for (int t = 0; t < threads; t++) {
-        gf_status st = gf_work_init(sim, &q->work[t]);
-        if (st != GF_OK) {
-            gf_par_free(sim);
-            return st;
-        }
+    if (!q->work) q->threads = 0;
+    gf_status st = !q->work || !q->coltop ? gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step")
+                                          : gf_par_blocks(sim, q);
+    for (int t = 0; t < q->threads && st == GF_OK; t++) {
+        st = gf_work_init(sim, &q->work[t]);
         q->work[t].defer_exits = true;
         q->work[t].coltop = q->coltop;
     }
-    return GF_OK;
+    if (st != GF_OK) gf_par_free(sim);
+    return st;
 }
 
 static gf_status gf_par_spots(gf_par *q, size_t ns)
@@ -147,18 +231,24 @@ static gf_status gf_par_spots(gf_par *q, size_t ns)
     if (ns <= q->spot_cap) return GF_OK;
     size_t cap = ns + ns / 2 + 64;
     GF_DELETE(q->order, q->spot_cap);
-    GF_DELETE(q->cellof, q->spot_cap);
+    GF_DELETE(q->tmp, q->spot_cap);
+    GF_DELETE(q->blk, q->spot_cap);
     GF_DELETE(q->dead, q->spot_cap);
+    GF_DELETE(q->phase, q->spot_cap);
     q->order = GF_NEW(uint32_t, cap);
-    q->cellof = GF_NEW(uint32_t, cap);
+    q->tmp = GF_NEW(uint32_t, cap);
+    q->blk = GF_NEW(uint32_t, cap);
     q->dead = GF_NEW(uint8_t, cap);
+    q->phase = GF_NEW(uint8_t, cap);
     q->spot_cap = cap;
-    if (!q->order || !q->cellof || !q->dead) {
+    if (!q->order || !q->tmp || !q->blk || !q->dead || !q->phase) {
         GF_DELETE(q->order, cap);
-        GF_DELETE(q->cellof, cap);
+        GF_DELETE(q->tmp, cap);
+        GF_DELETE(q->blk, cap);
         GF_DELETE(q->dead, cap);
-        q->order = q->cellof = NULL;
-        q->dead = NULL;
+        GF_DELETE(q->phase, cap);
+        q->order = q->tmp = q->blk = NULL;
+        q->dead = q->phase = NULL;
         q->spot_cap = 0;
         return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu spots", ns);
     }
@@ -172,24 +262,22 @@ static void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol)
         coltop[col] = gf_grid_column_top_at(&sim->grid, (uint32_t)col, &sim->p[0].z, 4);
 }
 
-// Spots sorted by (cell, index) with a counting sort over the cells; cells
-// are numbered layer by layer, so each slab's spots come out contiguous.
+// Spots grouped by block (in index order within a block) with a counting sort.
 static void gf_par_sort(gf_sim *sim, gf_par *q)
 {
     const gf_grid *g = &sim->grid;
-    const size_t ns = sim->ns, layer = q->ncol * (size_t)q->cps;
-    memset(q->bucket, 0, sizeof(uint32_t) * (q->ncell + 1));
+    const size_t ns = sim->ns;
+    memset(q->bucket, 0, sizeof(uint32_t) * (q->nblock + 1));
     for (size_t k = 0; k < ns; k++) {
-        q->cellof[k] = gf_grid_cell(g, sim->sx[k], sim->sy[k], sim->sz[k]);
-        q->bucket[q->cellof[k] + 1]++;
+        q->blk[k] = q->blockof[gf_grid_cell(g, sim->sx[k], sim->sy[k], sim->sz[k])];
+        q->bucket[q->blk[k] + 1]++;
     }
-    for (size_t c = 0; c < q->ncell; c++) q->bucket[c + 1] += q->bucket[c];
-    for (size_t b = 0; b < q->nslab; b++) {
-        size_t c0 = b * layer, c1 = c0 + layer < q->ncell ? c0 + layer : q->ncell;
-        q->slab[b].first = q->bucket[c0];
-        q->slab[b].end = q->bucket[c1];
+    for (size_t b = 0; b < q->nblock; b++) q->bucket[b + 1] += q->bucket[b];
+    for (size_t b = 0; b < q->nblock; b++) {
+        q->block[b].first = q->bucket[b];
+        q->block[b].end = q->bucket[b + 1];
     }
-    for (size_t k = 0; k < ns; k++) q->order[q->bucket[q->cellof[k]]++] = (uint32_t)k;
+    for (size_t k = 0; k < ns; k++) q->order[q->bucket[q->blk[k]]++] = (uint32_t)k;
 }
 
 // The random stream of spot k's move in this step: a function of the seed,
@@ -200,21 +288,54 @@ static void gf_par_seed(const gf_sim *sim, size_t k, gf_rng *r)
     gf_rng_seed(r, sim->cfg.run_seed ^ 0x7370617469616cull /* "spatial" */, stream);
 }
 
-// The spots of one slab on worker w, in a random order drawn from the slab's
-// own stream (seed, step, slab).
-static void gf_par_slab(gf_sim *sim, gf_par *q, gf_work *w, gf_slab *sl, size_t b)
+// Each block's spots in a random order drawn from the block's own stream
+// (seed, step, block), then grouped by phase (a stable counting sort, so the
+// order within a phase stays random); a spot's phase comes from its own stream.
+static void gf_par_phases(gf_sim *sim, gf_par *q, int phases)
 {
-    gf_rng rng;
-    gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
-    for (size_t k = sl->end - sl->first; k > 1; k--) { // Fisher-Yates
-        size_t j = (size_t)gf_rng_below(&rng, k);
-        uint32_t tmp = q->order[sl->first + k - 1];
-        q->order[sl->first + k - 1] = q->order[sl->first + j];
-        q->order[sl->first + j] = tmp;
+    for (size_t b = 0; b < q->nblock; b++) {
+        gf_block *bl = &q->block[b];
+        uint32_t *ps = &q->pstart[b * (GF_PAR_PHASES + 1)];
+        memset(ps, 0, sizeof(uint32_t) * (GF_PAR_PHASES + 1));
+        ps[0] = (uint32_t)bl->first;
+        if (bl->end == bl->first) {
+            for (int p = 0; p < GF_PAR_PHASES; p++) ps[p + 1] = ps[p];
+            continue;
+        }
+        gf_rng rng;
+        gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
+        for (size_t k = bl->end - bl->first; k > 1; k--) { // Fisher-Yates
+            size_t j = (size_t)gf_rng_below(&rng, k);
+            uint32_t tmp = q->order[bl->first + k - 1];
+            q->order[bl->first + k - 1] = q->order[bl->first + j];
+            q->order[bl->first + j] = tmp;
+        }
+        for (size_t o = bl->first; o < bl->end; o++) {
+            uint32_t k = q->order[o];
+            gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x7068617365ull /* "phase" */,
+                        (sim->sbirth[k] << 32) ^ (sim->fstep & 0xffffffffu));
+            q->phase[k] = (uint8_t)gf_rng_below(&rng, (uint64_t)phases);
+            ps[q->phase[k] + 1]++;
+        }
+        for (int p = 0; p < GF_PAR_PHASES; p++) ps[p + 1] += ps[p];
+        uint32_t next[GF_PAR_PHASES];
+        memcpy(next, ps, sizeof next);
+        for (size_t o = bl->first; o < bl->end; o++) q->tmp[next[q->phase[q->order[o]]]++] = q->order[o];
+        memcpy(q->order + bl->first, q->tmp + bl->first, sizeof(uint32_t) * (bl->end - bl->first));
     }
+}
+
+// The spots of phase p of block b on worker w, in their drawn order.
+static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
+{
+    gf_block *bl = &q->block[b];
+    if (bl->status != GF_OK) return;
+    const uint32_t *ps = &q->pstart[b * (GF_PAR_PHASES + 1)];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    gf_rng rng;
     w->rng = &rng;
-    w->st = &sl->st;
-    for (size_t o = sl->first; o < sl->end; o++) {
+    w->st = &bl->st;
+    for (size_t o = ps[p]; o < ps[p + 1]; o++) {
         size_t k = q->order[o];
         gf_par_seed(sim, k, &rng);
         double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
@@ -222,8 +343,8 @@ static void gf_par_slab(gf_sim *sim, gf_par *q, gf_work *w, gf_slab *sl, size_t 
         long ball;
         gf_status st = gf_spot_step(sim, w, s, &sim->scount[k], &deleted, &ball);
         if (st != GF_OK) {
-            sl->status = st;
-            snprintf(sl->err, sizeof sl->err, "%s", gf_last_error());
+            bl->status = st;
+            snprintf(bl->err, sizeof bl->err, "%s", gf_last_error());
             return;
         }
         if (deleted) {
@@ -234,10 +355,11 @@ static void gf_par_slab(gf_sim *sim, gf_par *q, gf_work *w, gf_slab *sl, size_t 
         sim->sy[k] = s[1];
         sim->sz[k] = s[2];
     }
+    if (q->profiling) bl->seconds = gf_clock_thread_cpu() - t0;
 }
 
-// Adds the counters a slab's moves changed, slab by slab (fixed order: the
-// floating-point sums do not depend on the threads either).
+// Adds the counters a block's moves changed, block by block (fixed order:
+// the floating-point sums do not depend on the threads either).
 static void gf_par_add(gf_sim_stats *to, const gf_sim_stats *a)
 {
     to->spot_moves += a->spot_moves;
@@ -276,7 +398,73 @@ static gf_status gf_par_merge_exits(gf_sim *sim, gf_par *q)
     return GF_OK;
 }
 
+// The phases of a step; GF_PAR_PHASES_TRY overrides it (experiments only).
+static int gf_par_phase_count(void)
+{
+    const char *e = getenv("GF_PAR_PHASES_TRY");
+    int p = e ? atoi(e) : GF_PAR_PHASES;
+    return p < 1 ? 1 : p > GF_PAR_PHASES ? GF_PAR_PHASES : p;
+}
+
 uint64_t gf_par_shared_phases(const gf_sim *sim) { return sim->par ? sim->par->shared_phases : 0; }
+
+// A colour phase's blocks (run[0, nrun), heaviest first, their times in
+// block[].seconds) scheduled on T threads as the OpenMP loop would, each
+// block to the thread that frees first: the phase's makespan.
+static double gf_par_makespan(const gf_par *q, size_t nrun, int T)
+{
+    double busy[64] = {0};
+    if (T > 64) T = 64;
+    double span = 0.0;
+    for (size_t r = 0; r < nrun; r++) {
+        int best = 0;
+        for (int t = 1; t < T; t++)
+            if (busy[t] < busy[best]) best = t;
+        busy[best] += q->block[q->run[r]].seconds;
+        if (busy[best] > span) span = busy[best];
+    }
+    return span;
+}
+
+static void gf_par_record(gf_par *q, size_t nrun)
+{
+    gf_par_profile *f = &q->prof;
+    f->colour_phases++;
+    f->blocks_run += nrun;
+    double work = 0.0, longest = 0.0;
+    for (size_t r = 0; r < nrun; r++) {
+        double s = q->block[q->run[r]].seconds;
+        work += s;
+        if (s > longest) longest = s;
+    }
+    f->work_seconds += work;
+    f->span_seconds += longest;
+    for (int i = 0; i < GF_PAR_NPROJ; i++) f->makespan_seconds[i] += gf_par_makespan(q, nrun, gf_par_proj_threads[i]);
+}
+
+void gf_sim_set_par_profiling(gf_sim *sim, int on)
+{
+    if (gf_par_make(sim) != GF_OK) return;
+    sim->par->profiling = on != 0;
+    sim->par->prof = (gf_par_profile){0};
+}
+
+gf_par_profile gf_sim_par_profile(const gf_sim *sim)
+{
+    gf_par_profile f = {0};
+    const gf_par *q = sim->par;
+    if (!q) return f;
+    f = q->prof;
+    f.blocks = q->nblock;
+    f.colours = q->ncolour;
+    f.phases = gf_par_phase_count();
+    for (int a = 0; a < 3; a++) {
+        f.blocks_along[a] = q->nb[a];
+        f.block_cells[a] = q->bs[a];
+    }
+    for (int i = 0; i < GF_PAR_NPROJ; i++) f.proj_threads[i] = gf_par_proj_threads[i];
+    return f;
+}
 
 gf_status gf_sim_spatial_step(gf_sim *sim)
 {
@@ -289,52 +477,64 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
     memset(q->dead, 0, ns);
     gf_par_column_tops(sim, q->coltop, q->ncol);
     gf_par_sort(sim, q);
-    for (size_t b = 0; b < q->nslab; b++) {
-        q->slab[b].st = (gf_sim_stats){0};
-        q->slab[b].status = GF_OK;
+    for (size_t b = 0; b < q->nblock; b++) {
+        q->block[b].st = (gf_sim_stats){0};
+        q->block[b].status = GF_OK;
     }
-    int colours[GF_PAR_COLOURS];
-    for (int k = 0; k < GF_PAR_COLOURS; k++) colours[k] = k;
-    for (int k = GF_PAR_COLOURS; k > 1; k--) { // Fisher-Yates
-        int j = (int)gf_rng_below(&sim->rng, (uint64_t)k), tmp = colours[k - 1];
-        colours[k - 1] = colours[j];
-        colours[j] = tmp;
-    }
+    const int phases = gf_par_phase_count();
+    gf_par_phases(sim, q, phases);
+    int colours[GF_PAR_COLOURS * GF_PAR_COLOURS * GF_PAR_COLOURS];
     sim->grid.lazy_top = true; // top[] is shared by whole columns: redone after the step
-    for (int ci = 0; ci < GF_PAR_COLOURS && st == GF_OK; ci++) {
-        const int colour = colours[ci];
-        // The colour's slabs with spots, heaviest first (the threads take
-        // them in turn; which thread runs a slab does not change its result).
-        size_t nrun = 0;
-        for (size_t b = (size_t)colour; b < q->nslab; b += GF_PAR_COLOURS) {
-            if (q->slab[b].end == q->slab[b].first) continue;
-            size_t load = q->slab[b].end - q->slab[b].first, k = nrun++;
-            while (k > 0 && q->slab[q->run[k - 1]].end - q->slab[q->run[k - 1]].first < load) {
-                q->run[k] = q->run[k - 1];
-                k--;
-            }
-            q->run[k] = (uint32_t)b;
+    for (int p = 0; p < phases && st == GF_OK; p++) {
+        for (int k = 0; k < q->ncolour; k++) colours[k] = k;
+        for (int k = q->ncolour; k > 1; k--) { // Fisher-Yates
+            int j = (int)gf_rng_below(&sim->rng, (uint64_t)k), tmp = colours[k - 1];
+            colours[k - 1] = colours[j];
+            colours[j] = tmp;
         }
-        q->shared_phases += nrun >= 2;
-        int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
-        if (threads < 1) threads = 1;
+        for (int ci = 0; ci < q->ncolour && st == GF_OK; ci++) {
+            const int colour = colours[ci];
+            // The colour's blocks with spots of this phase, heaviest first (the
+            // threads take them in turn; which thread runs a block does not
+            // change its result).
+            size_t nrun = 0, moves = 0;
+            for (uint32_t i = q->cstart[colour]; i < q->cstart[colour + 1]; i++) {
+                const uint32_t b = q->cblock[i], *ps = &q->pstart[(size_t)b * (GF_PAR_PHASES + 1)];
+                uint32_t load = ps[p + 1] - ps[p];
+                if (load == 0) continue;
+                moves += load;
+                size_t k = nrun++;
+                while (k > 0) {
+                    const uint32_t *pk = &q->pstart[(size_t)q->run[k - 1] * (GF_PAR_PHASES + 1)];
+                    if (pk[p + 1] - pk[p] >= load) break;
+                    q->run[k] = q->run[k - 1];
+                    k--;
+                }
+                q->run[k] = b;
+            }
+            q->shared_phases += nrun >= 2;
+            int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
+            if (threads < 1 || moves < GF_PAR_MIN_SHARED) threads = 1;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
-        for (size_t r = 0; r < nrun; r++) {
+            for (size_t r = 0; r < nrun; r++) {
 #ifdef _OPENMP
-            gf_work *w = &q->work[omp_get_thread_num()];
+                gf_work *w = &q->work[omp_get_thread_num()];
 #else
-            gf_work *w = &q->work[0];
+                gf_work *w = &q->work[0];
 #endif
-            gf_par_slab(sim, q, w, &q->slab[q->run[r]], q->run[r]);
+                gf_par_block(sim, q, w, q->run[r], p);
+            }
+            if (q->profiling && nrun > 0) gf_par_record(q, nrun);
+            for (size_t r = 0; r < nrun && st == GF_OK; r++)
+                if (q->block[q->run[r]].status != GF_OK)
+                    st = gf_error_set(q->block[q->run[r]].status, "%s", q->block[q->run[r]].err);
         }
-        for (size_t b = 0; b < q->nslab && st == GF_OK; b++)
-            if (q->slab[b].status != GF_OK) st = gf_error_set(q->slab[b].status, "%s", q->slab[b].err);
     }
     sim->grid.lazy_top = false;
     gf_grid_recompute_top(&sim->grid);
-    for (size_t b = 0; b < q->nslab; b++) gf_par_add(&sim->st, &q->slab[b].st);
+    for (size_t b = 0; b < q->nblock; b++) gf_par_add(&sim->st, &q->block[b].st);
     gf_status se = gf_par_merge_exits(sim, q);
     if (st == GF_OK) st = se;
     if (st != GF_OK) return st;
