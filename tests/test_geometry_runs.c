@@ -44,7 +44,9 @@ static const struct {
 } box_golden[] = {
     {0x025af8345be22e2eull, 2368, 132, 0xc44d40466e6a7111ull},
     {0x3e4d903c9dd1bc71ull, 1903, 97, 0x97400adcd3916a4eull},
-    {0x025af8345be22e2eull, 2420, 80, 0x36068a6563347f36ull},
+    // The spatial step: the engine of issue 15 (blocks in x, y, z and random
+    // colour phases) moves spots in another order than 7bdac15 did.
+    {0x025af8345be22e2eull, 2415, 85, 0x8153ed51deb791c2ull},
     {0x4213e4674391cad9ull, 2403, 97, 0xf2d26119d80ed5baull},
 };
 
