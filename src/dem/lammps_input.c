@@ -94,27 +94,28 @@ static void gf_dem_cylinder_region(FILE *f, const gf_config *c, const char *pre,
     gf_container b = gf_container_make(c);
     fprintf(f, "# the cylinder: wall radius %g, funnel at %g degrees to the outlet of radius %g at z = 0, pipe %g d\n",
             b.radius, c->hopper_angle, b.r_out, b.pipe);
+    // Without a column the shell is the vessel (LAMMPS refuses a union of one region).
+    const char *shell = b.r_in > 0.0 ? "shell" : "vessel";
     if (b.sin_a > 0.0) {
         fprintf(f,
                 "region %s_wall cylinder z 0 0 %.10g %.10g %.10g open 1 open 2 units box\n"
                 "region %s_funnel cone z 0 0 %.10g %.10g 0 %.10g open 1 open 2 units box\n"
                 "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
-                "region %s_shell union 3 %s_wall %s_funnel %s_pipe\n",
-                pre, b.radius, b.z_top, zhi, pre, b.r_out, b.radius, b.z_top, pre, b.r_out, zlo, pre, pre, pre, pre);
+                "region %s_%s union 3 %s_wall %s_funnel %s_pipe\n",
+                pre, b.radius, b.z_top, zhi, pre, b.r_out, b.radius, b.z_top, pre, b.r_out, zlo, pre, shell, pre, pre,
+                pre);
     } else { // a flat base: its lower face, with the hole the pipe cuts in it
         fprintf(f,
                 "region %s_wall cylinder z 0 0 %.10g 0 %.10g open 2 units box\n"
                 "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
-                "region %s_shell union 2 %s_wall %s_pipe\n",
-                pre, b.radius, zhi, pre, b.r_out, zlo, pre, pre, pre);
+                "region %s_%s union 2 %s_wall %s_pipe\n",
+                pre, b.radius, zhi, pre, b.r_out, zlo, pre, shell, pre, pre);
     }
     if (b.r_in > 0.0)
         fprintf(f,
                 "region %s_column cylinder z 0 0 %.10g %.10g %.10g open 2 side out units box\n"
                 "region %s_vessel intersect 2 %s_shell %s_column\n",
                 pre, b.r_in, b.z_top, zhi + 1.0, pre, pre, pre);
-    else
-        fprintf(f, "region %s_vessel union 1 %s_shell\n", pre, pre);
 }
 
 static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
