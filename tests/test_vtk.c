@@ -157,9 +157,37 @@ static void run_writes_vtk(void **state)
     gf_assert_near(vtk_area(path), 2.0 * (W + D) * 7.0 + base, 1e-3 * PI * R * R);
 }
 
+// A cylinder's container.vtk: wall, 45 degree funnel, outlet pipe and central
+// column, each a surface of revolution whose area is known by hand (it used
+// to be drawn as the bounding box with a flat base).
+static void cylinder_mesh_areas(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.container_shape = GF_SHAPE_CYLINDER;
+    c.container_radius = 5.0;
+    c.hopper_angle = 45.0;
+    c.outlet_diameter = 2.0;
+    c.outlet_length = 3.0;
+    c.inner_radius = 1.5;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_container cyl = gf_container_make(&c);
+    gf_mesh m;
+    char path[700];
+    snprintf(path, sizeof path, "%s/cylinder.vtk", gf_test_tmpdir());
+    assert_int_equal(gf_container_mesh(&cyl, 12.0, 96, &m), GF_OK);
+    assert_int_equal(gf_vtk_write_mesh(path, &m, "test"), GF_OK);
+    gf_mesh_free(&m);
+    // z_top = (R - r_out) tan 45 = 4: wall 2 pi 5 (12 - 4), cone pi (5 + 1) 4 sqrt 2,
+    // pipe 2 pi 1 3, column side 2 pi 1.5 (12 - 4) and its bottom pi 1.5^2.
+    double want = PI * (80.0 + 24.0 * sqrt(2.0) + 6.0 + 24.0 + 2.25);
+    gf_assert_near(vtk_area(path), want, 1e-3 * want); // 96-gons: within 2e-4
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(particles_read_back),
     cmocka_unit_test(run_writes_vtk),
+    cmocka_unit_test(cylinder_mesh_areas),
 };
 
 GF_TEST_MAIN("vtk", tests)

@@ -63,9 +63,42 @@ static void gf_mesh_rect_point(const gf_container *c, double th, double out[3])
     out[2] = 0.0;
 }
 
+// The surface swept by the segment (r0, z0)-(r1, z1) about the z axis, n quads.
+static bool gf_mesh_revolve(gf_mesh *m, double r0, double z0, double r1, double z1, int n)
+{
+    bool ok = true;
+    for (int k = 0; k < n && ok; k++) {
+        double t0 = 2.0 * GF_MESH_PI * k / n, t1 = 2.0 * GF_MESH_PI * (k + 1) / n;
+        double a[3] = {r0 * cos(t0), r0 * sin(t0), z0}, b[3] = {r1 * cos(t0), r1 * sin(t0), z1};
+        double cc[3] = {r1 * cos(t1), r1 * sin(t1), z1}, d[3] = {r0 * cos(t1), r0 * sin(t1), z0};
+        ok = gf_mesh_quad(m, a, b, cc, d);
+    }
+    return ok;
+}
+
+// A cylinder (src/geom/cylinder.c): the wall r = R from the funnel's top z_top
+// up, the funnel (a cone, or a flat annulus at hopper_angle 0) from the outlet
+// r_out at z = 0 to the wall, the pipe r = r_out from -pipe to 0, and the
+// central column r = r_in above z_top with its flat bottom.
+static bool gf_mesh_cylinder(const gf_container *c, double top, int n, gf_mesh *m)
+{
+    double R = c->radius, ro = c->r_out, zt = c->z_top;
+    bool ok = gf_mesh_revolve(m, R, zt, R, fmax(top, zt), n) && gf_mesh_revolve(m, ro, 0.0, R, zt, n);
+    if (ok && c->pipe > 0.0) ok = gf_mesh_revolve(m, ro, -c->pipe, ro, 0.0, n);
+    if (ok && c->r_in > 0.0)
+        ok = gf_mesh_revolve(m, c->r_in, zt, c->r_in, fmax(top, zt), n) && gf_mesh_revolve(m, 0.0, zt, c->r_in, zt, n);
+    return ok;
+}
+
 gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_mesh *m)
 {
     *m = (gf_mesh){0};
+    if (c->kind == GF_SHAPE_CYLINDER) {
+        int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments;
+        if (gf_mesh_cylinder(c, top, n, m)) return GF_OK;
+        gf_mesh_free(m);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
+    }
     bool ok = true;
     // Side walls: x = xlo, xhi and y = ylo, yhi from z = 0 to top.
     const double X0 = c->xlo, X1 = c->xhi, Y0 = c->ylo, Y1 = c->yhi;

@@ -17,8 +17,10 @@ typedef struct gf_mesh {
     size_t nt, tcap;
 } gf_mesh;
 
-/// The walls of `c` up to height `top`: the side walls and the base with its
-/// hole (a circle drawn with `segments` edges). A new shape adds its case here.
+/// The walls of `c` up to height `top`: a box's side walls and base with its
+/// hole (a circle drawn with `segments` edges); a cylinder's wall, funnel,
+/// outlet pipe and central column (circles of `segments` edges). A new shape
+/// adds its case here.
 gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_mesh *out);
 void gf_mesh_free(gf_mesh *m);
 
