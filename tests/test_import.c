@@ -669,7 +669,7 @@ static void gzip_reads_like_plain(void **state)
     random_packing(&a, 20000, 9, 1, 1);
     const char *names[] = {"z.dump", "z.xyz", "z.csv"};
     for (size_t k = 0; k < 3; k++) {
-        char plain[1024], gz[1024];
+        char plain[1024], gz[1024 + 3];
         snprintf(plain, sizeof plain, "%s", tmppath(names[k]));
         snprintf(gz, sizeof gz, "%s.gz", plain);
         assert_int_equal(gf_packing_write(&a, plain, GF_FORMAT_AUTO, NULL), GF_OK);
