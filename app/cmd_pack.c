@@ -26,7 +26,10 @@ int gf_cmd_pack(int argc, char **argv)
             fprintf(stderr, "granflow pack: kept %zu of %zu particles (%zu below the base, %zu of other atom types)\n",
                     pk.n, rep.read, rep.below_base, rep.other_types);
     } else {
-        if (!cli.quiet) fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
+        if (!cli.quiet && cfg.packing_fill_height > 0.0)
+            fprintf(stderr, "granflow pack: filling to z = %g...\n", cfg.packing_fill_height);
+        else if (!cli.quiet)
+            fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
         st = gf_packing_generate_stoppable(&cfg, gf_cli_catch_stop(), &pk);
     }
     if (st == GF_OK) st = gf_packing_check(&pk, &cfg);

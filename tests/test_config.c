@@ -307,7 +307,7 @@ static void load_above_range(void **state)
     expect_load_error("above2.ini", "[spot]\nradius = 20.5\n", 2,
                       "radius = 20.5: out of range (0, 20]");
     expect_load_error("above3.ini", "[container]\nexit_z = 0.6\n", 2,
-                      "exit_z = 0.6: out of range (-inf, 0.5]");
+                      "exit_z = 0.6: out of range [-100000, 0.5]");
     expect_load_error("above4.ini", "[packing]\nparticles = 50000001\n", 2,
                       "particles = 50000001: out of range");
 }
@@ -433,6 +433,13 @@ static void set_errors(void **state)
     expect_set_error("spot.=3", "malformed assignment");
     expect_set_error("spot.w=", "--set spot.w=: empty value");
     expect_set_error("container.orifice_shape=square", "not one of: circle, slit");
+    // Sizes are bounded like container.width: 1e300 once reached the packing
+    // generator (200000 futile sweeps, rc 1) or the grid ("6.7e299 cells").
+    expect_set_error("container.outlet_length=1e300", "out of range [0, 100000]");
+    expect_set_error("container.exit_z=-1e300", "out of range [-100000, 0.5]");
+    expect_set_error("container.radius=1e20", "out of range (0, 50000]");
+    expect_set_error("container.outlet_diameter=1e300", "out of range (0, 100000]");
+    expect_set_error("container.inner_radius=1e300", "out of range [0, 50000]");
 }
 
 // ---- validation ------------------------------------------------------------

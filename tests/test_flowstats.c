@@ -197,6 +197,16 @@ static void density_counts_the_slice(void **state)
     assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
     assert_true(gf_test_value(&out, "density_initial") == 3.0);
     gf_measure_free(&out);
+    // A slice above every particle (a hopper filled to 40 d, the paper's
+    // 50 < z < 70): nothing measured, NaN rather than a density of 0.
+    assert_int_equal(gf_analysis_opts_set(&o, "density.z0=100"), GF_OK);
+    assert_int_equal(gf_analysis_opts_set(&o, "density.z1=120"), GF_OK);
+    assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
+    assert_true(isnan(gf_test_value(&out, "density_initial")));
+    assert_true(isnan(gf_test_value(&out, "density_steady")));
+    assert_non_null(strstr(out.gnuplot, "empty in the first frame"));
+    gnuplot_runs(&out, "density");
+    gf_measure_free(&out);
     gf_series_free(&s);
 }
 

@@ -371,6 +371,33 @@ static void run_dir_writes_everything(void **state)
     assert_false(file_exists(dir, "maps/map_000250.png")); // the old maps are gone
 }
 
+// Pictures bound the lattice: a channel 17,000 rows tall has maps 34,041
+// pixels tall (2 per row), beyond cairo's 32,767, so it is refused before the
+// directory is made (it used to run, then fail on its first map with
+// config.ini written); 8,000 rows fit, the sheet's scale capped by its height
+// (it used to be chosen from the width alone: a 48,000-pixel sheet, after the run).
+static void run_dir_refuses_lattices_too_large_to_draw(void **state)
+{
+    (void)state;
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/tall", gf_test_tmpdir());
+    gf_config c = scenario(GF_LGA_CHANNEL);
+    c.lga_width = 40;
+    c.lga_height = 17000;
+    c.lga_particles = 1000;
+    c.lga_iterations = 1;
+    gf_lga_run_opts o = {.dir = dir};
+    assert_int_equal(gf_lga_run_dir(&c, &o, NULL), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "too large to draw"));
+    assert_non_null(strstr(gf_last_error(), "lga.height"));
+    struct stat sb;
+    assert_int_not_equal(stat(dir, &sb), 0); // nothing written
+    c.lga_height = 8000;
+    assert_int_equal(gf_lga_run_dir(&c, &o, NULL), GF_OK);
+    if (!file_exists(dir, "sheet.png")) fail_msg("%s/sheet.png missing", dir);
+    if (!file_exists(dir, "summary.json")) fail_msg("%s/summary.json missing", dir);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(closed_channel_conserves_mass),
     cmocka_unit_test(silo_loses_exactly_the_outflow),
@@ -382,6 +409,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(silo_flow_types),
     cmocka_unit_test(density_map_pixels),
     cmocka_unit_test(run_dir_writes_everything),
+    cmocka_unit_test(run_dir_refuses_lattices_too_large_to_draw),
 };
 
 GF_TEST_MAIN("lga_run", tests)

@@ -292,6 +292,13 @@ static void fill_to_height(void **state)
     for (size_t i = 0; i < p.n; i++) assert_int_equal(p.id[i], (int64_t)i + 1);
     gf_packing_free(&p);
 
+    // packing.particles (1 here, not its default) was set but is not used: a
+    // warning says so (a --set packing.particles over an example with
+    // fill_height was silently ignored).
+    assert_true(gf_warning_count() >= 1);
+    assert_non_null(strstr(gf_warning(gf_warning_count() - 1), "packing.particles = 1 is ignored"));
+    gf_warnings_clear();
+
     // One diameter: a single layer on the base.
     c.packing_fill_height = 1.0;
     generate(&c, &p);

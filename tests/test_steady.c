@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/rng.h"
 #include "granflow/analysis.h"
 
@@ -126,11 +127,41 @@ static void no_flow_falls_back(void **state)
     assert_non_null(strstr(w.reason, "too few snapshots"));
 }
 
+// A recirculating run (run.recirculate = on): every exited particle is put
+// back, so each frame holds the same count; the outflow curve is read from
+// exits.csv instead (it used to be flat: "only 0 particles exited", fallback).
+// Exits every 0.02 tau from t = 2 (rate 50), frames every 0.25 tau over 30 tau.
+static void recirculating_run_uses_the_exits(void **state)
+{
+    (void)state;
+    gf_series s = gf_test_series(NF, 20, 20);
+    for (size_t k = 0; k < NF; k++) {
+        s.frames[k].time = 0.25 * (double)k;
+        assert_int_equal(gf_packing_push(&s.frames[k].pk, 1, 1, 0.0, 0.0, 5.0, 0.5), GF_OK);
+    }
+    s.n_initial = 1;
+    s.cfg.run_recirculate = 1;
+    const size_t ne = 1400; // t = 2.01 .. 29.99
+    s.exits = GF_NEW(gf_exit, ne);
+    assert_non_null(s.exits);
+    for (size_t e = 0; e < ne; e++) s.exits[e] = (gf_exit){.id = 1, .time = 2.01 + 0.02 * (double)e, .pass = (int64_t)e + 1};
+    s.nexits = ne;
+    s.has_exits = true;
+    gf_steady w;
+    assert_int_equal(gf_steady_window(&s, &w), GF_OK);
+    print_message("window %g..%g: %s\n", w.t0, w.t1, w.reason);
+    assert_true(w.found);
+    assert_true(w.t0 >= 1.75 && w.t0 <= 2.75);
+    gf_assert_near(w.rate, 50.0, 0.01 * 50.0);
+    gf_series_free(&s);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(ramp_linear_emptying),
     cmocka_unit_test(steady_to_the_end),
     cmocka_unit_test(noisy_exits),
     cmocka_unit_test(no_flow_falls_back),
+    cmocka_unit_test(recirculating_run_uses_the_exits),
 };
 
 GF_TEST_MAIN("steady", tests)

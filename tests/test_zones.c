@@ -156,10 +156,44 @@ static void zone_radii_must_increase(void **state)
     assert_int_equal(o.zone_nradii, 3);
 }
 
+// A cylinder of radius 4 (its bounding box 8 x 8): the default four zones of
+// equal area end at the wall r = 4, not at the box's corner 4 sqrt(2), so an
+// exit at r = 3.9 falls in the last zone and none lies outside the vessel.
+// With only two snapshots (none inside the steady window) v(r) is empty and
+// the plot script must not ask gnuplot to draw the empty vz_r.csv.
+static void cylinder_zones_end_at_the_wall(void **state)
+{
+    (void)state;
+    gf_series s = gf_test_series(2, 8, 8);
+    s.cfg.container_shape = GF_SHAPE_CYLINDER;
+    s.cfg.container_radius = 4.0;
+    for (size_t k = 0; k < 2; k++)
+        assert_int_equal(gf_packing_push(&s.frames[k].pk, 9, 1, 3.0, 0.0, 5.0 - k, 0.5), GF_OK);
+    const gf_exit e[] = {{.id = 1, .time = 4, .x = 3.9, .y = 0, .pass = 1, .entry_time = 0, .entry_r = 3.9}};
+    s.exits = GF_NEW(gf_exit, 1);
+    memcpy(s.exits, e, sizeof e);
+    s.nexits = 1;
+    s.has_exits = true;
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_zones(&s, &o, &out), GF_OK);
+    const gf_table *z = gf_test_table(&out, "zones");
+    assert_int_equal(z->nrow, 4);
+    for (size_t k = 0; k < 4; k++) gf_assert_near(cell(z, k, 2), 4.0 * sqrt((double)(k + 1) / 4.0), 1e-12);
+    assert_true(cell(z, 3, 3) == 1); // r = 3.9 is in the outermost zone [2 sqrt 3, 4)
+    assert_int_equal(gf_test_table(&out, "vz_r")->nrow, 0);
+    assert_non_null(out.gnuplot);
+    assert_null(strstr(out.gnuplot, "'vz_r.csv'"));
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(zone_tables_from_exits),
     cmocka_unit_test(velocity_and_streamlines_from_frames),
     cmocka_unit_test(zone_radii_must_increase),
+    cmocka_unit_test(cylinder_zones_end_at_the_wall),
 };
 
 GF_TEST_MAIN("zones", tests)

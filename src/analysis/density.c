@@ -2,6 +2,7 @@
 // Density drop: particles in the slice dens_z0 < z < dens_z1 per frame (SPEC
 // 1.6; 2009 paper Sec. 2: in DEM 9,400 in 50 < z < 70 falls to 8,850 in flow).
 #include <math.h>
+#include <stdbool.h>
 
 #include "core/error.h"
 #include "granflow/analysis.h"
@@ -32,17 +33,23 @@ gf_status gf_measure_density(const gf_series *s, const gf_analysis_opts *o, gf_m
         }
     }
     double steady = nwin ? sum / (double)nwin : NAN;
+    // A slice the packing never reached (the default 50 < z < 70 above a
+    // hopper filled to 40 d) measures nothing: NaN, not a drop from 0 to 0.
+    const bool empty = !(first > 0.0);
+    if (empty) first = steady = NAN;
     if ((st = gf_measure_value(out, "density_initial", first)) != GF_OK) return st;
     if ((st = gf_measure_value(out, "density_steady", steady)) != GF_OK) return st;
     return gf_measure_gnuplot(out,
                               "set datafile separator ','\n"
-                              "set title 'Particles in the slice %g < z < %g (d)'\n"
+                              "set title 'Particles in the slice %g < z < %g (d)%s'\n"
                               "set xlabel 'time t (tau)'\n"
                               "set ylabel 'particles in the slice'\n"
-                              "set key bottom left\n"
+                              "set key bottom left\n%s"
                               "set arrow from %.10g, graph 0 to %.10g, graph 1 nohead dt 3\n"
                               "plot 'density.csv' skip 1 using 1:2 with linespoints pt 7 ps 0.6 title 'count', \\\n"
                               "     %.10g with lines dt 2 lw 2 title 'steady mean over %.4g-%.4g tau: %.6g'\n"
                               "unset arrow\n",
-                              o->dens_z0, o->dens_z1, t0, t0, isnan(steady) ? 0.0 : steady, t0, t1, steady);
+                              o->dens_z0, o->dens_z1,
+                              empty ? ": empty in the first frame, set density.z0 and density.z1" : "",
+                              empty ? "set yrange [0:1]\n" : "", t0, t0, isnan(steady) ? 0.0 : steady, t0, t1, steady);
 }

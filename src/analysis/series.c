@@ -19,6 +19,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,7 +151,9 @@ static gf_status gf_list_dumps(gf_loader *L, const char *dir)
     DIR *d = opendir(dir);
     if (!d) return gf_error_set(GF_ERR_IO, "cannot open directory %s: %s", dir, strerror(errno));
     gf_status st = GF_OK;
+    bool vtu = false; // VTK snapshots only (output.format = vtk): say so
     for (struct dirent *e; st == GF_OK && (e = readdir(d)) != NULL;) {
+        vtu = vtu || gf_textscan_has_ext(e->d_name, ".vtu");
         if (!gf_is_dump_name(e->d_name)) continue;
         char path[GF_SERIES_PATH];
         if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
@@ -159,6 +162,11 @@ static gf_status gf_list_dumps(gf_loader *L, const char *dir)
     }
     closedir(d);
     if (st != GF_OK) return st;
+    if (L->nfiles == 0 && vtu)
+        return gf_error_set(GF_ERR_IO,
+                            "%s: only VTK (.vtu) snapshots, which are for ParaView: analysis and pictures read the "
+                            "LAMMPS dumps (run with output.format = dump or both)",
+                            dir);
     if (L->nfiles == 0)
         return gf_error_set(GF_ERR_IO,
                             "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*, each possibly .gz)",

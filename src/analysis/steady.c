@@ -4,6 +4,7 @@
 // falls); the thesis' averages (Sec. 3.3) belong to the part in between,
 // where the particles exited grow linearly with time.
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -216,9 +217,15 @@ gf_status gf_steady_window(const gf_series *s, gf_steady *w)
         if (c) GF_DELETE(c, n + 1);
         return gf_error_set(GF_ERR_NOMEM, "steady window: out of memory");
     }
+    // The outflow curve: particles gone since the first frame, or, when exited
+    // particles are put back (run.recirculate: the count stays constant), the
+    // exits recorded by each frame's time (exits.csv is sorted by time).
+    const bool by_exits = s->cfg.run_recirculate && s->has_exits;
+    size_t e = 0;
     for (size_t f = 0; f < n; f++) {
         t[f] = s->frames[f].time;
-        c[f] = (double)s->n_initial - (double)s->frames[f].pk.n;
+        while (by_exits && e < s->nexits && s->exits[e].time <= t[f]) e++;
+        c[f] = by_exits ? (double)e : (double)s->n_initial - (double)s->frames[f].pk.n;
     }
     gf_status st = gf_steady_window_curve(t, c, n, w);
     GF_DELETE(t, n + 1);

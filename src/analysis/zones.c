@@ -260,6 +260,14 @@ gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_mea
     double mean = NAN;
     gf_status st = gf_zones_exits(s, &z, out, &mean);
     if (st == GF_OK) st = gf_zones_frames(s, o, &z, out);
+    // v(r) needs two snapshots inside the steady window; without them the
+    // panel says so (gnuplot refuses to plot an empty file).
+    const gf_table *tv = st == GF_OK ? &out->tables[out->ntables - 1] : NULL;
+    const char *vplot = tv && tv->nrow > 0
+                            ? "plot 'vz_r.csv' skip 1 using 1:2 with linespoints title 'v_z', "
+                              "'' skip 1 using 1:3 with linespoints title 'v_r'\n"
+                            : "set label 1 'no two snapshots inside the steady window' at graph 0.5, 0.5 center\n"
+                              "set xrange [0:1]\nset yrange [0:1]\nplot NaN notitle\n";
     int64_t pmax = 0;
     for (size_t e = 0; e < s->nexits; e++) pmax = s->exits[e].pass > pmax ? s->exits[e].pass : pmax;
     if (st == GF_OK) st = gf_measure_value(out, "zones_count", (double)z.n);
@@ -275,9 +283,8 @@ gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_mea
                                 "using 1:(column(2) == k ? column(3) : 1/0) with histeps lw 2 title 'zone '.k\n"
                                 "set title 'Velocity against distance from the axis'\n"
                                 "set xlabel 'r (d)'\nset ylabel 'v (d/tau)'\n"
-                                "plot 'vz_r.csv' skip 1 using 1:2 with linespoints title 'v_z', "
-                                "'' skip 1 using 1:3 with linespoints title 'v_r'\n"
+                                "%s"
                                 "unset multiplot\n",
-                                z.n - 1);
+                                z.n - 1, vplot);
     return st;
 }

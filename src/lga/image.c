@@ -5,6 +5,7 @@
 
 #include <cairo.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -141,6 +142,50 @@ static gf_status gf_lga_paint_frames(cairo_t *cr, const gf_lga_frame *frames, si
     return GF_OK;
 }
 
+// Pixel size of n frames of frame0's size, cols per row, with or without a title.
+static void gf_lga_draw_size(const gf_lga_frame *frame0, size_t n, double px, int cols, bool title, double *W,
+                             double *H)
+{
+    int fw, fh;
+    gf_lga_frame_size(frame0, px, &fw, &fh);
+    int label = gf_lga_label_px(px), gap = n > 1 ? (int)fmax(4.0, px * 2) : 0;
+    int rows = (int)((n + (size_t)cols - 1) / (size_t)cols);
+    int top = title ? label : 0;
+    *W = (double)cols * fw + (cols - 1) * gap;
+    *H = top + rows * (double)(fh + label) + (rows - 1) * gap;
+}
+
+static bool gf_lga_size_ok(double W, double H) { return W <= GF_LGA_MAX_PX && H <= GF_LGA_MAX_PX && W * H <= 1e8; }
+
+// The sheet's layout: tall maps (channel, silo) side by side in one row, as
+// in the paper's Figs. 6 and 7; wide ones (the pile) in a grid about as wide
+// as tall. Then the scale: at most ~2400 pixels wide and ~8000 tall, at least
+// 2 pixels per spacing.
+static void gf_lga_sheet_layout(const gf_lga_frame *frame0, size_t n, double *px, int *cols)
+{
+    double aspect = (frame0->h + 0.5) / (frame0->w * 0.86602540378443864676); // height / width of a map
+    *cols = aspect >= 1.5 ? (int)n : (int)fmax(1.0, fmin((double)n, floor(sqrt((double)n * aspect) + 0.5)));
+    double rows = ceil((double)n / *cols);
+    *px = fmax(2.0, fmin(8.0, fmin(2400.0 / (*cols * frame0->w * 0.86602540378443864676),
+                                   8000.0 / (rows * (frame0->h + 0.5)))));
+}
+
+gf_status gf_lga_pictures_check(int w, int h, double map_px, size_t sheet_frames)
+{
+    gf_lga_frame f0 = {.w = w, .h = h};
+    double W, H, SW, SH, px;
+    int cols;
+    gf_lga_draw_size(&f0, 1, map_px, 1, true, &W, &H);
+    gf_lga_sheet_layout(&f0, sheet_frames, &px, &cols);
+    gf_lga_draw_size(&f0, sheet_frames, px, cols, true, &SW, &SH);
+    if (gf_lga_size_ok(W, H) && gf_lga_size_ok(SW, SH)) return GF_OK;
+    if (!gf_lga_size_ok(W, H)) SW = W, SH = H;
+    return gf_error_set(GF_ERR_PARAM,
+                        "a lattice of %d x %d sites is too large to draw: its %s would be %.0f x %.0f pixels "
+                        "(at most %d on a side and 10^8 in all); lower lga.width or lga.height",
+                        w, h, gf_lga_size_ok(W, H) ? "contact sheet" : "maps", SW, SH, (int)GF_LGA_MAX_PX);
+}
+
 static gf_status gf_lga_draw(const gf_lga_frame *frames, size_t n, double px, int cols, const char *title,
                              const char *path)
 {
@@ -148,13 +193,11 @@ static gf_status gf_lga_draw(const gf_lga_frame *frames, size_t n, double px, in
     for (size_t k = 1; k < n; k++)
         if (frames[k].w != frames[0].w || frames[k].h != frames[0].h)
             return gf_error_set(GF_ERR_PARAM, "LGA picture %s: frames of different sizes", path);
-    int fw, fh;
-    gf_lga_frame_size(&frames[0], px, &fw, &fh);
     int label = gf_lga_label_px(px), gap = n > 1 ? (int)fmax(4.0, px * 2) : 0;
-    int rows = (int)((n + (size_t)cols - 1) / (size_t)cols);
     int top = title ? label : 0;
-    double W = (double)cols * fw + (cols - 1) * gap, H = top + rows * (double)(fh + label) + (rows - 1) * gap;
-    if (W > GF_LGA_MAX_PX || H > GF_LGA_MAX_PX || W * H > 1e8)
+    double W, H;
+    gf_lga_draw_size(&frames[0], n, px, cols, title != NULL, &W, &H);
+    if (!gf_lga_size_ok(W, H))
         return gf_error_set(GF_ERR_PARAM, "LGA picture %s: %.0f x %.0f pixels is too large; lower the scale", path,
                             W, H);
     gf_canvas c;
@@ -180,12 +223,9 @@ gf_status gf_lga_frame_draw(const gf_lga_frame *f, double px, const char *title,
 gf_status gf_lga_sheet_draw(const gf_lga_frame *frames, size_t n, const char *title, const char *path)
 {
     if (n == 0) return gf_error_set(GF_ERR_PARAM, "LGA sheet %s: no frames", path);
-    // Tall maps (channel, silo) side by side in one row, as in the paper's
-    // Figs. 6 and 7; wide ones (the pile) in a grid about as wide as tall.
-    // Then the scale: at most ~2400 pixels wide, at least 2 pixels per spacing.
-    double aspect = (frames[0].h + 0.5) / (frames[0].w * 0.86602540378443864676); // height / width of a map
-    int cols = aspect >= 1.5 ? (int)n : (int)fmax(1.0, fmin((double)n, floor(sqrt((double)n * aspect) + 0.5)));
-    double px = fmax(2.0, fmin(8.0, 2400.0 / (cols * frames[0].w * 0.86602540378443864676)));
+    double px;
+    int cols;
+    gf_lga_sheet_layout(&frames[0], n, &px, &cols);
     return gf_lga_draw(frames, n, px, cols, title, path);
 }
 

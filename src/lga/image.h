@@ -36,9 +36,15 @@ void gf_lga_frame_cell(double px, int *cw, int *rh);
 gf_status gf_lga_frame_draw(const gf_lga_frame *f, double px, const char *title, const char *path);
 
 /// A contact sheet of the n frames in the given order, all at one scale
-/// (chosen so that the sheet is at most about 2400 pixels wide, 2 pixels per
-/// spacing at least): tall maps in one row, wide ones in a grid about as wide
+/// (chosen so that the sheet is at most about 2400 pixels wide and 8000 tall,
+/// 2 pixels per spacing at least): tall maps in one row, wide ones in a grid about as wide
 /// as tall; written atomically as a PNG.
 gf_status gf_lga_sheet_draw(const gf_lga_frame *frames, size_t n, const char *title, const char *path);
+
+/// GF_OK if the maps of a w x h lattice (at `map_px`, with a title) and a
+/// contact sheet of `sheet_frames` of them fit the picture limits; otherwise
+/// GF_ERR_PARAM naming the size. Checked before a run starts, so that a
+/// lattice too large to draw is refused up front, not after its run.
+gf_status gf_lga_pictures_check(int w, int h, double map_px, size_t sheet_frames);
 
 #endif

@@ -265,6 +265,10 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     gf_lga *l = NULL;
     gf_status st = gf_lga_create(cfg, &l);
     if (st != GF_OK) return st;
+    if ((st = gf_lga_pictures_check(l->w, l->h, GF_LGA_MAP_PX, GF_LGA_SHEET_FRAMES)) != GF_OK) {
+        gf_lga_destroy(l);
+        return st;
+    }
     char maps[GF_PATH_MAX + 16], path[GF_PATH_MAX + 32];
     snprintf(maps, sizeof maps, "%s/maps", o.dir);
     if ((st = gf_lga_mkdir(maps)) == GF_OK) st = gf_lga_clear_maps(maps);

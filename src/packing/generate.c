@@ -659,6 +659,10 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
             return gf_error_set(GF_ERR_PARAM,
                                 "packing: fill height %g must be finite and at least one diameter",
                                 fill);
+        if (cfg->packing_particles != gf_config_default().packing_particles) // set, but not used: say so
+            gf_warn("packing.particles = %lld is ignored: packing.fill_height = %g sets the count "
+                    "(set packing.fill_height = 0 to use packing.particles)",
+                    (long long)cfg->packing_particles, fill);
         n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
         if (cfg->container_shape == GF_SHAPE_CYLINDER) // and the pipe
             n += ceil(0.66 * 0.25 * cfg->outlet_diameter * cfg->outlet_diameter * cfg->outlet_length / (1.0 / 6.0));
