@@ -83,7 +83,7 @@ static void same_outcome(const outcome *a, const outcome *b)
     assert_int_equal(a->st.spot_moves, b->st.spot_moves);
     assert_int_equal(a->st.relax_calls, b->st.relax_calls);
     assert_int_equal(a->st.spots_deleted, b->st.spots_deleted);
-    // The counters' floating-point sums are made slab by slab, in slab order.
+    // The counters' floating-point sums are made block by block, in block order.
     assert_memory_equal(&a->st.spot_dz, &b->st.spot_dz, sizeof(double));
     assert_memory_equal(&a->st.relax_dz, &b->st.relax_dz, sizeof(double));
 }
@@ -101,7 +101,7 @@ static void thread_count_does_not_change_the_result(void **state)
 {
     (void)state;
     outcome o1 = run_threads(1), o2 = run_threads(2), o4 = run_threads(4);
-    print_message("spatial step: %zu exited, %llu moves, %llu phases with two or more slabs\n", o1.nex,
+    print_message("spatial step: %zu exited, %llu moves, %llu phases with two or more blocks\n", o1.nex,
                   (unsigned long long)o1.st.spot_moves, (unsigned long long)o2.shared_phases);
     assert_true(o1.nex > 50);
     assert_true(o2.shared_phases > 10);

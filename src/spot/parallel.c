@@ -95,7 +95,7 @@ typedef struct gf_par {
 // the ball centre (a step away), the gather (r_e), then the neighbours of the
 // gathered particles and the cells a list refresh searches, a box of half-width
 // r_i + r_max + h_i + 2 h_max + slack around p0 (its diagonal). Distances are
-// to the nearest point of a cell touched: the slabs add a cell diagonal.
+// to the nearest point of a cell touched: the blocks add a cell diagonal.
 static double gf_par_reach(const gf_sim *sim)
 {
     const gf_config *c = &sim->cfg;

@@ -212,10 +212,11 @@ void gf_work_free(gf_work *w);
 gf_status gf_sim_alloc_scratch(gf_sim *sim);
 
 /// The spatial fixed step (run.order = spatial, parallel.c): insertions,
-/// then every spot once, slab colour by slab colour, slabs of one colour on
-/// run.threads threads. The result does not depend on the thread count.
+/// then every spot once, in one of 16 random phases, block colour by block
+/// colour, the blocks of one colour on run.threads threads. The result does
+/// not depend on the thread count.
 gf_status gf_sim_spatial_step(gf_sim *sim);
-/// Colour phases so far (this process) that had two or more slabs to run side by side.
+/// Colour phases so far (this process) that had two or more blocks to run side by side.
 uint64_t gf_par_shared_phases(const gf_sim *sim);
 /// Frees the parallel step's state.
 void gf_par_free(gf_sim *sim);
