@@ -162,6 +162,14 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     gf_assert_near(gf_container_floor_z(&c, 5, 0, 0.5), 2 + 0.5 / s, 1e-12);
     gf_assert_near(gf_container_floor_z(&c, 0, 1, 0.5), 0.5, 0); // over the outlet
     gf_assert_near(gf_container_outer_radius(&c), 10, 0);
+    // Slice volumes: above the funnel a disc of radius 10 less the column of
+    // radius 2; in the funnel (radius 3 + z) a frustum pi h (a^2 + ab + b^2) / 3.
+    const double pi = 3.14159265358979323846;
+    gf_assert_near(gf_container_slice_volume(&c, 8, 10), 2 * pi * (100 - 4), 1e-9);
+    gf_assert_near(gf_container_slice_volume(&c, 1, 3), pi * 2 * (16 + 24 + 36) / 3.0, 1e-4);
+    gf_config bc = gf_config_default(); // the papers' silo: 50 x 8
+    gf_container box = gf_container_make(&bc);
+    gf_assert_near(gf_container_slice_volume(&box, 50, 70), 20 * 50 * 8, 1e-9);
 }
 
 static void cylinder_config_errors(void **state)

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "geom/container.h"
 #include "granflow/dem.h"
 
 #define GF_FS_PI 3.14159265358979323846
@@ -55,7 +56,8 @@ static gf_status gf_fs_once(const gf_series *s, const gf_analysis_opts *base, do
     if (st != GF_OK) return st;
     memset(&m, 0, sizeof m);
     if ((st = gf_measure_density(s, &o, &m)) == GF_OK) {
-        double h = o.dens_z1 - o.dens_z0, vol = h * s->cfg.container_width * s->cfg.container_depth;
+        gf_container box = gf_container_make(&s->cfg); // a cylinder's slice is a disc (less its column)
+        double vol = gf_container_slice_volume(&box, o.dens_z0, o.dens_z1);
         fs->phi.value = gf_fs_value(&m, "density_steady") * (GF_FS_PI / 6.0) / vol;
         fs->drop.value = gf_fs_value(&m, "density_initial") - gf_fs_value(&m, "density_steady");
     }

@@ -109,6 +109,12 @@ static double gf_box_floor_z(const gf_container *c, double x, double y, double r
     return r;
 }
 
+static double gf_box_section_area(const gf_container *c, double z)
+{
+    (void)z;
+    return (c->xhi - c->xlo) * (c->yhi - c->ylo);
+}
+
 const gf_shape_ops gf_box_ops = {
     .walls = gf_box_walls,
     .push = gf_box_push,
@@ -117,4 +123,5 @@ const gf_shape_ops gf_box_ops = {
     .mirrors = gf_box_mirrors,
     .inside_xy = gf_box_inside_xy,
     .floor_z = gf_box_floor_z,
+    .section_area = gf_box_section_area,
 };

@@ -48,6 +48,8 @@ typedef struct gf_shape_ops {
     bool (*inside_xy)(const gf_container *c, double x, double y, double r);
     /// Lowest height of the centre of a sphere of radius r resting on the floor at (x, y).
     double (*floor_z)(const gf_container *c, double x, double y, double r);
+    /// Area of the horizontal cross-section of the inside at height z, d^2.
+    double (*section_area)(const gf_container *c, double z);
 } gf_shape_ops;
 
 struct gf_container {
@@ -131,5 +133,9 @@ static inline double gf_container_floor_z(const gf_container *c, double x, doubl
 /// Radius from the axis x = y = 0 that encloses the cross-section (the
 /// cylinder's wall; the box's corners).
 double gf_container_outer_radius(const gf_container *c);
+
+/// Volume of the inside between the heights z0 < z1, d^3: the
+/// cross-sections integrated (a slice of the packing: its packing fraction).
+double gf_container_slice_volume(const gf_container *c, double z0, double z1);
 
 #endif

@@ -123,6 +123,16 @@ static double gf_cyl_floor_z(const gf_container *c, double x, double y, double r
     return (r + (rho - c->r_out) * c->sin_a) / c->cos_a;
 }
 
+// The disc inside the wall, or inside the funnel below its top (radius
+// r_o + z / tan a), less the column above the funnel; the pipe below z = 0.
+static double gf_cyl_section_area(const gf_container *c, double z)
+{
+    double ro = z < 0.0 ? c->r_out : c->radius;
+    if (z < c->z_top && c->sin_a > 0.0) ro = fmin(ro, c->r_out + z * c->cos_a / c->sin_a);
+    double ri = z >= c->z_top ? c->r_in : 0.0;
+    return 3.14159265358979323846 * (ro * ro - ri * ri);
+}
+
 const gf_shape_ops gf_cylinder_ops = {
     .walls = gf_cyl_walls,
     .push = gf_cyl_push,
@@ -131,4 +141,5 @@ const gf_shape_ops gf_cylinder_ops = {
     .mirrors = gf_container_mirror_walls,
     .inside_xy = gf_cyl_inside_xy,
     .floor_z = gf_cyl_floor_z,
+    .section_area = gf_cyl_section_area,
 };
