@@ -104,8 +104,51 @@ static void counts_balance_and_passes_step_by_one(void **state)
     gf_sim_destroy(sim);
 }
 
+// The particles put back in the step just made: each inside the container
+// (its own test, tol 0) and clear of every other particle (centre distance
+// >= r_i + r_j); `extra` checks more of each (its zone). Returns how many.
+static size_t check_reinserted_now(const gf_sim *sim, void (*extra)(const gf_sim *sim, const gf_pos *a))
+{
+    size_t checked = 0;
+    for (size_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i] || sim->hist[i].pass < 2 || sim->hist[i].t_entry != sim->t) continue;
+        const gf_pos *a = &sim->p[i];
+        assert_true(gf_container_contains(&sim->box, a->x, a->y, a->z, a->r, 0.0));
+        assert_true(sim->hist[i].r_entry == hypot(a->x, a->y));
+        extra(sim, a);
+        for (size_t j = 0; j < sim->n; j++) {
+            if (j == i || !sim->alive[j]) continue;
+            const gf_pos *b = &sim->p[j];
+            double dx = a->x - b->x, dy = a->y - b->y, dz = a->z - b->z;
+            assert_true(sqrt(dx * dx + dy * dy + dz * dz) >= a->r + b->r);
+        }
+        checked++;
+    }
+    return checked;
+}
+
+// Steps `sim` until `want` re-insertions have been checked (check_reinserted_now).
+static void check_reinsertions(gf_sim *sim, size_t want, void (*extra)(const gf_sim *sim, const gf_pos *a))
+{
+    size_t checked = 0, done = 0;
+    while (checked < want) {
+        assert_int_equal(gf_sim_step(sim), GF_OK);
+        assert_true(sim->t < 30.0);
+        if (sim->st.particles_reinserted == done) continue;
+        done = sim->st.particles_reinserted;
+        checked += check_reinserted_now(sim, extra);
+    }
+}
+
+static void in_zone_1_to_2_5(const gf_sim *sim, const gf_pos *a)
+{
+    (void)sim;
+    double rho = hypot(a->x, a->y);
+    assert_true(rho >= 1.0 && rho < 2.5);
+}
+
 // Step by step: right after each re-insertion, the particle put back is
-// clear of every other particle (centre distance >= r_i + r_j) and of the walls.
+// clear of every other particle and of the walls, and in its zone.
 static void reinserted_particles_do_not_overlap(void **state)
 {
     (void)state;
@@ -114,28 +157,7 @@ static void reinserted_particles_do_not_overlap(void **state)
     c.run_reinsert_rmin = 1.0;
     c.run_reinsert_rmax = 2.5;
     gf_sim *sim = gf_test_generated_sim(&c);
-    size_t checked = 0, done = 0;
-    while (checked < 100) {
-        assert_int_equal(gf_sim_step(sim), GF_OK);
-        assert_true(sim->t < 30.0);
-        if (sim->st.particles_reinserted == done) continue;
-        done = sim->st.particles_reinserted;
-        for (size_t i = 0; i < sim->n; i++) {
-            if (!sim->alive[i] || sim->hist[i].pass < 2 || sim->hist[i].t_entry != sim->t) continue;
-            const gf_pos *a = &sim->p[i];
-            assert_true(gf_container_contains(&sim->box, a->x, a->y, a->z, a->r, 0.0));
-            double rho = hypot(a->x, a->y);
-            assert_true(rho >= 1.0 && rho < 2.5); // the zone
-            assert_true(sim->hist[i].r_entry == rho);
-            for (size_t j = 0; j < sim->n; j++) {
-                if (j == i || !sim->alive[j]) continue;
-                const gf_pos *b = &sim->p[j];
-                double dx = a->x - b->x, dy = a->y - b->y, dz = a->z - b->z;
-                assert_true(sqrt(dx * dx + dy * dy + dz * dz) >= a->r + b->r);
-            }
-            checked++;
-        }
-    }
+    check_reinsertions(sim, 100, in_zone_1_to_2_5);
     assert_int_equal(sim->n_alive, 300);
     gf_sim_destroy(sim);
 }
@@ -187,11 +209,19 @@ static void resume_keeps_passes_exact(void **state)
     free(text);
 }
 
+// Beside the column (radius 1.5) and inside the wall (radius 5), or under
+// the column once the surface is below it; on or above the funnel.
+static void in_hopper_annulus(const gf_sim *sim, const gf_pos *a)
+{
+    double rho = hypot(a->x, a->y);
+    assert_true(rho <= 5.0 - a->r + 1e-9); // may touch the wall
+    if (a->z >= sim->box.z_top) assert_true(rho >= 1.5 + a->r - 1e-9);
+    assert_true(a->z >= gf_container_floor_z(&sim->box, a->x, a->y, a->r));
+}
+
 // A 60 degree hopper with a central column (the annular core of the 2006
-// pebble-bed paper) recirculating: each particle put back lies in the
-// container (its own inside test, tol 0; beside the column or, once the
-// surface is below it, under it),
-// on or above the funnel, clear of every other particle; the count stays.
+// pebble-bed paper) recirculating: every particle put back is inside, clear
+// of the others and in the annulus; the count stays.
 static void hopper_with_column_reinserts_inside(void **state)
 {
     (void)state;
@@ -205,29 +235,7 @@ static void hopper_with_column_reinserts_inside(void **state)
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_sim *sim = gf_test_generated_sim(&c);
     const size_t n0 = sim->n_alive;
-    size_t checked = 0, done = 0;
-    while (checked < 60) {
-        assert_int_equal(gf_sim_step(sim), GF_OK);
-        assert_true(sim->t < 30.0);
-        if (sim->st.particles_reinserted == done) continue;
-        done = sim->st.particles_reinserted;
-        for (size_t i = 0; i < sim->n; i++) {
-            if (!sim->alive[i] || sim->hist[i].pass < 2 || sim->hist[i].t_entry != sim->t) continue;
-            const gf_pos *a = &sim->p[i];
-            assert_true(gf_container_contains(&sim->box, a->x, a->y, a->z, a->r, 0.0));
-            double rho = hypot(a->x, a->y);
-            assert_true(rho <= 5.0 - a->r + 1e-9); // may touch the wall
-            if (a->z >= sim->box.z_top) assert_true(rho >= 1.5 + a->r - 1e-9); // beside the column, not under it
-            assert_true(a->z >= gf_container_floor_z(&sim->box, a->x, a->y, a->r));
-            for (size_t j = 0; j < sim->n; j++) {
-                if (j == i || !sim->alive[j]) continue;
-                const gf_pos *b = &sim->p[j];
-                double dx = a->x - b->x, dy = a->y - b->y, dz = a->z - b->z;
-                assert_true(sqrt(dx * dx + dy * dy + dz * dz) >= a->r + b->r);
-            }
-            checked++;
-        }
-    }
+    check_reinsertions(sim, 60, in_hopper_annulus);
     assert_int_equal(sim->n_alive, n0);
     gf_sim_stats st = gf_sim_get_stats(sim);
     assert_int_equal(st.particles_exited, st.particles_reinserted);
