@@ -7,7 +7,9 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
@@ -136,7 +138,61 @@ static void long_messages_keep_their_end(void **state)
     free(path);
 }
 
+// The first occurrence of `s` in the len bytes at d, or NULL.
+static char *find_bytes(char *d, size_t len, const char *s)
+{
+    size_t n = strlen(s);
+    for (size_t i = 0; i + n <= len; i++)
+        if (memcmp(d + i, s, n) == 0) return d + i;
+    return NULL;
+}
+
+// The checkpoint at `path` with the first occurrence of `from` in its
+// stored configuration text replaced by `to` (same length), its CRC-32 redone.
+static void patch_checkpoint(const char *path, const char *from, const char *to)
+{
+    size_t len;
+    char *d = gf_test_read_file(path, &len);
+    const size_t head = 8 + 4 + 4 + 8 + 4;
+    char *at = find_bytes(d + head, len - head, from);
+    assert_non_null(at);
+    memcpy(at, to, strlen(to));
+    uint32_t crc = (uint32_t)crc32(crc32(0L, Z_NULL, 0), (const Bytef *)d + head, (uInt)(len - head));
+    memcpy(d + 24, &crc, 4);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(d, 1, len, f), len);
+    fclose(f);
+    free(d);
+}
+
+// A checkpoint compares settings, not comments: a key's documentation may
+// change between versions and the run still resumes; a changed value is
+// refused, naming its key.
+static void checkpoint_compares_settings_not_comments(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(10, 300, 3);
+    gf_sim *sim = gf_test_generated_sim(&c);
+    char path[600];
+    snprintf(path, sizeof path, "%s/ck_comments.bin", gf_test_tmpdir());
+    assert_int_equal(gf_sim_save(sim, path), GF_OK);
+    gf_sim_destroy(sim);
+    size_t len;
+    char *d = gf_test_read_file(path, &len);
+    assert_non_null(find_bytes(d, len, "; spot radius r_s")); // the doc line this test edits
+    free(d);
+    patch_checkpoint(path, "; spot radius r_s", "; SPOT RADIUS R_S");
+    gf_sim *back = NULL;
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_OK);
+    gf_sim_destroy(back);
+    patch_checkpoint(path, "\nradius = 2.6\n", "\nradius = 2.7\n");
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "spot.radius differs"));
+}
+
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(checkpoint_compares_settings_not_comments),
     cmocka_unit_test(alloc_refuses_wrapping_sizes),
     cmocka_unit_test(poisson_of_a_huge_mean_is_huge),
     cmocka_unit_test(layer_tags_are_clamped),

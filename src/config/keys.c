@@ -141,8 +141,8 @@ const gf_key gf_keys[] = {
     {"run", "mode", GF_KEY_ENUM, GF_OFF(run_mode), .names = gf_keys_mode_names, .def = "event", .unit = "",
      .doc = "event (Gillespie) or fixed (steps of 1/mu: Poisson(lambda/mu) insertions, every spot moves once)"},
     {"run", "order", GF_KEY_ENUM, GF_OFF(run_order), .names = gf_keys_order_names, .def = "random",
-     .unit = "", .doc = "fixed mode: order of the moves in a step: random, newest first, or spatial (slabs in a "
-                        "fixed colouring, run in parallel; results do not depend on run.threads)"},
+     .unit = "", .doc = "fixed mode: order of the moves in a step: random, newest first, or spatial (blocks in a "
+                        "fixed colouring, in random phases, run in parallel; results do not depend on run.threads)"},
     {"run", "threads", GF_KEY_INT64, GF_OFF(run_threads), .min = 0, .max = 4096, .def = "0", .unit = "",
      .doc = "threads of the spatial fixed step (run.order = spatial); 0: every core"},
     {"run", "recirculate", GF_KEY_ENUM, GF_OFF(run_recirculate), .names = gf_keys_onoff_names, .def = "off",

@@ -199,6 +199,23 @@ static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len
     return GF_OK;
 }
 
+// The next setting line (a [section] or key = value) of an INI text at p,
+// past comments and blank lines; its length (without the newline) in *len.
+// NULL at the end of the text.
+static const char *gf_ckpt_setting(const char *p, const char *end, size_t *len)
+{
+    while (p < end) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        size_t n = nl ? (size_t)(nl - p) : (size_t)(end - p);
+        if (n > 0 && p[0] != '#' && p[0] != ';') {
+            *len = n;
+            return p;
+        }
+        p += n + (nl ? 1 : 0);
+    }
+    return NULL;
+}
+
 static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, gf_status st)
 {
     free(data);
@@ -287,24 +304,33 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     size_t mlen = 0;
     if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen)) != GF_OK) return gf_ckpt_fail(sim, data, st);
     bool ok = !r.bad && plen <= r.len - r.pos;
-    bool same = ok && plen == mlen && memcmp(r.data + r.pos, mine, mlen) == 0;
-    if (!same) {
-        // Name the first key that differs: compare the two INI texts line by line.
-        char key[160] = "?", section[64] = "";
-        const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
-        const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
-        while (a < ae && b < be) {
-            const char *an = memchr(a, '\n', (size_t)(ae - a)), *bn = memchr(b, '\n', (size_t)(be - b));
-            size_t al = an ? (size_t)(an - a) : (size_t)(ae - a), bl = bn ? (size_t)(bn - b) : (size_t)(be - b);
-            if (b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
-            if (al != bl || memcmp(a, b, al) != 0) {
-                const char *eq = memchr(b, '=', bl);
-                snprintf(key, sizeof key, "%s.%.*s", section, (int)(eq ? (size_t)(eq - b) - 1 : bl), b);
-                break;
-            }
-            a += al + 1;
-            b += bl + 1;
+    // The two INI texts are compared setting by setting: comments and blank
+    // lines are skipped, so a key's documentation may change between
+    // versions without stranding checkpoints; the first key that differs is named.
+    char key[160] = "", section[64] = "";
+    const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
+    const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
+    size_t al = 0, bl = 0;
+    for (;;) {
+        a = gf_ckpt_setting(a, ae, &al);
+        b = gf_ckpt_setting(b, be, &bl);
+        if (!a || !b) {
+            if (a || b) snprintf(key, sizeof key, "%s", "the list of keys");
+            break;
         }
+        if (b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
+        if (al != bl || memcmp(a, b, al) != 0) {
+            const char *eq = memchr(b, '=', bl);
+            size_t kl = eq ? (size_t)(eq - b) : bl;
+            while (kl > 0 && b[kl - 1] == ' ') kl--;
+            snprintf(key, sizeof key, "%s.%.*s", section, (int)kl, b);
+            break;
+        }
+        a += al;
+        b += bl;
+    }
+    if (!ok || key[0]) {
+        if (!key[0]) snprintf(key, sizeof key, "%s", "the configuration");
         free(mine);
         return gf_ckpt_fail(sim, data,
                             gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
