@@ -271,6 +271,20 @@ gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *orig
 
 // ---- validation ----------------------------------------------------------
 
+// At most GF_MAX_OUTPUTS outputs (`what`) of interval `dt` per run of
+// `duration`, naming `key` when there would be more.
+static gf_status gf_check_outputs(double dt, double duration, const char *key, const char *what, const char *or_else)
+{
+    if (duration / dt <= GF_MAX_OUTPUTS) return GF_OK;
+    char a[64], b[64];
+    gf_keys_format_double(dt, a, sizeof a);
+    gf_keys_format_double(duration, b, sizeof b);
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s = %s is too small for run.duration = %s: at most %d %s per run (interval >= "
+                        "run.duration / %d%s)",
+                        key, a, b, GF_MAX_OUTPUTS, what, GF_MAX_OUTPUTS, or_else);
+}
+
 gf_status gf_config_validate(gf_config *cfg)
 {
     gf_status st = gf_config_check(cfg, "gf_config_validate");
@@ -339,22 +353,12 @@ gf_status gf_config_validate(gf_config *cfg)
     }
     // Output intervals: a bounded number per run (an interval below the
     // rounding of the time would never advance, and the run never end).
-    if (!(cfg->run_duration / cfg->output_snapshot_interval <= GF_MAX_OUTPUTS)) {
-        gf_keys_format_double(cfg->output_snapshot_interval, a, sizeof a);
-        gf_keys_format_double(cfg->run_duration, b, sizeof b);
-        return gf_error_set(GF_ERR_PARAM,
-                            "output.snapshot_interval = %s is too small for run.duration = %s: at most %d "
-                            "snapshots per run (interval >= run.duration / %d)",
-                            a, b, GF_MAX_OUTPUTS, GF_MAX_OUTPUTS);
-    }
-    if (cfg->run_checkpoint_interval > 0 && !(cfg->run_duration / cfg->run_checkpoint_interval <= GF_MAX_OUTPUTS)) {
-        gf_keys_format_double(cfg->run_checkpoint_interval, a, sizeof a);
-        gf_keys_format_double(cfg->run_duration, b, sizeof b);
-        return gf_error_set(GF_ERR_PARAM,
-                            "run.checkpoint_interval = %s is too small for run.duration = %s: at most %d "
-                            "checkpoints per run (interval >= run.duration / %d, or 0 for none)",
-                            a, b, GF_MAX_OUTPUTS, GF_MAX_OUTPUTS);
-    }
+    st = gf_check_outputs(cfg->output_snapshot_interval, cfg->run_duration, "output.snapshot_interval",
+                                    "snapshots", "");
+    if (st == GF_OK && cfg->run_checkpoint_interval > 0)
+        st = gf_check_outputs(cfg->run_checkpoint_interval, cfg->run_duration, "run.checkpoint_interval",
+                              "checkpoints", ", or 0 for none");
+    if (st != GF_OK) return st;
     if (!(cfg->spot_insertion_rate / cfg->spot_move_rate <= GF_MAX_SPOTS_PER_MOVE)) {
         gf_keys_format_double(cfg->spot_insertion_rate, a, sizeof a);
         gf_keys_format_double(cfg->spot_move_rate, b, sizeof b);
