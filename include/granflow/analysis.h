@@ -48,6 +48,28 @@ typedef struct gf_series {
 GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out);
 GF_API void gf_series_free(gf_series *s);
 
+// Particles matched by id across frames, and the frames of a time window
+// (the motion measurements, the DEM comparison).
+
+/// Id -> index map of one packing: its ids sorted, with their indices.
+typedef struct gf_idmap {
+    size_t n;
+    struct gf_idmap_entry {
+        int64_t id;
+        size_t idx;
+    } *e;
+} gf_idmap;
+
+/// Builds the map; GF_ERR_PARAM when an id occurs twice.
+GF_API gf_status gf_idmap_build(const gf_packing *pk, gf_idmap *m);
+/// Index of `id` in the packing, or SIZE_MAX when it is not there (O(log n)).
+GF_API size_t gf_idmap_find(const gf_idmap *m, int64_t id);
+GF_API void gf_idmap_free(gf_idmap *m);
+
+/// The frames whose times lie in [t0, t1] (to 1e-9 relative): k0 .. k1-1.
+/// Returns the count k1 - k0.
+GF_API size_t gf_window_frames(const gf_series *s, double t0, double t1, size_t *k0, size_t *k1);
+
 // ---------------------------------------------------------------------------
 // Output: tables (one CSV each) and headline numbers.
 

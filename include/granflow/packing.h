@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Particle packings: generate one in the container (SPEC 1.2), import one
-// (LAMMPS text dump, XYZ, CSV), write one.
+// for a run, measure one. The data type gf_packing, its storage and its file
+// formats (read, write, snapshot frames) are in granflow/particles.h (the
+// formats layer), included here: this header still gives all of it.
 #ifndef GRANFLOW_PACKING_H
 #define GRANFLOW_PACKING_H
 
@@ -11,37 +13,11 @@
 
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/particles.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/// A set of spheres, structure of arrays. Owns its arrays: release with
-/// gf_packing_free(). Zero-initialise before first use ({0}).
-typedef struct gf_packing {
-    size_t n;        ///< number of particles
-    size_t cap;      ///< allocated capacity (elements)
-    int64_t *id;     ///< stable particle id (>= 1, unique)
-    int32_t *layer;  ///< initial-layer tag: 1 + floor(z0 / layer_thickness)
-    double *x, *y, *z; ///< centre, d
-    double *r;       ///< radius, d (0.5 for the monodisperse papers' spheres)
-} gf_packing;
-
-/// File formats gf_packing_read/gf_packing_write understand.
-typedef enum gf_packing_format {
-    GF_FORMAT_AUTO = 0, ///< from the file name: .xyz, .csv, anything else = LAMMPS dump
-    GF_FORMAT_LAMMPS,   ///< LAMMPS text dump, `ITEM: ATOMS id ... x y z` in any column order
-    GF_FORMAT_XYZ,      ///< N, comment line, then `name x y z` lines
-    GF_FORMAT_CSV,      ///< header line naming at least x,y,z (id, radius optional)
-} gf_packing_format;
-
-/// Makes room for `cap` particles, keeping the first n. GF_ERR_NOMEM on failure.
-GF_API gf_status gf_packing_reserve(gf_packing *p, size_t cap);
-/// Appends one particle (grows the arrays as needed).
-GF_API gf_status gf_packing_push(gf_packing *p, int64_t id, int32_t layer, double x, double y,
-                                 double z, double r);
-/// Frees the arrays and zeroes the struct.
-GF_API void gf_packing_free(gf_packing *p);
 
 /// Sets every layer tag from the current z: 1 + floor(z / thickness).
 GF_API void gf_packing_tag_layers(gf_packing *p, double thickness);
@@ -55,11 +31,6 @@ GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
 /// sweep: once it is non-zero, returns GF_ERR_INTERRUPTED with nothing built.
 GF_API gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop,
                                               gf_packing *out);
-
-/// Reads a packing (the last frame of a multi-frame LAMMPS dump). Errors name
-/// the file and line. Ids from the file are kept (they must be unique and
-/// positive); files without ids get 1..N in file order. Missing radii = 0.5.
-GF_API gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out);
 
 /// What gf_packing_import read and dropped.
 typedef struct gf_packing_import_report {
@@ -83,10 +54,6 @@ GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_pac
 /// (gf_packing_import; `rep`, may be NULL, gets its counts), else generated
 /// (gf_packing_generate; `rep` zeroed).
 GF_API gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
-
-/// Writes a packing (LAMMPS dump with `id type x y z radius`, XYZ or CSV) atomically.
-GF_API gf_status gf_packing_write(const gf_packing *p, const char *path, gf_packing_format format,
-                                  const gf_config *cfg);
 
 /// Checks that every centre lies in the container of `cfg`: between the side
 /// walls, and above the base unless over the orifice. GF_ERR_PARAM naming the

@@ -11,6 +11,7 @@
 #include "granflow/analysis.h"
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/draw.h"
 #include "granflow/packing.h"
 
 #ifdef __cplusplus
@@ -23,13 +24,7 @@ typedef enum gf_render_colour {
     GF_RENDER_PHI = 1,   ///< its local packing fraction (a per-particle array), with a colour bar
 } gf_render_colour;
 
-/// File format of a picture.
-typedef enum gf_render_format {
-    GF_RENDER_AUTO = 0, ///< from the file name: .svg, .pdf, anything else PNG
-    GF_RENDER_PNG,      ///< raster, px_per_d pixels per d
-    GF_RENDER_SVG,      ///< vector, px_per_d points per d
-    GF_RENDER_PDF,      ///< vector, px_per_d points per d
-} gf_render_format;
+/// gf_render_format (PNG, SVG, PDF) is in granflow/draw.h, included above.
 
 /// Options of a picture. Make them with gf_render_opts_default(), then change fields.
 ///

@@ -8,6 +8,7 @@
 
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/particles.h"
 #include "granflow/sim.h"
 
 #ifdef __cplusplus
@@ -54,13 +55,8 @@ GF_API gf_run_opts gf_run_opts_default(void);
 /// the final counters.
 GF_API gf_status gf_run_dir(const gf_config *cfg, const gf_run_opts *opts, gf_sim_stats *stats);
 
-/// Writes one snapshot frame in LAMMPS text-dump form (`ITEM: TIME`, then
-/// `ITEM: TIMESTEP`, box, `ITEM: ATOMS id type x y z`, type = layer tag) to
-/// `path`, atomically. A `radius` column follows when some radius is not
-/// 0.5, and a `pass` column when `pass` (may be NULL; one per particle of
-/// `p`, see gf_sim_passes) is given. Shared by the run directory and tools.
-GF_API gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, const int32_t *pass,
-                                       double time, uint64_t step);
+/// gf_run_write_snapshot (one snapshot frame as a LAMMPS dump) is a file
+/// format: it is declared in granflow/particles.h, included above.
 
 #ifdef __cplusplus
 }

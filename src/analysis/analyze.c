@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "core/atomic_file.h"
-#include "analysis/gnuplot.h"
 #include "core/error.h"
+#include "core/gnuplot.h"
 #include "granflow/analysis.h"
 
 static const gf_measure_def gf_measure_table[] = {
@@ -137,21 +137,6 @@ static gf_status gf_mkdir_p(const char *dir)
     }
     if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
     return GF_OK;
-}
-
-int gf_gnuplot_run(const char *dir, const char *script)
-{
-    fflush(NULL); // the child must not repeat our buffered output
-    pid_t pid = fork();
-    if (pid < 0) return -1;
-    if (pid == 0) {
-        if (chdir(dir) != 0) _exit(126);
-        execlp("gnuplot", "gnuplot", script, (char *)NULL);
-        _exit(127);
-    }
-    int status;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) return -1;
-    return WEXITSTATUS(status) == 127 ? 1 : WEXITSTATUS(status) == 0 ? 0 : -1;
 }
 
 static gf_status gf_write_plot(const char *outdir, const char *name, const gf_measure_out *out, int *gnuplot_state)

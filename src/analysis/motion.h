@@ -11,24 +11,8 @@
 
 #include "granflow/analysis.h"
 
-/// Id -> index map of one packing: its ids sorted, with their indices.
-typedef struct gf_idmap {
-    size_t n;
-    struct gf_idmap_entry {
-        int64_t id;
-        size_t idx;
-    } *e;
-} gf_idmap;
-
-/// Builds the map; GF_ERR_PARAM when an id occurs twice.
-gf_status gf_idmap_build(const gf_packing *pk, gf_idmap *m);
-/// Index of `id` in the packing, or SIZE_MAX when it is not there (O(log n)).
-size_t gf_idmap_find(const gf_idmap *m, int64_t id);
-void gf_idmap_free(gf_idmap *m);
-
-/// The frames whose times lie in [t0, t1] (to 1e-9 relative): k0 .. k1-1.
-/// Returns the count k1 - k0.
-size_t gf_window_frames(const gf_series *s, double t0, double t1, size_t *k0, size_t *k1);
+// The id map (gf_idmap) and the frame window (gf_window_frames) are public:
+// granflow/analysis.h.
 
 /// A rise between two frames larger than this, d, is a particle put back on
 /// the surface (run.recirculate), not motion: granular drainage never lifts a

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "analysis/motion.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/rng.h"

@@ -8,9 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "analysis/gnuplot.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/gnuplot.h"
 #include "dem/dem_internal.h"
 #include "granflow/dem.h"
 #include "granflow/render.h"

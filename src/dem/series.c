@@ -9,7 +9,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "analysis/motion.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/dem.h"

@@ -4,7 +4,7 @@
 #define GF_IO_PACKING_FRAMES_H
 
 #include "granflow/core.h"
-#include "granflow/packing.h"
+#include "granflow/particles.h"
 
 /// What the header of one frame said.
 typedef struct gf_packing_frame {

@@ -11,7 +11,7 @@
 // gf_packing_read_frames (io/packing_frames.h) uses the same reader in that
 // one-pass mode and hands every frame over, with its TIME and the `type`
 // column; gf_packing_read itself ignores both, as it always has.
-#include "granflow/packing.h"
+#include "granflow/particles.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // gf_packing_write: LAMMPS text dump, XYZ or CSV, written to `path.tmp` and
 // renamed over `path` so that readers never see half a file.
-#include "granflow/packing.h"
+#include "granflow/particles.h"
 
 #include <errno.h>
 #include <math.h>

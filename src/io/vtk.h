@@ -8,7 +8,7 @@
 
 #include "geom/mesh.h"
 #include "granflow/core.h"
-#include "granflow/packing.h"
+#include "granflow/particles.h"
 
 /// Writes the particles of `p` to `path` (atomically) as an ASCII .vtu: one
 /// vertex cell per particle, point data id, radius, pass (1 everywhere when

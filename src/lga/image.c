@@ -12,7 +12,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "lga/lattice.h"
-#include "render/canvas.h"
+#include "draw/canvas.h"
 
 static const double gf_lga_wall_rgb[3] = {0.176, 0.400, 0.659}; // steel blue
 static const double gf_lga_sink_rgb[3] = {0.95, 0.80, 0.80};

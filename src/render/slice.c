@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
-#include "render/canvas.h"
+#include "draw/canvas.h"
 #include "render/panel.h"
 
 enum { GF_RENDER_MAX_PX = 32767, GF_SHEET_MAX_COLS = 10 }; // cairo's largest image side

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // A cairo surface written atomically, in PNG, SVG or PDF.
-#include "render/canvas.h"
+#include "draw/canvas.h"
 
 #include <cairo-pdf.h>
 #include <cairo-svg.h>

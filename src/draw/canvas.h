@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Internal: a cairo surface of any format whose file is written atomically
 // (PATH.tmp through a stream, renamed over PATH on success, removed on failure).
-#ifndef GF_RENDER_CANVAS_H
-#define GF_RENDER_CANVAS_H
+// The drawing layer (src/draw/, layer 1): no model knowledge; render and lga draw on it.
+#ifndef GF_DRAW_CANVAS_H
+#define GF_DRAW_CANVAS_H
 
 #include <cairo.h>
 #include <stdio.h>
 
 #include "granflow/config.h"
-#include "granflow/render.h"
+#include "granflow/core.h"
+#include "granflow/draw.h"
 
 typedef struct gf_canvas {
     cairo_surface_t *surface;
