@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Internal: the simulation state behind the opaque gf_sim handle, shared by
-// the engine files (sim.c, mechanism.c, nlist.c, checkpoint.c) and the tests.
+// the engine files (sim.c lifecycle, drivers.c time drivers, parallel.c spatial
+// step, walk.c step kernel, mechanism.c spot()/relax(), particles.c bookkeeping,
+// nlist.c, checkpoint.c) and the tests.
 #ifndef GF_SPOT_SIM_INTERNAL_H
 #define GF_SPOT_SIM_INTERNAL_H
 
@@ -230,6 +232,9 @@ void gf_spots_compact(gf_sim *sim, const uint8_t *dead);
 gf_status gf_sim_global(gf_sim *sim);
 /// Inserts one spot (SPEC 1.3 insertion), drawing on sim->rng.
 gf_status gf_spot_insert(gf_sim *sim);
+/// Moves spot k once with the serial worker (event mode, fixed random or
+/// newest order), removing it when the step says so (walk.c).
+gf_status gf_spot_move(gf_sim *sim, size_t k);
 /// Derived parameters and container from sim->cfg.
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: MIT
+// The time drivers (2009 paper Sec. 2, 2.1; SPEC 1.4): the event-driven
+// engine (exponential waiting times) and the fixed timestep (random, newest
+// or spatial order, the last in parallel.c), gf_sim_step and gf_sim_run with
+// their snapshot and checkpoint hooks. The top of the engine: calls the
+// spatial step (parallel.c) and the kernel (walk.c), nothing calls back.
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/alloc.h"
+#include "core/clock.h"
+#include "core/error.h"
+#include "spot/sim_internal.h"
+
+// Time of the next global relaxation (relax.method = global, event mode):
+// every k/mu, counted rather than summed so no rounding accumulates.
+static double gf_sim_global_time(const gf_sim *sim)
+{
+    return (double)(sim->st.global_relaxations + 1) * sim->cfg.relax_k / sim->cfg.spot_move_rate;
+}
+
+// The time of whatever happens next: the pending event, or a global
+// relaxation due before it.
+static double gf_sim_next_time(const gf_sim *sim)
+{
+    if (sim->cfg.relax_method == GF_RELAX_GLOBAL && sim->cfg.run_mode == GF_MODE_EVENT)
+        return fmin(sim->t_pending, gf_sim_global_time(sim));
+    return sim->t_pending;
+}
+
+static gf_status gf_sim_fixed_step(gf_sim *sim)
+{
+    const gf_config *c = &sim->cfg;
+    gf_status st = gf_sim_fixed_begin(sim);
+    if (st != GF_OK) return st;
+    size_t ns = sim->ns, cap = ns ? ns : 1;
+    uint32_t *order = GF_NEW(uint32_t, cap);
+    uint8_t *dead = GF_NEW(uint8_t, cap);
+    if (!order || !dead) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a fixed step");
+    for (size_t k = 0; st == GF_OK && k < ns; k++) order[k] = c->run_order == GF_ORDER_NEWEST ? (uint32_t)(ns - 1 - k) : (uint32_t)k;
+    if (st == GF_OK && c->run_order == GF_ORDER_RANDOM)
+        for (size_t k = ns; k > 1; k--) { // Fisher-Yates
+            size_t j = (size_t)gf_rng_below(&sim->rng, k);
+            uint32_t tmp = order[k - 1];
+            order[k - 1] = order[j];
+            order[j] = tmp;
+        }
+    for (size_t o = 0; st == GF_OK && o < ns; o++) {
+        size_t k = order[o];
+        double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
+        bool deleted;
+        long ball;
+        st = gf_spot_step(sim, &sim->w0, s, &sim->scount[k], &deleted, &ball);
+        if (deleted) {
+            dead[k] = 1;
+            continue;
+        }
+        sim->sx[k] = s[0];
+        sim->sy[k] = s[1];
+        sim->sz[k] = s[2];
+    }
+    if (st == GF_OK) gf_spots_compact(sim, dead);
+    if (order) GF_DELETE(order, cap);
+    if (dead) GF_DELETE(dead, cap);
+    if (st == GF_OK) st = gf_sim_fixed_end(sim);
+    return st;
+}
+
+// Work done, in the units of run.reorder_interval: events, or spot moves in
+// fixed mode (where one step is thousands of moves).
+static uint64_t gf_sim_work(const gf_sim *sim)
+{
+    return sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves : sim->st.events;
+}
+
+// The action of the next event: a fixed step, a global relaxation due, an
+// insertion or a spot move.
+static gf_status gf_sim_action(gf_sim *sim)
+{
+    if (sim->cfg.run_mode == GF_MODE_FIXED)
+        return sim->cfg.run_order == GF_ORDER_SPATIAL ? gf_sim_spatial_step(sim) : gf_sim_fixed_step(sim);
+    if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
+        double tg = gf_sim_global_time(sim);
+        if (tg <= sim->t_pending) {
+            sim->t = tg;
+            return gf_sim_global(sim);
+        }
+    }
+    sim->t = sim->t_pending;
+    sim->pending = false;
+    sim->st.events++;
+    double lambda = sim->cfg.spot_insertion_rate;
+    double rate = lambda + (double)sim->ns * sim->cfg.spot_move_rate;
+    if (gf_rng_uniform(&sim->rng) * rate < lambda) return gf_spot_insert(sim);
+    return gf_spot_move(sim, (size_t)gf_rng_below(&sim->rng, sim->ns));
+}
+
+// Applies whatever comes next: a global relaxation due, or the pending event.
+static gf_status gf_sim_event(gf_sim *sim)
+{
+    gf_status st;
+    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
+        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+        sim->nl_built_at = gf_sim_work(sim);
+    }
+    st = gf_sim_action(sim);
+    // Recirculation: whatever exited in this event or step goes back on the
+    // surface before the next one (one place for every engine).
+    if (st == GF_OK && sim->nreins > 0) st = gf_sim_reinsert(sim);
+    return st;
+}
+
+static void gf_sim_draw_pending(gf_sim *sim)
+{
+    if (sim->pending) return;
+    if (sim->cfg.run_mode == GF_MODE_FIXED) {
+        sim->t_pending = (double)(sim->fstep + 1) / sim->cfg.spot_move_rate;
+    } else {
+        double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;
+        sim->t_pending = sim->t + gf_rng_exp(&sim->rng, rate);
+    }
+    sim->pending = true;
+}
+
+gf_status gf_sim_step(gf_sim *sim)
+{
+    gf_sim_draw_pending(sim);
+    gf_status st = gf_sim_event(sim);
+    if (sim->t > sim->t_reached) sim->t_reached = sim->t;
+    return st;
+}
+
+gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
+{
+    static const gf_run_hooks none = {0};
+    if (!hooks) hooks = &none;
+    const double dsnap = sim->cfg.output_snapshot_interval, dck = sim->cfg.run_checkpoint_interval;
+    const double last_snap = until + 1e-9 * dsnap; // k * dsnap may round just above until
+    uint64_t every = hooks->progress_every ? hooks->progress_every : UINT64_MAX;
+    uint64_t countdown = every;
+    gf_status st = GF_OK;
+    for (;;) {
+        if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
+        gf_sim_draw_pending(sim);
+        const double tn = gf_sim_next_time(sim);
+        for (double ts; (ts = (double)sim->next_snap * dsnap) <= tn && ts <= last_snap;) {
+            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
+            if (ts > sim->t_reached) sim->t_reached = ts;
+            if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
+                return st;
+            sim->next_snap++;
+        }
+        while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
+            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
+            if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
+            if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
+            // Due times that no longer advance (an interval below the rounding
+            // of the time; gf_config_validate refuses those) skip ahead.
+            double next = sim->next_ckpt + dck;
+            sim->next_ckpt = next > sim->next_ckpt ? next : nextafter(tn, INFINITY);
+        }
+        if (tn > until || sim->n_alive == 0) {
+            if (until > sim->t_reached && tn > until) sim->t_reached = until;
+            return GF_OK;
+        }
+        uint64_t moves0 = sim->st.spot_moves;
+        if ((st = gf_sim_event(sim)) != GF_OK) return st;
+        sim->t_reached = sim->t;
+        // Progress counts events, or the moves of a fixed step (thousands each).
+        uint64_t done = sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves - moves0 + 1 : 1;
+        if (countdown <= done) {
+            countdown = every;
+            if (hooks->progress) hooks->progress(hooks->ctx, sim);
+        } else {
+            countdown -= done;
+        }
+    }
+}
