@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "analysis/gnuplot.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "granflow/analysis.h"
 
 static const gf_measure_def gf_measure_table[] = {
@@ -124,21 +125,6 @@ static gf_status gf_summary_write(const gf_summary *s, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-static gf_status gf_mkdir_p(const char *dir)
-{
-    char buf[4096];
-    if (strlen(dir) >= sizeof buf) return gf_error_set(GF_ERR_PARAM, "path too long: %s", dir);
-    strcpy(buf, dir);
-    for (char *c = buf + 1; *c; c++) {
-        if (*c != '/') continue;
-        *c = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
-        *c = '/';
-    }
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
-    return GF_OK;
-}
-
 int gf_gnuplot_run(const char *dir, const char *script)
 {
     fflush(NULL); // the child must not repeat our buffered output
@@ -209,7 +195,7 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
             if (!strcmp(defs[k].name, name)) only = &defs[k];
         if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s' (granflow analyze --list)", name);
     }
-    gf_status st = gf_mkdir_p(outdir);
+    gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;
     char path[4096];
     snprintf(path, sizeof path, "%s/summary.json", outdir);
