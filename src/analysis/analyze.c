@@ -193,7 +193,7 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
     if (name) {
         for (size_t k = 0; k < nm; k++)
             if (!strcmp(defs[k].name, name)) only = &defs[k];
-        if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s' (granflow analyze --list)", name);
+        if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s'", name);
     }
     gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;

@@ -86,7 +86,7 @@ static gf_status gf_lock_dir(const char *dir, int *fd_out)
         if (err == EACCES || err == EAGAIN)
             return gf_error_set(GF_ERR_PARAM,
                                 "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
-                                "or choose another -o",
+                                "or use another directory",
                                 dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
         return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
     }
@@ -347,9 +347,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
         return gf_error_set(GF_ERR_PARAM,
-                            "%s already holds a run (%s exists): resume it with --resume %s, "
-                            "overwrite it with --force, or choose another -o",
-                            rd.dir, ckpt, rd.dir);
+                            "%s already holds a run (%s exists): resume it, clear it, or use another directory",
+                            rd.dir, ckpt);
     // Everything that can fail on bad input happens before the directory is touched.
     gf_sim *sim = NULL;
     if (opts->resume) {
