@@ -98,7 +98,13 @@ bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg)
 
 int gf_cli_fail(const char *cmd, gf_status st)
 {
-    fprintf(stderr, "granflow %s: error: %s\n", cmd, *gf_last_error() ? gf_last_error() : gf_status_str(st));
+    return gf_cli_fail_hint(cmd, st, NULL);
+}
+
+int gf_cli_fail_hint(const char *cmd, gf_status st, const char *hint)
+{
+    fprintf(stderr, "granflow %s: error: %s%s%s\n", cmd, *gf_last_error() ? gf_last_error() : gf_status_str(st),
+            hint ? " " : "", hint ? hint : "");
     switch (st) {
     case GF_OK: return GF_EXIT_OK;
     case GF_ERR_PARAM: return GF_EXIT_USAGE;

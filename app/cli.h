@@ -43,6 +43,9 @@ volatile sig_atomic_t *gf_cli_catch_stop(void);
 
 /// Maps a status to the exit code and prints `granflow CMD: error: ...`.
 int gf_cli_fail(const char *cmd, gf_status st);
+/// gf_cli_fail with `hint` (the flags that answer the situation; NULL: none)
+/// after the library's message, which never names CLI flags.
+int gf_cli_fail_hint(const char *cmd, gf_status st, const char *hint);
 
 int gf_cmd_run(int argc, char **argv);
 int gf_cmd_pack(int argc, char **argv);

@@ -129,7 +129,8 @@ int gf_cmd_analyze(int argc, char **argv)
                 s.nexits, opts.t0, opts.t1, win.reason);
     st = gf_analyze(&s, &opts, name, outdir, plots);
     gf_series_free(&s);
-    if (st != GF_OK) return gf_cli_fail("analyze", st);
+    if (st != GF_OK)
+        return gf_cli_fail_hint("analyze", st, strstr(gf_last_error(), "unknown measurement") ? "(granflow analyze --list)" : NULL);
     if (!quiet) fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", outdir);
     return GF_EXIT_OK;
 }

@@ -63,7 +63,11 @@ int gf_cmd_lga(int argc, char **argv)
         fprintf(stderr, "granflow lga: %s\n", gf_last_error());
         return GF_EXIT_INTERRUPTED;
     }
-    if (st != GF_OK) return gf_cli_fail("lga", st);
+    if (st != GF_OK)
+        return gf_cli_fail_hint("lga", st,
+                                st == GF_ERR_PARAM && !opts.force && strstr(gf_last_error(), "is not empty")
+                                    ? "(choose another -o, or overwrite it with --force)"
+                                    : NULL);
     if (!cli.quiet) {
         fprintf(stderr, "granflow lga: %lld iterations, %lld particles in, %lld out, %lld left", (long long)s.iterations,
                 (long long)(s.particles_initial + s.particles_added), (long long)s.particles_removed,

@@ -142,34 +142,6 @@ static int gf_render_parse(int argc, char **argv, gf_render_cli *c)
     return -1;
 }
 
-/// mkdir -p. Returns 0 or -1 with a message printed.
-static int gf_render_mkdirs(const char *path)
-{
-    char buf[GF_RENDER_PATH];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
-        fprintf(stderr, "granflow render: error: path too long: %s\n", path);
-        return -1;
-    }
-    for (char *p = buf + 1;; p++) {
-        if (*p == '/' || *p == '\0') {
-            char saved = *p;
-            *p = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
-                fprintf(stderr, "granflow render: error: cannot create directory %s: %s\n", buf, strerror(errno));
-                return -1;
-            }
-            *p = saved;
-            if (!saved) break;
-        }
-    }
-    struct stat sb;
-    if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        fprintf(stderr, "granflow render: error: %s is not a directory\n", path);
-        return -1;
-    }
-    return 0;
-}
-
 /// The run's name for the pictures: the last component of its directory (NULL for . and ..).
 static const char *gf_render_name(const char *dir, char *buf, size_t n)
 {
@@ -310,9 +282,14 @@ int gf_cmd_render(int argc, char **argv)
     } else {
         w = snprintf(j.outdir, sizeof j.outdir, "%s/render", c.dir);
     }
-    if (w < 0 || w >= (int)sizeof j.outdir || gf_render_mkdirs(j.outdir) != 0) {
+    if (w < 0 || w >= (int)sizeof j.outdir) {
+        fprintf(stderr, "granflow render: error: path too long: %s\n", j.outdir);
         gf_series_free(&s);
         return GF_EXIT_FAIL;
+    }
+    if ((st = gf_fs_mkdirs(j.outdir)) != GF_OK) {
+        gf_series_free(&s);
+        return gf_cli_fail("render", st);
     }
     char name[GF_RENDER_PATH];
     j.opts = gf_render_opts_default();

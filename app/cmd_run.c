@@ -96,7 +96,15 @@ int gf_cmd_run(int argc, char **argv)
             fprintf(stderr, "granflow run: continue with: granflow run --resume %s\n", dir);
         return GF_EXIT_INTERRUPTED;
     }
-    if (st != GF_OK) return gf_cli_fail("run", st);
+    if (st != GF_OK) {
+        char ckpt[4096];
+        snprintf(ckpt, sizeof ckpt, "%s/checkpoint.bin", dir);
+        char hint[4200] = "";
+        if (st == GF_ERR_PARAM && strstr(gf_last_error(), "holds a run") && !opts.resume && !opts.force &&
+            access(ckpt, F_OK) == 0)
+            snprintf(hint, sizeof hint, "(resume it with --resume %s, overwrite it with --force, or choose another -o)", dir);
+        return gf_cli_fail_hint("run", st, *hint ? hint : NULL);
+    }
     if (!cli.quiet)
         fprintf(stderr, "granflow run: t = %.4g tau, %zu of %zu particles exited, %llu spot moves -> %s/\n", s.time,
                 s.particles_exited, s.particles_initial, (unsigned long long)s.spot_moves, dir);

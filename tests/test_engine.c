@@ -334,7 +334,7 @@ static void fresh_run_refuses_to_overwrite(void **state)
     run_into(&c, dir, 0, NULL, GF_OK);
     gf_run_opts o = {.dir = dir};
     assert_int_equal(gf_run_dir(&c, &o, NULL), GF_ERR_PARAM);
-    assert_non_null(strstr(gf_last_error(), "--resume"));
+    assert_non_null(strstr(gf_last_error(), "holds a run"));
 }
 
 static void corrupt_checkpoint_is_rejected(void **state)

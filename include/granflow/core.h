@@ -39,6 +39,10 @@ GF_API const char *gf_last_error(void);
 /// Bytes currently held through granflow's allocator (0 when everything was freed).
 GF_API size_t gf_bytes_allocated(void);
 
+/// mkdir -p: creates `path` and its missing parents. GF_ERR_IO (naming the
+/// directory) when one cannot be created or exists as something else.
+GF_API gf_status gf_fs_mkdirs(const char *path);
+
 /// Library version string, e.g. "0.1.0" (GF_VERSION_STRING of the build).
 GF_API const char *gf_version(void);
 

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "core/gnuplot.h"
 #include "granflow/analysis.h"
 
@@ -124,21 +125,6 @@ static gf_status gf_summary_write(const gf_summary *s, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-static gf_status gf_mkdir_p(const char *dir)
-{
-    char buf[4096];
-    if (strlen(dir) >= sizeof buf) return gf_error_set(GF_ERR_PARAM, "path too long: %s", dir);
-    strcpy(buf, dir);
-    for (char *c = buf + 1; *c; c++) {
-        if (*c != '/') continue;
-        *c = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
-        *c = '/';
-    }
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return gf_error_set(GF_ERR_IO, "cannot create %s: %s", buf, strerror(errno));
-    return GF_OK;
-}
-
 static gf_status gf_write_plot(const char *outdir, const char *name, const gf_measure_out *out, int *gnuplot_state)
 {
     char path[4096], tmp[4096], gp[128];
@@ -192,9 +178,9 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
     if (name) {
         for (size_t k = 0; k < nm; k++)
             if (!strcmp(defs[k].name, name)) only = &defs[k];
-        if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s' (granflow analyze --list)", name);
+        if (!only) return gf_error_set(GF_ERR_PARAM, "unknown measurement '%s'", name);
     }
-    gf_status st = gf_mkdir_p(outdir);
+    gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;
     char path[4096];
     snprintf(path, sizeof path, "%s/summary.json", outdir);

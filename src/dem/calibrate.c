@@ -309,7 +309,7 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     if (!(c->flow_rate.value > 0))
         return gf_error_set(GF_ERR_PARAM,
                             "no outflow in the window %g..%g tau (flow rate %g): nothing to calibrate on; check the "
-                            "window (--set window.t0=..., window.t1=...) and the container (orifice, exit_z)",
+                            "window (window.t0, window.t1) and the container (orifice, exit_z)",
                             t0, t1, c->flow_rate.value);
     // r_s = beta / 0.72 (thesis Sec. 3.3). A beta beyond half the region is
     // no measurement (the fit ran off): the thesis' r_s, left to refinement.

@@ -10,8 +10,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "core/gnuplot.h"
-#include "dem/dem_internal.h"
 #include "granflow/dem.h"
 #include "granflow/render.h"
 
@@ -248,7 +248,7 @@ gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_a
     if (dem->nframes < 2 || spot->nframes < 2)
         return gf_error_set(GF_ERR_PARAM, "compare needs two snapshots or more of each run (DEM %zu, spot %zu)",
                             dem->nframes, spot->nframes);
-    gf_status st = gf_dem_mkdirs(outdir);
+    gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;
     gf_measure_out md[GF_CMP_N], ms[GF_CMP_N];
     memset(md, 0, sizeof md);

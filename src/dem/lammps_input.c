@@ -17,7 +17,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "dem/dem_internal.h"
+#include "core/fs.h"
 #include "granflow/dem.h"
 #include "geom/container.h"
 #include "granflow/packing.h"
@@ -31,26 +31,6 @@
 #define GF_DEM_POUR_FRACTION 0.3 // packing fraction of each fix pour batch
 #define GF_DEM_POUR_GAP 4.0     // the pour region starts this far above the expected fill, d
 #define GF_DEM_CHUNK 1.0        // LAMMPS runs in chunks of this many tau between checks
-
-gf_status gf_dem_mkdirs(const char *path)
-{
-    char buf[GF_PATH_MAX];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
-        return gf_error_set(GF_ERR_PARAM, "path too long: %s", path);
-    for (char *p = buf + 1;; p++) {
-        if (*p != '/' && *p != '\0') continue;
-        char c = *p;
-        *p = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return gf_error_set(GF_ERR_IO, "cannot create directory %s: %s", buf, strerror(errno));
-        *p = c;
-        if (!c) break;
-    }
-    struct stat sb;
-    if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode))
-        return gf_error_set(GF_ERR_IO, "%s is not a directory", path);
-    return GF_OK;
-}
 
 /// The contact law's arguments, as pair_style and fix wall/gran take them.
 static void gf_dem_contact(const gf_config *c, char *buf, size_t n)
@@ -260,10 +240,10 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
         plan.box_zhi = top + 2.0;
     }
 
-    if ((st = gf_dem_mkdirs(dir)) != GF_OK) goto done;
+    if ((st = gf_fs_mkdirs(dir)) != GF_OK) goto done;
     char sub[GF_PATH_MAX + 32];
     snprintf(sub, sizeof sub, "%s/snapshots", dir);
-    if ((st = gf_dem_mkdirs(sub)) != GF_OK) goto done;
+    if ((st = gf_fs_mkdirs(sub)) != GF_OK) goto done;
     if (c->dem_fill_method == GF_DEM_GENERATE &&
         (st = gf_dem_write_data(c, dir, &pk, plan.box_zlo, plan.box_zhi)) != GF_OK)
         goto done;

@@ -178,7 +178,7 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         char path[GF_PATH_MAX + 32];
         snprintf(path, sizeof path, "%s/%s", dir, scripts[k]);
         if (access(path, R_OK) != 0)
-            return gf_error_set(GF_ERR_IO, "%s: %s (write the inputs with granflow dem first)", path, strerror(errno));
+            return gf_error_set(GF_ERR_IO, "%s: %s (no LAMMPS inputs there: write them first)", path, strerror(errno));
         gf_status st = gf_dem_run_one(dir, scripts[k], lmp, use_mpi ? mpirun : NULL, ranks, &r);
         if (st != GF_OK) return st;
     }

@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "lga/image.h"
 #include "lga/scenario.h"
 
@@ -25,25 +26,6 @@
 #define GF_LGA_WAVE_WINDOW 8       // rows of the running mean in the wave variance
 #define GF_LGA_WAVE_EVERY 10       // channel: wave variance every this many iterations
 
-static gf_status gf_lga_mkdir(const char *path)
-{
-    char buf[GF_PATH_MAX];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) return gf_error_set(GF_ERR_PARAM, "path too long: %s", path);
-    for (char *s = buf + 1;; s++) {
-        if (*s != '/' && *s) continue;
-        char c = *s;
-        *s = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return gf_error_set(GF_ERR_IO, "%s: cannot create directory: %s", buf, strerror(errno));
-        struct stat sb;
-        if (stat(buf, &sb) != 0 || !S_ISDIR(sb.st_mode))
-            return gf_error_set(GF_ERR_IO, "%s: exists and is not a directory", buf);
-        *s = c;
-        if (!c) break;
-    }
-    return GF_OK;
-}
-
 // Whether dir exists and holds anything.
 static bool gf_lga_dir_busy(const char *dir)
 {
@@ -54,23 +36,6 @@ static bool gf_lga_dir_busy(const char *dir)
         if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) busy = true;
     closedir(d);
     return busy;
-}
-
-// A fresh run over an old directory must not leave the old maps behind.
-static gf_status gf_lga_clear_maps(const char *maps)
-{
-    DIR *d = opendir(maps);
-    if (!d) return GF_OK;
-    gf_status st = GF_OK;
-    for (struct dirent *e; (e = readdir(d)) != NULL;) {
-        size_t n = strlen(e->d_name);
-        if (strncmp(e->d_name, "map_", 4) != 0 || n < 5 || strcmp(e->d_name + n - 4, ".png") != 0) continue;
-        char path[GF_PATH_MAX + 300];
-        snprintf(path, sizeof path, "%s/%s", maps, e->d_name);
-        if (remove(path) != 0) st = gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
-    }
-    closedir(d);
-    return st;
 }
 
 static void gf_lga_json_num(FILE *f, const char *key, double v, bool last)
@@ -260,7 +225,7 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     if (snprintf(o.dir, sizeof o.dir, "%s", opts->dir) >= (int)sizeof o.dir)
         return gf_error_set(GF_ERR_PARAM, "output directory path too long");
     if (!opts->force && gf_lga_dir_busy(o.dir))
-        return gf_error_set(GF_ERR_PARAM, "%s is not empty: choose another -o, or overwrite it with --force", o.dir);
+        return gf_error_set(GF_ERR_PARAM, "%s is not empty: clear it or use another directory", o.dir);
     // Everything that can fail on bad input happens before the directory is touched.
     gf_lga *l = NULL;
     gf_status st = gf_lga_create(cfg, &l);
@@ -271,7 +236,8 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     }
     char maps[GF_PATH_MAX + 16], path[GF_PATH_MAX + 32];
     snprintf(maps, sizeof maps, "%s/maps", o.dir);
-    if ((st = gf_lga_mkdir(maps)) == GF_OK) st = gf_lga_clear_maps(maps);
+    static const char *const png[] = {".png"};
+    if ((st = gf_fs_mkdirs(maps)) == GF_OK) st = gf_fs_clear(maps, "map_", png, 1); // no old maps left behind
     snprintf(path, sizeof path, "%s/config.ini", o.dir);
     if (st == GF_OK) st = gf_config_save(&l->cfg, path);
     o.frames = GF_NEW(gf_lga_frame, GF_LGA_KEEP_FRAMES);

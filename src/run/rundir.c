@@ -18,6 +18,7 @@
 #include "core/clock.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
@@ -40,81 +41,6 @@ typedef struct gf_rundir {
     int lock_fd;          // holds the lock on dir/.lock
 } gf_rundir;
 
-static gf_status gf_mkdir(const char *path)
-{
-    if (mkdir(path, 0777) == 0 || errno == EEXIST) {
-        struct stat sb;
-        if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) return GF_OK;
-        return gf_error_set(GF_ERR_IO, "%s: exists and is not a directory", path);
-    }
-    return gf_error_set(GF_ERR_IO, "%s: cannot create directory: %s", path, strerror(errno));
-}
-
-// mkdir -p
-static gf_status gf_mkdirs(const char *path)
-{
-    char buf[GF_PATH_MAX];
-    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
-        return gf_error_set(GF_ERR_PARAM, "path too long: %s", path);
-    for (char *s = buf + 1; *s; s++) {
-        if (*s != '/') continue;
-        *s = '\0';
-        gf_status st = gf_mkdir(buf);
-        *s = '/';
-        if (st != GF_OK) return st;
-    }
-    return gf_mkdir(buf);
-}
-
-static gf_status gf_remove(const char *path)
-{
-    if (remove(path) == 0 || errno == ENOENT) return GF_OK;
-    return gf_error_set(GF_ERR_IO, "%s: cannot remove: %s", path, strerror(errno));
-}
-
-// rm -r of a directory the tools wrote (analysis/, render/); symbolic links
-// are removed, never followed.
-static gf_status gf_remove_tree(const char *path, int depth)
-{
-    struct stat sb;
-    if (lstat(path, &sb) != 0) return errno == ENOENT ? GF_OK : gf_error_set(GF_ERR_IO, "%s: %s", path, strerror(errno));
-    if (!S_ISDIR(sb.st_mode) || depth > 16) return gf_remove(path);
-    DIR *d = opendir(path);
-    if (!d) return gf_error_set(GF_ERR_IO, "%s: cannot open directory: %s", path, strerror(errno));
-    gf_status st = GF_OK;
-    for (struct dirent *e; st == GF_OK && (e = readdir(d)) != NULL;) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        char sub[GF_PATH_MAX + 300];
-        if (snprintf(sub, sizeof sub, "%s/%s", path, e->d_name) >= (int)sizeof sub)
-            st = gf_error_set(GF_ERR_IO, "%s/%s: path too long to remove", path, e->d_name);
-        else
-            st = gf_remove_tree(sub, depth + 1);
-    }
-    closedir(d);
-    return st == GF_OK ? gf_remove(path) : st;
-}
-
-// Snapshot files (snap_*.dump and their .tmp) in `snaps`.
-static gf_status gf_clear_snapshots(const char *snaps)
-{
-    DIR *d = opendir(snaps);
-    if (!d) return GF_OK;
-    gf_status st = GF_OK;
-    for (struct dirent *e; (e = readdir(d)) != NULL;) {
-        size_t n = strlen(e->d_name);
-        bool snap = strncmp(e->d_name, "snap_", 5) == 0;
-        bool dump = n >= 6 && strcmp(e->d_name + n - 5, ".dump") == 0;
-        bool vtu = n >= 5 && strcmp(e->d_name + n - 4, ".vtu") == 0;
-        bool tmp = n >= 9 && strcmp(e->d_name + n - 4, ".tmp") == 0;
-        if (!snap || !(dump || vtu || tmp)) continue;
-        char path[GF_PATH_MAX + 300];
-        snprintf(path, sizeof path, "%s/%s", snaps, e->d_name);
-        if (st == GF_OK) st = gf_remove(path);
-    }
-    closedir(d);
-    return st;
-}
-
 // A fresh run starts from an empty run directory: everything an earlier run
 // (and analyze/render with their default -o) wrote there goes first, the
 // checkpoint before anything else, so that a clear cut short leaves no
@@ -129,14 +55,15 @@ static gf_status gf_clear_run(const char *dir)
     gf_status st = GF_OK;
     for (size_t i = 0; st == GF_OK && i < sizeof files / sizeof files[0]; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, files[i]);
-        st = gf_remove(path);
+        st = gf_fs_remove(path);
     }
     for (size_t i = 0; st == GF_OK && i < sizeof trees / sizeof trees[0]; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, trees[i]);
-        st = gf_remove_tree(path, 0);
+        st = gf_fs_remove_tree(path);
     }
     snprintf(path, sizeof path, "%s/snapshots", dir);
-    return st == GF_OK ? gf_clear_snapshots(path) : st;
+    static const char *const snaps[] = {".dump", ".vtu", ".tmp"};
+    return st == GF_OK ? gf_fs_clear(path, "snap_", snaps, sizeof snaps / sizeof snaps[0]) : st;
 }
 
 // One run at a time per directory: a POSIX record lock on dir/.lock, held
@@ -159,7 +86,7 @@ static gf_status gf_lock_dir(const char *dir, int *fd_out)
         if (err == EACCES || err == EAGAIN)
             return gf_error_set(GF_ERR_PARAM,
                                 "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
-                                "or choose another -o",
+                                "or use another directory",
                                 dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
         return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
     }
@@ -367,10 +294,10 @@ static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
     gf_path(snaps, sizeof snaps, rd->dir, "snapshots");
     gf_path(cfgpath, sizeof cfgpath, rd->dir, "config.ini");
     gf_path(exits, sizeof exits, rd->dir, "exits.csv");
-    gf_status st = gf_mkdirs(rd->dir);
+    gf_status st = gf_fs_mkdirs(rd->dir);
     if (st == GF_OK) st = gf_lock_dir(rd->dir, &rd->lock_fd);
     if (st == GF_OK && !rd->opts->resume) st = gf_clear_run(rd->dir);
-    if (st == GF_OK) st = gf_mkdir(snaps);
+    if (st == GF_OK) st = gf_fs_mkdirs(snaps);
     if (st == GF_OK) st = gf_config_save(rd->cfg, cfgpath);
     if (st == GF_OK) st = gf_write_exits(rd, sim);
     if (st != GF_OK) return st;
@@ -394,9 +321,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
         return gf_error_set(GF_ERR_PARAM,
-                            "%s already holds a run (%s exists): resume it with --resume %s, "
-                            "overwrite it with --force, or choose another -o",
-                            rd.dir, ckpt, rd.dir);
+                            "%s already holds a run (%s exists): resume it, clear it, or use another directory",
+                            rd.dir, ckpt);
     // Everything that can fail on bad input happens before the directory is touched.
     gf_sim *sim = NULL;
     if (opts->resume) {
