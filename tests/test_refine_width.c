@@ -44,42 +44,51 @@ static void fits_both_lines(void **state)
     gf_assert_near(l.level[1].err, 0.2 / sqrt(3.0), 1e-12);
 }
 
-// Same lines, r_s free, factors up to 2: dx x sqrt(2 / 1.3); the spot's Var
-// at z = 8 with that slope is predicted as 10.7 + (2 - 1.3)(8 + 2.6) =
-// 18.12, 3.12 above the DEM's 15 (beyond twice the combined 0.31), so r_s
-// moves by
-// -3.12 / (2 + 0.4 x 2.6) = -1.026 to 1.574. With factors up to 1.5 r_s stops
-// at 2.6 / 1.5; with r_s fixed by the correlation it does not move.
-static void slope_sets_step_level_sets_radius(void **state)
+// DEM Var = 2 z - 1, spot Var = 1.3 z + 0.3: one factor, the geometric mean
+// of 11 / 8.1, 15 / 10.7, 19 / 13.3 weighted by (Var_DEM / 0.5)^2, brings
+// all three within 10% (11.3, 15.0, 18.7): only dx moves, by its root.
+static void one_factor_moves_step_only(void **state)
 {
     (void)state;
     gf_dem_flowstats d, s;
     line(&d, 2.0, -1.0, 0.5);
     line(&s, 1.3, 0.3, 0.2);
+    double num = 0.0, den = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double a = 11.0 + 4.0 * k, b = 8.1 + 2.6 * k, w = (a / 0.5) * (a / 0.5);
+        num += w * log(a / b);
+        den += w;
+    }
     double dx = 0.5, rs = 2.6;
     gf_dem_refine_width(&d, &s, 0.10, true, 2.0, &dx, &rs);
-    gf_assert_near(dx, 0.5 * sqrt(2.0 / 1.3), 1e-12);
-    gf_assert_near(rs, 2.6 - 3.12 / 3.04, 1e-12);
-    dx = 0.5, rs = 2.6;
-    gf_dem_refine_width(&d, &s, 0.10, true, 1.5, &dx, &rs);
-    gf_assert_near(rs, 2.6 / 1.5, 1e-12);
-    dx = 0.5, rs = 2.6;
-    gf_dem_refine_width(&d, &s, 0.10, false, 2.0, &dx, &rs);
-    gf_assert_near(dx, 0.5 * sqrt(2.0 / 1.3), 1e-12);
+    gf_assert_near(dx, 0.5 * exp(0.5 * num / den), 1e-12);
     assert_true(rs == 2.6);
 }
 
-// Equal slopes and levels 0.5 apart with errors of 0.29 and 0.12 (0.31
-// combined): not two standard errors, so r_s stays; dx too (the slopes agree).
-static void noise_does_not_move_radius(void **state)
+// DEM Var = 2 z - 1 (11, 15, 19), spot Var = z + 4 (10, 12, 14): no single
+// factor fits (the ratios run 1.10 to 1.36), so the lines: dx x sqrt(2 / 1)
+// (factors up to 2: the slope ratio up to 4); the spot's Var at z = 8 is
+// then predicted as 2 x 12 = 24, 9 above the DEM's 15 (far beyond twice
+// the combined 0.31), so r_s would move by -9 / (2 + 0.4 x 2.6) to -0.36:
+// it stops at its limit 2.6 / 2 = 1.3, with factors up to 3 at the smallest
+// spot, 1 d. With r_s fixed by the correlation only dx moves.
+static void slope_sets_step_level_sets_radius(void **state)
 {
     (void)state;
     gf_dem_flowstats d, s;
     line(&d, 2.0, -1.0, 0.5);
-    line(&s, 2.0, -0.5, 0.2);
+    line(&s, 1.0, 4.0, 0.2);
     double dx = 0.5, rs = 2.6;
     gf_dem_refine_width(&d, &s, 0.10, true, 2.0, &dx, &rs);
-    gf_assert_near(dx, 0.5, 1e-12);
+    gf_assert_near(dx, 0.5 * sqrt(2.0), 1e-12);
+    gf_assert_near(rs, 1.3, 1e-12);
+    dx = 0.5, rs = 2.6;
+    gf_dem_refine_width(&d, &s, 0.10, true, 3.0, &dx, &rs);
+    gf_assert_near(dx, 0.5 * sqrt(2.0), 1e-12);
+    gf_assert_near(rs, 1.0, 1e-12);
+    dx = 0.5, rs = 2.6;
+    gf_dem_refine_width(&d, &s, 0.10, false, 2.0, &dx, &rs);
+    gf_assert_near(dx, 0.5 * sqrt(2.0), 1e-12);
     assert_true(rs == 2.6);
 }
 
@@ -104,8 +113,8 @@ static void one_height_scales_step(void **state)
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(fits_both_lines),
+    cmocka_unit_test(one_factor_moves_step_only),
     cmocka_unit_test(slope_sets_step_level_sets_radius),
-    cmocka_unit_test(noise_does_not_move_radius),
     cmocka_unit_test(one_height_scales_step),
 };
 

@@ -24,16 +24,17 @@ void gf_dem_var_lines_fit(const gf_dem_flowstats *dem, const gf_dem_flowstats *s
                           gf_dem_var_lines *l);
 
 /// The refinement's update of the two parameters that set the widths of the
-/// v_z(x) profiles, Var(z) = 2 b_s (z + r_s) + r_s^2 / 5 + birth spread:
+/// v_z(x) profiles, Var(z) ~ 2 b_s (z + r_s) + r_s^2 / 5 + birth spread:
 /// step_xy sets the growth rate (b_s ~ dx^2: dx x sqrt(slope_DEM / slope_spot)),
-/// r_s the level (d Var / d r_s = 2 b_s + 2 r_s / 5). With at least two
-/// measured heights both are fitted (r_s only when `rs_free`, i.e. the DEM's
+/// r_s the level (taken as d Var / d r_s = 2 b_s + 2 r_s / 5). When a single
+/// factor on every Var (the step alone: the weighted geometric mean of
+/// Var_DEM / Var_spot) would bring every measured height within vtol, only
+/// dx moves, by that factor. Else, with at least two measured heights, both
+/// are fitted (r_s only when `rs_free`, i.e. the DEM's
 /// correlation length did not fix it, and only for a level difference
-/// beyond twice its uncertainty); else dx follows the weighted geometric
-/// mean of Var_DEM / Var_spot. The level is compared at zm, where the spot's
-/// Var after the step change is predicted as Var + (ka - 1) slope (zm + r_s)
-/// (ka = the change of b_s: the rise from the birth depth scales with it, the
-/// ball's r_s^2 / 5 does not). Each factor is limited to [1 / maxf, maxf].
+/// beyond twice its uncertainty). The level is compared at zm, where the spot's
+/// Var after the step change is predicted as ka Var (ka = the change of
+/// b_s). Each factor is limited to [1 / maxf, maxf].
 void gf_dem_refine_width(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double vtol, bool rs_free,
                          double maxf, double *step_xy, double *r_s);
 

@@ -5,9 +5,8 @@
 // widths of the v_z(x) profiles). Each update follows the relation that ties
 // a parameter to what it controls:
 //   Q = lambda p / w              -> lambda *= Q_dem / Q_spot (and follows w, r_s^3)
-//   Var(z) = 2 b_s (z + r_s) + r_s^2/5 + c, b_s ~ dx^2
-//                                 -> step_xy *= sqrt(slope_dem / slope_spot) and r_s
-//                                    moves the level (a line fitted over the heights;
+//   d Var / dz = 2 b_s ~ dx^2     -> step_xy *= sqrt(slope_dem / slope_spot), and r_s
+//                                    moves the level (lines fitted over the heights;
 //                                    r_s only when beta left it free)
 //   b_p = b_s / w                 -> w *= b_p,spot / b_p,dem
 //   dN = Q h / (mu dz)            -> mu *= dN_spot / dN_dem
@@ -188,16 +187,28 @@ void gf_dem_refine_width(const gf_dem_flowstats *d, const gf_dem_flowstats *s, d
     gf_dem_var_lines l;
     gf_dem_var_lines_fit(d, s, vtol, &l);
     double a_d = l.slope[0].value, a_s = l.slope[1].value;
-    if (l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
-        *step_xy *= sqrt(gf_ref_var_ratio(d, s, vtol, maxf));
+    // One knob when it is enough: the step alone scales every Var by k1;
+    // the level moves r_s only when no such scale brings every measured
+    // height within vtol (r_s and step_xy trade off over a short range of
+    // heights, so r_s stays at the thesis' value unless it must move).
+    double k1 = gf_ref_var_ratio(d, s, vtol, INFINITY); // unlimited: would it fit?
+    bool one_knob = true;
+    for (size_t z = 0; z < d->nz && z < s->nz; z++) {
+        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(s->var[z].value > 0)) continue;
+        if (fabs(k1 * s->var[z].value - d->var[z].value) > vtol * d->var[z].value) one_knob = false;
+    }
+    if (one_knob || l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
+        *step_xy *= sqrt(fmin(maxf, fmax(1.0 / maxf, k1)));
         return;
     }
     // The growth rate: b_s ~ dx^2.
     double ka = fmin(maxf * maxf, fmax(1.0 / (maxf * maxf), a_d / a_s));
     *step_xy *= sqrt(ka);
     if (!rs_free) return;
-    // The level at zm, the spot's predicted after the step change.
-    double a_new = ka * a_s, m_new = l.level[1].value + (a_new - a_s) * (l.zm + *r_s);
+    // The level at zm, the spot's predicted after the step change: its
+    // profiles widen in proportion (measured: the spot's Var(z) lines pass
+    // close to the origin, the birth depth and the ball hardly show).
+    double a_new = ka * a_s, m_new = ka * l.level[1].value;
     double dm = l.level[0].value - m_new;
     double em = hypot(l.level[0].err, l.level[1].err);
     if (!(fabs(dm) > 2.0 * em) || !isfinite(dm)) return;
