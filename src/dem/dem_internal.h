@@ -29,10 +29,10 @@ void gf_dem_var_lines_fit(const gf_dem_flowstats *dem, const gf_dem_flowstats *s
 /// r_s the level (taken as d Var / d r_s = 2 b_s + 2 r_s / 5). When a single
 /// factor on every Var (the step alone: the weighted geometric mean of
 /// Var_DEM / Var_spot) would bring every measured height within vtol, only
-/// dx moves, by that factor. Else, with at least two measured heights, both
-/// are fitted (r_s only when `rs_free`, i.e. the DEM's
-/// correlation length did not fix it, and only for a level difference
-/// beyond twice its uncertainty). The level is compared at zm, where the spot's
+/// dx moves, by that factor; so it does when r_s is not `rs_free` (the DEM's
+/// correlation length fixed it). Else, with at least two measured heights,
+/// both are fitted (r_s only for a level difference beyond twice its
+/// uncertainty). The level is compared at zm, where the spot's
 /// Var after the step change is predicted as ka Var (ka = the change of
 /// b_s). Each factor is limited to [1 / maxf, maxf].
 void gf_dem_refine_width(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double vtol, bool rs_free,

@@ -197,14 +197,15 @@ void gf_dem_refine_width(const gf_dem_flowstats *d, const gf_dem_flowstats *s, d
         if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(s->var[z].value > 0)) continue;
         if (fabs(k1 * s->var[z].value - d->var[z].value) > vtol * d->var[z].value) one_knob = false;
     }
-    if (one_knob || l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
+    // With r_s fixed (by the correlation length), the slope alone would
+    // leave the level wrong: the one factor is then the best dx can do.
+    if (one_knob || !rs_free || l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
         *step_xy *= sqrt(fmin(maxf, fmax(1.0 / maxf, k1)));
         return;
     }
     // The growth rate: b_s ~ dx^2.
     double ka = fmin(maxf * maxf, fmax(1.0 / (maxf * maxf), a_d / a_s));
     *step_xy *= sqrt(ka);
-    if (!rs_free) return;
     // The level at zm, the spot's predicted after the step change: its
     // profiles widen in proportion (measured: the spot's Var(z) lines pass
     // close to the origin, the birth depth and the ball hardly show).
