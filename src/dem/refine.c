@@ -258,7 +258,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         // The updates (the relations in the header comment).
         gf_config next = cur;
         // r_s only from a correlation length the DEM's region can hold.
-        bool beta_ok = res->dem.beta.value > 0.2 && res->dem.beta.value <= 0.5 * o->corr_size;
+        bool beta_ok = res->dem.beta.value >= GF_DEM_BETA_MIN && res->dem.beta.value <= 0.5 * o->corr_size;
         double fr = it == 1 && beta_ok ? gf_ref_ratio(res->dem.beta, fs.beta) : 1.0;
         // The widths: step_xy for their growth with height, and r_s for
         // their level when the correlation length left r_s free.
