@@ -152,6 +152,10 @@ typedef struct gf_dem_calibration {
 /// The thesis' ratio beta / r_s of the exponential fitted to the spot model's
 /// velocity correlation (Sec. 3.3).
 #define GF_DEM_BETA_PER_RS 0.72
+/// The shortest correlation length taken as measured, d: the exponential is
+/// fitted from r = 1 d (one diameter) on, so a shorter beta is not resolved
+/// (a 1,000-sphere LAMMPS silo gave 0.5 d, r_s 0.7, and the refinement ran off).
+#define GF_DEM_BETA_MIN 1.0
 
 /// Sets the measurement regions of `o` for the container and fill of `s`
 /// (the papers' regions scaled to the packing height; see docs/dem.md).

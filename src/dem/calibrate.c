@@ -312,9 +312,10 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
                             "window (window.t0, window.t1) and the container (orifice, exit_z)",
                             t0, t1, c->flow_rate.value);
     // r_s = beta / 0.72 (thesis Sec. 3.3). A beta beyond half the region is
-    // no measurement (the fit ran off): the thesis' r_s, left to refinement.
+    // no measurement (the fit ran off), nor one below the fit's first
+    // distance: the thesis' r_s, left to refinement.
     double rs = rs_full;
-    if (!isfinite(full.beta) || full.beta <= 0.2 || full.beta > 0.5 * o->corr_size) {
+    if (!isfinite(full.beta) || full.beta < GF_DEM_BETA_MIN || full.beta > 0.5 * o->corr_size) {
         gf_cal_note(c, "velocity correlation length not measurable (beta = %.3g d in a %.3g d region): spot.radius = "
                        "%.3g d (the thesis' value)", full.beta, o->corr_size, GF_CAL_RS_FALLBACK);
         rs = GF_CAL_RS_FALLBACK;

@@ -5,7 +5,9 @@
 // widths of the v_z(x) profiles). Each update follows the relation that ties
 // a parameter to what it controls:
 //   Q = lambda p / w              -> lambda *= Q_dem / Q_spot (and follows w, r_s^3)
-//   d Var / dz = 2 b_s ~ dx^2     -> step_xy *= sqrt(Var_dem / Var_spot)
+//   d Var / dz = 2 b_s ~ dx^2     -> step_xy *= sqrt(slope_dem / slope_spot), and r_s
+//                                    moves the level (lines fitted over the heights;
+//                                    r_s only when beta left it free)
 //   b_p = b_s / w                 -> w *= b_p,spot / b_p,dem
 //   dN = Q h / (mu dz)            -> mu *= dN_spot / dN_dem
 //   beta = 0.72 r_s               -> r_s *= beta_dem / beta_spot (first run only)
@@ -14,10 +16,12 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "dem/dem_internal.h"
 #include "granflow/dem.h"
 #include "granflow/sim.h"
 
 #define GF_REF_MAXSTEP 1.5 // no parameter changes by more than this factor per run
+#define GF_REF_MIN_RS 1.0  // the width fit never makes a spot smaller than a particle
 
 /// Snapshots of a spot run kept in memory as a series.
 typedef struct gf_ref_capture {
@@ -124,7 +128,7 @@ static double gf_ref_ratio(gf_dem_value a, gf_dem_value b)
 
 /// Var_dem / Var_spot over the heights the DEM measured precisely enough
 /// (gf_dem_flowstats_measured): the geometric mean, weighted by 1 / rel. err^2.
-static double gf_ref_var_ratio(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol)
+static double gf_ref_var_ratio(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, double maxf)
 {
     double sum = 0.0, wsum = 0.0;
     for (size_t z = 0; z < d->nz && z < s->nz; z++) {
@@ -135,7 +139,83 @@ static double gf_ref_var_ratio(const gf_dem_flowstats *d, const gf_dem_flowstats
         wsum += 1.0 / (e * e);
     }
     double r = wsum > 0 ? exp(sum / wsum) : 1.0;
-    return fmin(GF_REF_MAXSTEP, fmax(1.0 / GF_REF_MAXSTEP, r));
+    return fmin(maxf, fmax(1.0 / maxf, r));
+}
+
+void gf_dem_var_lines_fit(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, gf_dem_var_lines *l)
+{
+    memset(l, 0, sizeof *l);
+    double w[GF_DEM_FS_MAXZ] = {0}, sw = 0.0, swz = 0.0;
+    size_t nz = d->nz < s->nz ? d->nz : s->nz;
+    for (size_t z = 0; z < nz; z++) {
+        double a = d->var[z].value, b = s->var[z].value;
+        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(b > 0) || !isfinite(b)) continue;
+        double e = isfinite(d->var[z].err) ? fmax(d->var[z].err, 0.01 * a) : 0.05 * a;
+        w[z] = 1.0 / (e * e);
+        sw += w[z];
+        swz += w[z] * d->z[z];
+        l->n++;
+    }
+    if (l->n == 0) return;
+    l->zm = swz / sw;
+    double sxx = 0.0;
+    for (size_t z = 0; z < nz; z++) sxx += w[z] * (d->z[z] - l->zm) * (d->z[z] - l->zm);
+    if (l->n < 2 || !(sxx > 1e-12 * sw)) {
+        l->n = l->n < 2 ? l->n : 1; // all at one height: no line
+        return;
+    }
+    const gf_dem_flowstats *run[2] = {d, s};
+    for (int r = 0; r < 2; r++) {
+        double sl = 0.0, lv = 0.0, vsl = 0.0, vlv = 0.0;
+        for (size_t z = 0; z < nz; z++) {
+            if (w[z] == 0.0) continue;
+            double g = w[z] * (d->z[z] - l->zm) / sxx, c = w[z] / sw;
+            double y = run[r]->var[z].value, e = isfinite(run[r]->var[z].err) ? run[r]->var[z].err : 0.0;
+            sl += g * y;
+            lv += c * y;
+            vsl += g * g * e * e;
+            vlv += c * c * e * e;
+        }
+        l->slope[r] = (gf_dem_value){sl, sqrt(vsl)};
+        l->level[r] = (gf_dem_value){lv, sqrt(vlv)};
+    }
+}
+
+void gf_dem_refine_width(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, bool rs_free,
+                         double maxf, double *step_xy, double *r_s)
+{
+    gf_dem_var_lines l;
+    gf_dem_var_lines_fit(d, s, vtol, &l);
+    double a_d = l.slope[0].value, a_s = l.slope[1].value;
+    // One knob when it is enough: the step alone scales every Var by k1;
+    // the level moves r_s only when no such scale brings every measured
+    // height within vtol (r_s and step_xy trade off over a short range of
+    // heights, so r_s stays at the thesis' value unless it must move).
+    double k1 = gf_ref_var_ratio(d, s, vtol, INFINITY); // unlimited: would it fit?
+    bool one_knob = true;
+    for (size_t z = 0; z < d->nz && z < s->nz; z++) {
+        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(s->var[z].value > 0)) continue;
+        if (fabs(k1 * s->var[z].value - d->var[z].value) > vtol * d->var[z].value) one_knob = false;
+    }
+    // With r_s fixed (by the correlation length), the slope alone would
+    // leave the level wrong: the one factor is then the best dx can do.
+    if (one_knob || !rs_free || l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
+        *step_xy *= sqrt(fmin(maxf, fmax(1.0 / maxf, k1)));
+        return;
+    }
+    // The growth rate: b_s ~ dx^2.
+    double ka = fmin(maxf * maxf, fmax(1.0 / (maxf * maxf), a_d / a_s));
+    *step_xy *= sqrt(ka);
+    // The level at zm, the spot's predicted after the step change: its
+    // profiles widen in proportion (measured: the spot's Var(z) lines pass
+    // close to the origin, the birth depth and the ball hardly show).
+    double a_new = ka * a_s, m_new = ka * l.level[1].value;
+    double dm = l.level[0].value - m_new;
+    double em = hypot(l.level[0].err, l.level[1].err);
+    if (!(fabs(dm) > 2.0 * em) || !isfinite(dm)) return;
+    double r = *r_s + dm / (a_new + 0.4 * *r_s);
+    r = fmin(*r_s * maxf, fmax(*r_s / maxf, r));
+    *r_s = fmax(GF_REF_MIN_RS, r);
 }
 
 gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_config *cfg, const gf_dem_refine_opts *ro,
@@ -178,10 +258,15 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         // The updates (the relations in the header comment).
         gf_config next = cur;
         // r_s only from a correlation length the DEM's region can hold.
-        bool beta_ok = res->dem.beta.value > 0.2 && res->dem.beta.value <= 0.5 * o->corr_size;
+        bool beta_ok = res->dem.beta.value >= GF_DEM_BETA_MIN && res->dem.beta.value <= 0.5 * o->corr_size;
         double fr = it == 1 && beta_ok ? gf_ref_ratio(res->dem.beta, fs.beta) : 1.0;
+        // The widths: step_xy for their growth with height, and r_s for
+        // their level when the correlation length left r_s free.
+        double rs = cur.spot_radius, dx = cur.spot_step_xy;
+        gf_dem_refine_width(&res->dem, &fs, vtol, !beta_ok, GF_REF_MAXSTEP, &dx, &rs);
+        if (!beta_ok) fr = rs / cur.spot_radius;
         next.spot_radius = cur.spot_radius * fr;
-        next.spot_step_xy = cur.spot_step_xy * sqrt(gf_ref_var_ratio(&res->dem, &fs, vtol));
+        next.spot_step_xy = dx;
         double fw = gf_ref_ratio(fs.bp, res->dem.bp);
         next.spot_w = cur.spot_w * fw;
         next.spot_move_rate = cur.spot_move_rate * gf_ref_ratio(fs.drop, res->dem.drop);
