@@ -10,6 +10,8 @@
 // dependency depth, spots / levels the parallelism an exact conflict-graph
 // schedule would give (unit work per move). Printed for the engine's reach
 // (gf_par_reach's formula, parallel.c) and for the reaches given with --reach.
+// Also a greedy colouring in the same order (colours(): spots / colours is
+// what a schedule free to reorder the step could run at once).
 //
 //   conflict_depth [--large] [--warm TAU] [--threads N] [--orders K] [--reach R]...
 #include "spot/sim_internal.h"
@@ -51,6 +53,30 @@ static int depth(const double *x, const double *y, const double *z, const size_t
         }
         level[k] = lv + 1;
         if (level[k] > top) top = level[k];
+    }
+    return top;
+}
+
+// Colours of a greedy colouring in the same order: colour(k) = the smallest
+// colour no earlier linked spot has. Spots of one colour never conflict, so a
+// schedule free to choose its order runs the colours one after another.
+static int colours(const double *x, const double *y, const double *z, const size_t *ord, size_t n, double reach,
+                   int *col, unsigned char *used)
+{
+    double lim2 = 4.0 * reach * reach;
+    int top = 0;
+    for (size_t k = 0; k < n; k++) {
+        size_t a = ord[k];
+        memset(used, 0, (size_t)top + 1);
+        for (size_t j = 0; j < k; j++) {
+            size_t b = ord[j];
+            double dx = x[a] - x[b], dy = y[a] - y[b], dz = z[a] - z[b];
+            if (dx * dx + dy * dy + dz * dz < lim2) used[col[j]] = 1;
+        }
+        int c = 0;
+        while (used[c]) c++;
+        col[k] = c;
+        if (c + 1 > top) top = c + 1;
     }
     return top;
 }
@@ -106,10 +132,11 @@ int main(int argc, char **argv)
     size_t n = sim->ns;
     size_t *ord = malloc((n ? n : 1) * sizeof *ord);
     int *level = malloc((n ? n : 1) * sizeof *level);
-    if (!ord || !level) return 1;
+    unsigned char *used = malloc(n + 2);
+    if (!ord || !level || !used) return 1;
     uint64_t seed = 12345;
     for (int r = 0; r <= nreach; r++) {
-        double sum = 0, lo = 1e300, hi = 0;
+        double sum = 0, lo = 1e300, hi = 0, csum = 0;
         for (int o = 0; o < orders; o++) {
             for (size_t k = 0; k < n; k++) ord[k] = k;
             for (size_t k = n; k > 1; k--) {
@@ -122,13 +149,17 @@ int main(int argc, char **argv)
             sum += par;
             lo = fmin(lo, par);
             hi = fmax(hi, par);
-            printf("reach %.3f d: order %d: %d levels\n", reach[r], o, lv);
+            int nc = colours(sim->sx, sim->sy, sim->sz, ord, n, reach[r], level, used);
+            csum += nc ? (double)n / nc : 0;
+            printf("reach %.3f d: order %d: %d levels, %d greedy colours\n", reach[r], o, lv, nc);
         }
-        printf("reach %.3f d%s: spots %zu, parallelism spots/levels %.1f (min %.1f, max %.1f over %d orders)\n",
-               reach[r], r == 0 ? " (engine)" : "", n, sum / orders, lo, hi, orders);
+        printf("reach %.3f d%s: spots %zu, parallelism spots/levels %.1f (min %.1f, max %.1f over %d orders), "
+               "spots/colours %.1f\n",
+               reach[r], r == 0 ? " (engine)" : "", n, sum / orders, lo, hi, orders, csum / orders);
     }
     free(ord);
     free(level);
+    free(used);
     gf_sim_destroy(sim);
     return 0;
 }
