@@ -39,6 +39,7 @@ static struct {
     int *counts, *displs;
     uint64_t bytes, phases; ///< exchanged so far (all ranks' records), and phases exchanged
     uint64_t exit_bytes;    ///< exits exchanged so far
+    uint64_t applied;       ///< words this rank took from the others
     int rank, size;
     bool stats_on;
 } gf_mpi_st;
@@ -65,9 +66,11 @@ static void gf_mpi_print_stats(void)
 {
     if (gf_mpi_st.rank != 0) return;
     fprintf(stderr, "granflow mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
-                    " bytes of changed words (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits\n",
+                    " bytes of changed words (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
+                    " words from the others\n",
             gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes,
-            gf_mpi_st.phases ? (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases : 0.0, gf_mpi_st.exit_bytes);
+            gf_mpi_st.phases ? (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases : 0.0, gf_mpi_st.exit_bytes,
+            gf_mpi_st.applied);
 }
 
 static void gf_mpi_add(void *p, size_t bytes)
@@ -181,6 +184,7 @@ gf_status gf_mpi_phase_end(gf_sim *sim)
         if (r == me) continue;
         const gf_mpi_word *w = (const gf_mpi_word *)((const unsigned char *)gf_mpi_st.in + gf_mpi_st.displs[r]);
         size_t nw = (size_t)gf_mpi_st.counts[r] / sizeof(gf_mpi_word);
+        gf_mpi_st.applied += nw;
         for (size_t i = 0; i < nw; i++) {
             int k = (int)(w[i].at >> 48);
             size_t o = (size_t)(w[i].at & 0xffffffffffffull) * 8;
