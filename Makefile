@@ -3,6 +3,7 @@
 BUILD      ?= build
 BUILD_SAN  ?= build-san
 BUILD_FUZZ ?= build-fuzz
+BUILD_MPI  ?= build-mpi
 FUZZ_SECONDS ?= 60
 FUZZ_TEST_SECONDS ?= 3
 GF_WERROR  ?= OFF
@@ -12,7 +13,7 @@ RUN_ENGINE ?= --set run.mode=fixed --set run.order=spatial --set run.threads=0
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps build build-san build-fuzz run test test-fast test-san test-fuzz fuzz bench bench-dem reproduce clean
+.PHONY: all deps build build-san build-fuzz build-mpi run test test-fast test-san test-fuzz test-mpi fuzz bench bench-dem reproduce clean
 
 all: build
 
@@ -26,6 +27,12 @@ build: deps
 build-san: deps
 	@cmake -S . -B $(BUILD_SAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGF_SANITIZE=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
+
+# The MPI build (GF_MPI=ON): mpirun -np N ./build-mpi/granflow run ... splits
+# the spatial fixed step between ranks (docs/performance.md).
+build-mpi: deps
+	@cmake -S . -B $(BUILD_MPI) -DCMAKE_BUILD_TYPE=Release -DGF_MPI=ON -DGF_WERROR=$(GF_WERROR) $(CMAKE_ARGS) >/dev/null
+	@cmake --build $(BUILD_MPI) -j $(JOBS) --target granflow_cli
 
 # The libFuzzer harnesses of tests/fuzz (clang, ASan + UBSan; docs/reliability.md).
 build-fuzz: deps
@@ -48,13 +55,17 @@ run: build
 
 # The whole suite: optimised build, then again under ASan + UBSan, then a
 # short pass of every fuzzer (replaying every saved input first).
-test: test-fast test-san test-fuzz
+test: test-fast test-san test-fuzz test-mpi
 
 test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 test-san: build-san
 	cd $(BUILD_SAN) && ctest --output-on-failure -j $(JOBS) -LE nosan
+
+# The MPI tests only (label mpi): 1, 2 and 4 ranks give the single process's run directory.
+test-mpi: build-mpi
+	cd $(BUILD_MPI) && ctest --output-on-failure -L mpi
 
 test-fuzz: build-fuzz
 	FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) bash scripts/fuzz.sh $(BUILD_FUZZ)

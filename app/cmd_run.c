@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "mpi_app.h"
 
 typedef struct gf_progress_ctx {
     bool quiet, tty;
@@ -77,6 +78,17 @@ int gf_cmd_run(int argc, char **argv)
     } else if (!gf_cli_config(&cli, NULL, &cfg)) {
         return GF_EXIT_USAGE;
     }
+#ifdef GF_MPI
+    // Only rank 0 writes the run directory; the others run into a scratch one.
+    if (gf_mpi_app_check(&cfg) != 0) return GF_EXIT_USAGE;
+    char scratch[GF_PATH_MAX + 64] = "";
+    const char *shown = dir;
+    if (gf_mpi_app_rank() > 0) {
+        if (!gf_mpi_app_scratch(dir, cli.resume != NULL, scratch, sizeof scratch)) return GF_EXIT_FAIL;
+        dir = scratch;
+        cli.quiet = true;
+    }
+#endif
     volatile sig_atomic_t *stop = gf_cli_catch_stop();
 
     gf_progress_ctx pc = {.quiet = cli.quiet, .tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
@@ -90,6 +102,12 @@ int gf_cmd_run(int argc, char **argv)
     };
     gf_sim_stats s;
     gf_status st = gf_run_dir(&cfg, &opts, &s);
+#ifdef GF_MPI
+    if (scratch[0]) {
+        gf_mpi_app_scratch_remove(scratch);
+        dir = shown;
+    }
+#endif
     if (st == GF_ERR_INTERRUPTED) {
         fprintf(stderr, "\ngranflow run: %s\n", gf_last_error());
         if (s.particles_initial > 0) // the run had begun: its checkpoint is on disk

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "mpi_app.h"
 
 static const char gf_usage[] =
     "granflow %s: fast spot-model simulations of dense granular drainage\n"
@@ -51,7 +52,7 @@ static void gf_print_warning(void *ctx, const char *message)
     fprintf(stderr, "granflow %s: warning: %s\n", (const char *)ctx, message);
 }
 
-int main(int argc, char **argv)
+static int gf_main(int argc, char **argv)
 {
     const char *cmd = argc > 1 ? argv[1] : "help";
     gf_set_warning_fn(gf_print_warning, (void *)cmd);
@@ -77,4 +78,14 @@ int main(int argc, char **argv)
     fprintf(stderr, "granflow: error: unknown command '%s'\n\n", cmd);
     fprintf(stderr, gf_usage, gf_version());
     return GF_EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+#ifdef GF_MPI
+    gf_mpi_app_init(&argc, &argv);
+    return gf_mpi_app_end(gf_main(argc, argv));
+#else
+    return gf_main(argc, argv);
+#endif
 }

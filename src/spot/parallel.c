@@ -30,6 +30,7 @@
 #include "core/alloc.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "spot/par_mpi.h"
 #include "spot/sim_internal.h"
 
 /// Colours along each cut axis: blocks of one colour are GF_PAR_COLOURS - 1
@@ -381,6 +382,10 @@ static int gf_par_cmp_exit(const void *a, const void *b)
 static gf_status gf_par_merge_exits(gf_sim *sim, gf_par *q)
 {
     size_t first = sim->nexit, total = 0;
+#ifdef GF_MPI
+    gf_status sm = gf_mpi_merge_exits(sim, q->work, q->threads); // all ranks' exits (sorted below)
+    if (sm != GF_OK) return sm;
+#endif
     for (int t = 0; t < q->threads; t++) total += q->work[t].nexit;
     if (!gf_sim_exits_reserve(sim, total)) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu exits", total);
     for (int t = 0; t < q->threads; t++) {
@@ -513,6 +518,10 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
                 q->run[k] = b;
             }
             q->shared_phases += nrun >= 2;
+#ifdef GF_MPI
+            if (nrun > 0 && (st = gf_mpi_phase_begin(sim, q->dead, q->block, q->nblock * sizeof *q->block)) != GF_OK)
+                break;
+#endif
             int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
             if (threads < 1 || moves < GF_PAR_MIN_SHARED) threads = 1;
 #ifdef _OPENMP
@@ -524,8 +533,11 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
 #else
                 gf_work *w = &q->work[0];
 #endif
-                gf_par_block(sim, q, w, q->run[r], p);
+                if (GF_MPI_OWNS(r)) gf_par_block(sim, q, w, q->run[r], p);
             }
+#ifdef GF_MPI
+            if (nrun > 0 && (st = gf_mpi_phase_end(sim)) != GF_OK) break;
+#endif
             if (q->profiling && nrun > 0) gf_par_record(q, nrun);
             for (size_t r = 0; r < nrun && st == GF_OK; r++)
                 if (q->block[q->run[r]].status != GF_OK)
