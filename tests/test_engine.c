@@ -193,6 +193,7 @@ static gf_status sample_ball(void *ctx, const gf_sim *sim, uint64_t index, doubl
     return GF_OK;
 }
 
+// ctest: nosan-case outflow_matches_mass_balance
 static void outflow_matches_mass_balance(void **state)
 {
     (void)state;
