@@ -143,13 +143,14 @@ static gf_status gf_write_plot(const char *outdir, const char *name, const gf_me
     fputs("\nunset output\n", f);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
     if (*gnuplot_state == 1) return GF_OK; // known missing: said once
-    int r = gf_gnuplot_run(outdir, gp);
+    char why[512];
+    int r = gf_gnuplot_run(outdir, gp, why, sizeof why);
     if (r == 1) {
         gf_warn("gnuplot not found, plots not drawn (scripts/deps.sh installs it; the .gp scripts are in %s)",
                 outdir);
         *gnuplot_state = 1;
     } else if (r < 0) {
-        return gf_error_set(GF_ERR_IO, "gnuplot failed on %s", path);
+        return gf_error_set(GF_ERR_IO, "gnuplot failed on %s: %s", path, why);
     }
     return GF_OK;
 }

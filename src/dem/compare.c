@@ -110,8 +110,9 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bo
             o->vel_heights[0], o->vel_heights[o->vel_nheights ? o->vel_nheights - 1 : 0], o->dens_z0, o->dens_z1);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
     if (!plots) return GF_OK;
-    int r = gf_gnuplot_run(outdir, "compare.gp");
-    if (r < 0) return gf_error_set(GF_ERR_IO, "gnuplot failed on %s", path);
+    char why[512];
+    int r = gf_gnuplot_run(outdir, "compare.gp", why, sizeof why);
+    if (r < 0) return gf_error_set(GF_ERR_IO, "gnuplot failed on %s: %s", path, why);
     return GF_OK; // r == 1: no gnuplot; the script is there
 }
 

@@ -96,4 +96,18 @@ expect_rc 1 "missing run"
 grep -q "missing-dir" err || fail "missing run: message does not name the path"
 ok "bad command lines exit 2 naming the key; a missing run exits 1 naming it"
 
+# A run of one snapshot: gnuplot warns of empty ranges and cannot draw some
+# plots; its chatter must not reach the terminal, and a plot it cannot draw is
+# one warning line naming the script and gnuplot's reason.
+gf run -q --set run.duration=0.5 --set packing.particles=800 --set container.width=12 -o tiny
+expect_rc 0 "run (one snapshot)"
+gf analyze tiny
+expect_rc 0 "analyze a one-snapshot run"
+if command -v gnuplot >/dev/null; then
+    ! grep -q '^Warning\|^plot \|^ *\^' err || fail "gnuplot's own output reached stderr"
+    ! grep -q 'gnuplot failed' err || grep -q 'gnuplot failed on .*\.gp: .*line' err ||
+        fail "a failed plot's warning does not give gnuplot's reason"
+fi
+ok "gnuplot's output is kept from the terminal; a failed plot gives its reason"
+
 echo "cli $NAME: $PASS passed"
