@@ -8,9 +8,10 @@
 #include "cli.h"
 #include "granflow/bench.h"
 
-static void gf_bench_on_packed(void *ctx, const gf_bench_spot *b, double warmup)
+static void gf_bench_on_packed(void *ctx, const gf_bench_spot *b, const gf_sim *sim, double warmup)
 {
     (void)ctx;
+    (void)sim;
     fprintf(stderr, "bench: %zu particles packed in %.1f s; warming up %.3g tau on %d thread%s...\n", b->particles,
             b->pack_s, warmup, b->threads, b->threads > 1 ? "s" : "");
 }

@@ -54,8 +54,8 @@ typedef struct gf_bench_opts {
     bool lga_only;      ///< only the lattice-gas automaton (default false)
     int64_t lga_iterations; ///< timed LGA iterations (default 1000)
     /// Called once a silo is packed, before its warm-up (may be NULL): b->particles,
-    /// b->pack_s and b->threads are set.
-    void (*packed)(void *ctx, const gf_bench_spot *b, double warmup);
+    /// b->pack_s and b->threads are set; `sim` holds the packing.
+    void (*packed)(void *ctx, const gf_bench_spot *b, const gf_sim *sim, double warmup);
     void *ctx;          ///< passed to packed
 } gf_bench_opts;
 

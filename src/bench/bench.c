@@ -77,7 +77,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     out->pack_s = gf_clock_now() - t0;
     bool spatial = cfg->run_mode == GF_MODE_FIXED && cfg->run_order == GF_ORDER_SPATIAL;
     out->threads = spatial ? (cfg->run_threads > 0 ? (int)cfg->run_threads : gf_cpu_count()) : 1;
-    if (o->packed) o->packed(o->ctx, out, o->warmup);
+    if (o->packed) o->packed(o->ctx, out, sim, o->warmup);
     t0 = gf_clock_now();
     double until = o->warmup;
     st = gf_sim_run(sim, until, NULL);
