@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "granflow/analysis.h"
 #include "granflow/render.h"
 
 #if defined(__SANITIZE_ADDRESS__)
