@@ -98,7 +98,7 @@ int gf_cmd_dem(int argc, char **argv)
                          .progress = cli.quiet ? NULL : gf_dem_show_progress, .ctx = &show};
     if (!cli.quiet)
         fprintf(stderr, "granflow dem: running LAMMPS in %s with %d MPI rank(s) (logs: log.fill, log.drain)\n", cli.out,
-                ranks < 1 ? gf_dem_cores() : ranks);
+                ranks < 1 ? gf_cpu_count() : ranks);
     gf_status st = gf_dem_run(cli.out, &o);
     if (show.tty && show.last_phase) fputs("\n", stderr);
     if (st != GF_OK) return gf_cli_fail("dem", st);

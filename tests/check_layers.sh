@@ -24,7 +24,7 @@ declare -A layer=(
   [packing]=3
   [spot]=4
   [run]=5
-  [analysis]=6 [render]=6 [dem]=6 [lga]=6 [report]=6
+  [analysis]=6 [render]=6 [dem]=6 [lga]=6 [report]=6 [bench]=6
   [app]=7
 )
 # Owner folder of each public header.
@@ -35,7 +35,7 @@ declare -A owner=(
   [packing.h]=packing
   [sim.h]=spot
   [run.h]=run
-  [analysis.h]=analysis [render.h]=render [dem.h]=dem [lga.h]=lga [report.h]=report
+  [analysis.h]=analysis [render.h]=render [dem.h]=dem [lga.h]=lga [report.h]=report [bench.h]=bench
   [granflow.h]=app
 )
 

@@ -443,6 +443,107 @@ static void empty_packing_draws_the_container(void **state)
     free_image(&im);
 }
 
+// ---------------------------------------------------------------------------
+// gf_render_dir: the pictures of a series
+
+typedef struct written_list {
+    char names[16][64];
+    size_t n;
+} written_list;
+
+static void note_written(void *ctx, const char *path)
+{
+    written_list *w = ctx;
+    assert_true(w->n < 16);
+    const char *slash = strrchr(path, '/');
+    snprintf(w->names[w->n++], sizeof w->names[0], "%s", slash ? slash + 1 : path);
+    struct stat sb;
+    assert_int_equal(stat(path, &sb), 0);
+}
+
+/// A multi-frame dump of three frames at t = 0, 2 and 4 in a 10 x 4 box.
+static const char *three_frames(void)
+{
+    static char path[1200];
+    char dir[1100];
+    snprintf(dir, sizeof dir, "%s/renderdir", gf_test_tmpdir());
+    mkdir(dir, 0777);
+    const char *frame = "ITEM: TIME\n%d\nITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS ff ff ff\n"
+                        "-5 5\n-2 2\n0 9\nITEM: ATOMS id type x y z\n1 1 -1 0.5 %g\n2 1 0 0.5 1.5\n3 2 1 0.5 3.5\n";
+    char text[2048];
+    size_t len = 0;
+    for (int k = 0; k < 3; k++) len += (size_t)snprintf(text + len, sizeof text - len, frame, 2 * k, 20 * k, 0.5 + k);
+    snprintf(path, sizeof path, "%s", gf_test_write_file(dir, "run.dump", text));
+    return path;
+}
+
+static void render_dir_default_set(void **state)
+{
+    (void)state;
+    const char *dump = three_frames();
+    written_list w = {0};
+    gf_render_options o = gf_render_options_default();
+    assert_string_equal(o.format, "png");
+    assert_true(o.scale == 10 && o.panels == 8 && o.colour == GF_RENDER_LAYER && !o.outdir);
+    o.scale = 3;
+    o.written = note_written;
+    o.ctx = &w;
+    if (gf_render_dir(dump, &o) != GF_OK) fail_msg("gf_render_dir: %s", gf_last_error());
+    // first, middle and last by layer, the last by packing fraction, the sheet; in render/ beside the dump
+    const char *want[] = {"slice_000000.png", "slice_000001.png", "slice_000002.png", "slice_000002_phi.png",
+                          "sheet.png"};
+    assert_int_equal(w.n, 5);
+    for (size_t k = 0; k < 5; k++) assert_string_equal(w.names[k], want[k]);
+    char path[1300];
+    snprintf(path, sizeof path, "%s/renderdir/render/sheet.png", gf_test_tmpdir());
+    struct stat sb;
+    assert_int_equal(stat(path, &sb), 0);
+
+    // The snapshot nearest a time, with a warning when none is at it; phi-raw names.
+    w.n = 0;
+    double times[] = {2.9};
+    o.times = times;
+    o.ntimes = 1;
+    o.colour = GF_RENDER_PHI;
+    o.raw = true;
+    snprintf(path, sizeof path, "%s/renderdir/out", gf_test_tmpdir());
+    o.outdir = path;
+    gf_warnings_clear();
+    if (gf_render_dir(dump, &o) != GF_OK) fail_msg("gf_render_dir: %s", gf_last_error());
+    assert_int_equal(w.n, 1);
+    assert_string_equal(w.names[0], "slice_000001_phi_raw.png");
+    assert_int_equal(gf_warning_count(), 1);
+    assert_non_null(strstr(gf_warning(0), "no snapshot at t = 2.9"));
+    gf_warnings_clear();
+}
+
+static void render_dir_refuses_bad_options(void **state)
+{
+    (void)state;
+    const char *dump = three_frames();
+    gf_render_options o = gf_render_options_default();
+    o.format = "gif";
+    assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "gif"));
+    o = gf_render_options_default();
+    o.scale = 0.5;
+    assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
+    o = gf_render_options_default();
+    o.panels = 0;
+    assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
+    o = gf_render_options_default();
+    double t = 1;
+    o.times = &t;
+    o.ntimes = 1;
+    o.all = true;
+    assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
+    o = gf_render_options_default();
+    char empty[1100];
+    snprintf(empty, sizeof empty, "%s/renderdir/empty", gf_test_tmpdir());
+    mkdir(empty, 0777);
+    assert_int_not_equal(gf_render_dir(empty, &o), GF_OK);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(layer_colours_background_and_walls),
     cmocka_unit_test(size_follows_scale),
@@ -451,6 +552,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(failures_leave_no_file),
     cmocka_unit_test(contact_sheet),
     cmocka_unit_test(empty_packing_draws_the_container),
+    cmocka_unit_test(render_dir_default_set),
+    cmocka_unit_test(render_dir_refuses_bad_options),
 };
 
 GF_TEST_MAIN("render", tests)

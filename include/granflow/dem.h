@@ -80,9 +80,6 @@ GF_API gf_dem_run_opts gf_dem_run_opts_default(void);
 /// with LAMMPS' own ERROR line when it fails.
 GF_API gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *opts);
 
-/// The number of processors (online CPUs), at least 1.
-GF_API int gf_dem_cores(void);
-
 // ---------------------------------------------------------------------------
 // A DEM run as a series.
 

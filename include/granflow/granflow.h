@@ -2,6 +2,7 @@
 // granflow: the whole public API.
 #ifndef GRANFLOW_H
 #define GRANFLOW_H
+#include "granflow/bench.h"
 #include "granflow/config.h"
 #include "granflow/core.h"
 #include "granflow/dem.h"

@@ -79,6 +79,38 @@ GF_API gf_status gf_render_sheet(const gf_frame *frames, size_t n, const gf_conf
                                  const double *const *phi, const gf_render_opts *opts,
                                  const char *path);
 
+/// Options of gf_render_dir. Make them with gf_render_options_default(), then change fields.
+typedef struct gf_render_options {
+    gf_render_colour colour; ///< GF_RENDER_LAYER (default) or GF_RENDER_PHI
+    bool raw;                ///< phi: each particle's volume over its Voronoi cell's (2009 paper Fig. 6;
+                             ///< files *_phi_raw.*), not the field averaged within 2.2 d (Fig. 4; *_phi.*)
+    const char *format;      ///< "png" (default), "svg" or "pdf": the files' extension and format
+    double scale;            ///< pixels per particle diameter, 1 to 200 (default 10; the sheet uses half)
+    const double *times;     ///< draw the snapshots nearest these times, tau (ntimes of them; may be NULL)
+    size_t ntimes;
+    bool all;                ///< draw every snapshot (not with times)
+    bool sheet;              ///< the contact sheet (only it, unless times or all)
+    size_t panels;           ///< snapshots on the contact sheet, evenly spaced, 1 to 40 (default 8)
+    const char *outdir;      ///< where the pictures go; NULL (default): DIR/render, or render/ beside a dump file
+    void (*written)(void *ctx, const char *path); ///< called with each file written; may be NULL
+    void *ctx;               ///< passed to written
+} gf_render_options;
+
+/// The defaults listed in gf_render_options.
+GF_API gf_render_options gf_render_options_default(void);
+
+/// The pictures of a run directory, a directory of LAMMPS dumps or one dump
+/// file (gf_series_load): slice_NNNNNN[_phi|_phi_raw].EXT for the chosen
+/// snapshots (NNNNNN: the index in time order) and sheet[...].EXT, the contact
+/// sheet, in opt->outdir (created). Without times, all or sheet: the first,
+/// middle and last snapshots in opt->colour, the last also by packing fraction
+/// when colouring by layer, and the sheet. Every picture has the same height,
+/// the highest particle top of the run; the run's name (DIR's last component)
+/// is its title. A time with no snapshot at it draws the nearest, with a
+/// warning (gf_warning). GF_ERR_PARAM on bad options, GF_ERR_STATE when there
+/// is no snapshot, or the error of reading the series or writing a picture.
+GF_API gf_status gf_render_dir(const char *dir, const gf_render_options *opt);
+
 #ifdef __cplusplus
 }
 #endif

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "core/gnuplot.h"
+#include "core/json.h"
 #include "granflow/analysis.h"
 
 static const gf_measure_def gf_measure_table[] = {
@@ -113,15 +114,14 @@ static gf_status gf_summary_write(const gf_summary *s, const char *path)
     FILE *f;
     gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
     if (st != GF_OK) return st;
-    fputs("{\n", f);
+    gf_json j = gf_json_start(f, true);
+    gf_json_object_begin(&j, NULL);
     for (size_t k = 0; k < s->n; k++) {
         const gf_summary_item *it = &s->item[k];
-        const char *sep = k + 1 < s->n ? "," : "";
-        if (it->is_text) fprintf(f, "  \"%s\": \"%s\"%s\n", it->key, it->text, sep);
-        else if (isfinite(it->value)) fprintf(f, "  \"%s\": %.10g%s\n", it->key, it->value, sep);
-        else fprintf(f, "  \"%s\": null%s\n", it->key, sep);
+        if (it->is_text) gf_json_string(&j, it->key, it->text);
+        else gf_json_general(&j, it->key, it->value, 10); // null when not finite
     }
-    fputs("}\n", f);
+    gf_json_end(&j);
     return gf_atomic_commit(f, tmp, path);
 }
 

@@ -97,8 +97,7 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     gf_analysis_window(o, s, &t0, &t1);
     gf_status st = gf_fs_once(s, o, t0, t1, correlation, fs);
     if (st != GF_OK) return st;
-    size_t nf = 0;
-    for (size_t f = 0; f < s->nframes; f++) nf += s->frames[f].time >= t0 && s->frames[f].time <= t1;
+    size_t k0, k1, nf = gf_window_frames(s, t0, t1, &k0, &k1);
     size_t K = nf >= 12 ? GF_FS_PARTS : nf >= 6 ? 2 : 1;
     double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS];
     for (size_t j = 0; j < K; j++) {

@@ -19,12 +19,6 @@
 #include "core/error.h"
 #include "granflow/dem.h"
 
-int gf_dem_cores(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : (int)n;
-}
-
 /// Finds `name` on PATH (or takes it as a path when it holds a '/').
 static int gf_dem_which(const char *name, char *out, size_t n)
 {
@@ -98,7 +92,7 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
         argv[k++] = mpirun;
         argv[k++] = "-np";
         argv[k++] = np;
-        if (ranks > gf_dem_cores()) argv[k++] = "--oversubscribe";
+        if (ranks > gf_cpu_count()) argv[k++] = "--oversubscribe";
     }
     argv[k++] = lmp;
     argv[k++] = "-in";
@@ -169,7 +163,7 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
                             "LAMMPS not found (%s): install it with `apt-get install lammps` (Debian's package "
                             "has the GRANULAR styles), or set GF_LMP to the binary",
                             want);
-    int ranks = o->ranks < 1 ? gf_dem_cores() : o->ranks;
+    int ranks = o->ranks < 1 ? gf_cpu_count() : o->ranks;
     bool use_mpi = ranks > 1 && gf_dem_which("mpirun", mpirun, sizeof mpirun);
     if (!use_mpi) ranks = 1;
     const char *scripts[2] = {"in.fill", "in.drain"};

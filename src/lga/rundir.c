@@ -14,6 +14,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "core/json.h"
 #include "lga/image.h"
 #include "lga/scenario.h"
 
@@ -36,12 +37,6 @@ static bool gf_lga_dir_busy(const char *dir)
         if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) busy = true;
     closedir(d);
     return busy;
-}
-
-static void gf_lga_json_num(FILE *f, const char *key, double v, bool last)
-{
-    if (isfinite(v)) fprintf(f, "  \"%s\": %.6g%s\n", key, v, last ? "" : ",");
-    else fprintf(f, "  \"%s\": null%s\n", key, last ? "" : ",");
 }
 
 static const char *gf_lga_scenario_name(gf_lga_scenario s)
@@ -132,33 +127,44 @@ static gf_status gf_lga_write_summary(const gf_lga_out *o, const gf_lga *l, cons
     if (st != GF_OK) return st;
     const gf_config *c = &l->cfg;
     gf_lga_stats t = gf_lga_get_stats(l);
-    fprintf(f, "{\n  \"granflow_version\": \"%s\",\n  \"status\": \"%s\",\n", gf_version(), status);
-    fprintf(f, "  \"scenario\": \"%s\",\n", gf_lga_scenario_name(s->scenario));
-    if (s->scenario == GF_LGA_SILO)
-        fprintf(f, "  \"silo_flow\": \"%s\",\n  \"hopper_angle\": %.6g,\n  \"outlet_width\": %.6g,\n",
-                c->lga_silo_flow == GF_LGA_FUNNEL ? "funnel" : "mass", gf_lga_hopper_angle(c), c->lga_outlet_width);
-    fprintf(f, "  \"seed\": %" PRIu64 ",\n", c->run_seed);
-    fprintf(f, "  \"p\": %.6g,\n  \"q\": %.6g,\n  \"g\": %.6g,\n  \"h\": %.6g,\n  \"k\": %.6g,\n  \"b\": %.6g,\n", c->lga_p,
-            c->lga_q, c->lga_g, c->lga_h, c->lga_k, c->lga_b);
-    fprintf(f, "  \"lattice_width\": %d,\n  \"lattice_height\": %d,\n  \"fluid_sites\": %lld,\n", t.width, t.height,
-            (long long)t.fluid_sites);
-    fprintf(f, "  \"iterations\": %lld,\n", (long long)s->iterations);
-    fprintf(f, "  \"particles_initial\": %lld,\n  \"particles_added\": %lld,\n", (long long)s->particles_initial,
-            (long long)s->particles_added);
-    fprintf(f, "  \"particles_removed\": %lld,\n  \"particles_final\": %lld,\n", (long long)s->particles_removed,
-            (long long)s->particles_final);
-    if (s->iterations_to_empty >= 0) fprintf(f, "  \"iterations_to_empty\": %lld,\n", (long long)s->iterations_to_empty);
-    else fprintf(f, "  \"iterations_to_empty\": null,\n");
-    gf_lga_json_num(f, "mean_outflow_rate", s->iterations > 0 ? (double)s->particles_removed / (double)(s->iterations_to_empty >= 0 ? s->iterations_to_empty : s->iterations) : NAN, false);
-    gf_lga_json_num(f, "slope_angle", s->slope_angle, false);
-    gf_lga_json_num(f, "slope_left", s->slope_left, false);
-    gf_lga_json_num(f, "slope_right", s->slope_right, false);
-    gf_lga_json_num(f, "wave_variance_initial", s->wave_variance_initial, false);
-    gf_lga_json_num(f, "wave_variance_final", s->wave_variance_final, false);
-    gf_lga_json_num(f, "wave_variance_ratio", s->wave_variance_final / s->wave_variance_initial, false);
-    gf_lga_json_num(f, "wall_seconds", s->wall_seconds, false);
-    gf_lga_json_num(f, "site_updates_per_second", s->site_updates_per_second, true);
-    fprintf(f, "}\n");
+    gf_json j = gf_json_start(f, true);
+    gf_json_object_begin(&j, NULL);
+    gf_json_string(&j, "granflow_version", gf_version());
+    gf_json_string(&j, "status", status);
+    gf_json_string(&j, "scenario", gf_lga_scenario_name(s->scenario));
+    if (s->scenario == GF_LGA_SILO) {
+        gf_json_string(&j, "silo_flow", c->lga_silo_flow == GF_LGA_FUNNEL ? "funnel" : "mass");
+        gf_json_general(&j, "hopper_angle", gf_lga_hopper_angle(c), 6);
+        gf_json_general(&j, "outlet_width", c->lga_outlet_width, 6);
+    }
+    gf_json_uint(&j, "seed", c->run_seed);
+    gf_json_general(&j, "p", c->lga_p, 6);
+    gf_json_general(&j, "q", c->lga_q, 6);
+    gf_json_general(&j, "g", c->lga_g, 6);
+    gf_json_general(&j, "h", c->lga_h, 6);
+    gf_json_general(&j, "k", c->lga_k, 6);
+    gf_json_general(&j, "b", c->lga_b, 6);
+    gf_json_int(&j, "lattice_width", t.width);
+    gf_json_int(&j, "lattice_height", t.height);
+    gf_json_int(&j, "fluid_sites", t.fluid_sites);
+    gf_json_int(&j, "iterations", s->iterations);
+    gf_json_int(&j, "particles_initial", s->particles_initial);
+    gf_json_int(&j, "particles_added", s->particles_added);
+    gf_json_int(&j, "particles_removed", s->particles_removed);
+    gf_json_int(&j, "particles_final", s->particles_final);
+    if (s->iterations_to_empty >= 0) gf_json_int(&j, "iterations_to_empty", s->iterations_to_empty);
+    else gf_json_null(&j, "iterations_to_empty");
+    int64_t span = s->iterations_to_empty >= 0 ? s->iterations_to_empty : s->iterations;
+    gf_json_general(&j, "mean_outflow_rate", s->iterations > 0 ? (double)s->particles_removed / (double)span : NAN, 6);
+    gf_json_general(&j, "slope_angle", s->slope_angle, 6);
+    gf_json_general(&j, "slope_left", s->slope_left, 6);
+    gf_json_general(&j, "slope_right", s->slope_right, 6);
+    gf_json_general(&j, "wave_variance_initial", s->wave_variance_initial, 6);
+    gf_json_general(&j, "wave_variance_final", s->wave_variance_final, 6);
+    gf_json_general(&j, "wave_variance_ratio", s->wave_variance_final / s->wave_variance_initial, 6);
+    gf_json_general(&j, "wall_seconds", s->wall_seconds, 6);
+    gf_json_general(&j, "site_updates_per_second", s->site_updates_per_second, 6);
+    gf_json_end(&j);
     return gf_atomic_commit(f, tmp, path);
 }
 

@@ -19,6 +19,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "core/json.h"
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
@@ -193,27 +194,29 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
     double sps = wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0;
-    fprintf(f, "{\n  \"granflow_version\": \"%s\",\n  \"status\": \"%s\",\n", gf_version(), rd->status);
-    if (!strcmp(rd->status, "failed")) {
-        fputs("  \"error\": \"", f);
-        for (const char *c = gf_last_error(); *c; c++) // JSON string: quotes, backslashes, control bytes escaped
-            if (*c == '"' || *c == '\\') fprintf(f, "\\%c", *c);
-            else if ((unsigned char)*c < 0x20) fprintf(f, "\\u%04x", (unsigned)*c);
-            else fputc(*c, f);
-        fputs("\",\n", f);
-    }
-    fprintf(f, "  \"seed\": %" PRIu64 ",\n", rd->cfg->run_seed);
-    fprintf(f, "  \"particles_initial\": %zu,\n  \"particles_remaining\": %zu,\n  \"particles_exited\": %zu,\n",
-            s.particles_initial, s.particles_remaining, s.particles_exited);
-    fprintf(f, "  \"particles_reinserted\": %zu,\n", s.particles_reinserted);
-    fprintf(f, "  \"spots_inserted\": %" PRIu64 ",\n  \"spots_deleted\": %" PRIu64 ",\n  \"spots_active\": %zu,\n",
-            s.spots_inserted, s.spots_deleted, s.spots_active);
-    fprintf(f, "  \"spot_moves\": %" PRIu64 ",\n  \"relax_calls\": %" PRIu64 ",\n  \"events\": %" PRIu64 ",\n",
-            s.spot_moves, s.relax_calls, s.events);
-    fprintf(f, "  \"global_relaxations\": %" PRIu64 ",\n  \"t_relax\": %.3f,\n", s.global_relaxations, s.relax_seconds);
-    fprintf(f, "  \"neighbour_list_builds\": %" PRIu64 ",\n", s.nlist_builds);
-    fprintf(f, "  \"simulated_time\": %.9g,\n  \"wall_seconds\": %.3f,\n  \"steps_per_second\": %.1f\n}\n", s.time,
-            wall, sps);
+    gf_json j = gf_json_start(f, true);
+    gf_json_object_begin(&j, NULL);
+    gf_json_string(&j, "granflow_version", gf_version());
+    gf_json_string(&j, "status", rd->status);
+    if (!strcmp(rd->status, "failed")) gf_json_string(&j, "error", gf_last_error());
+    gf_json_uint(&j, "seed", rd->cfg->run_seed);
+    gf_json_uint(&j, "particles_initial", s.particles_initial);
+    gf_json_uint(&j, "particles_remaining", s.particles_remaining);
+    gf_json_uint(&j, "particles_exited", s.particles_exited);
+    gf_json_uint(&j, "particles_reinserted", s.particles_reinserted);
+    gf_json_uint(&j, "spots_inserted", s.spots_inserted);
+    gf_json_uint(&j, "spots_deleted", s.spots_deleted);
+    gf_json_uint(&j, "spots_active", s.spots_active);
+    gf_json_uint(&j, "spot_moves", s.spot_moves);
+    gf_json_uint(&j, "relax_calls", s.relax_calls);
+    gf_json_uint(&j, "events", s.events);
+    gf_json_uint(&j, "global_relaxations", s.global_relaxations);
+    gf_json_fixed(&j, "t_relax", s.relax_seconds, 3);
+    gf_json_uint(&j, "neighbour_list_builds", s.nlist_builds);
+    gf_json_general(&j, "simulated_time", s.time, 9);
+    gf_json_fixed(&j, "wall_seconds", wall, 3);
+    gf_json_fixed(&j, "steps_per_second", sps, 1);
+    gf_json_end(&j);
     return gf_atomic_commit(f, tmp, path);
 }
 
