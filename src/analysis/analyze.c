@@ -77,7 +77,7 @@ static void gf_summary_text(gf_summary *s, const char *key, const char *text)
     gf_summary_item *it = gf_summary_slot(s, key);
     if (!it) return;
     it->is_text = 1;
-    snprintf(it->text, sizeof it->text, "%s", text);
+    snprintf(it->text, sizeof it->text, "%.*s", (int)sizeof it->text - 1, text);
     for (char *c = it->text; *c; c++) // keep the JSON valid whatever the message says
         if (*c == '"' || *c == '\\' || (unsigned char)*c < 0x20) *c = '\'';
 }

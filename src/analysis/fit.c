@@ -74,7 +74,7 @@ static bool gf_lm_fit(gf_lm_model model, const double *x, const double *y, size_
         if (chi2 == 0.0) return true; // exact fit
         double jtj[GF_LM_MAXP][GF_LM_MAXP] = {{0}}, jtr[GF_LM_MAXP] = {0};
         for (size_t i = 0; i < n; i++) {
-            double f, g[GF_LM_MAXP];
+            double f = 0.0, g[GF_LM_MAXP] = {0};
             model(x[i], p, &f, g);
             double r = y[i] - f;
             for (size_t a = 0; a < m; a++) {

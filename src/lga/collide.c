@@ -25,7 +25,7 @@ static inline int gf_lga_random_free(gf_lga *l, uint16_t out, uint32_t mask)
 static inline int gf_lga_take_random(gf_lga *l, uint16_t *mv)
 {
     int e = gf_lga_random_free(l, (uint16_t)~*mv, *mv);
-    *mv &= (uint16_t)~(1u << e);
+    if (e >= 0) *mv &= (uint16_t)~(1u << e);
     return e;
 }
 
@@ -48,6 +48,7 @@ uint16_t gf_lga_collide_state(gf_lga *l, uint16_t s, bool gravity, int *excess)
         // The stopped and the randomised take their momentum and energy with them.
         for (int k = 0; k < n + nr; k++) {
             int e = gf_lga_take_random(l, &mv);
+            if (e < 0) break; // cannot happen: n + nr <= the movers in mv
             a -= gf_lga_da[e];
             b -= gf_lga_db[e];
             cap -= e < 7 ? 1 : 3;
