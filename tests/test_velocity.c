@@ -121,6 +121,61 @@ static void velocity_recovers_variance_line(void **state)
     gf_series_free(&s);
 }
 
+// In a cylinder the profiles are radial: particles on rings at the annuli's
+// mid-radii r = k + 1/2 (12 angles each, some off the x axis) move with
+// v_z(r) = -A exp(-r^2 / (2 (2 z + 1))), so each annulus' mean is v_z at its
+// centre and the mirrored fit recovers the per-axis variance 2 z + 1 exactly.
+// Binned by x instead (a box's profile), the same particles would give other
+// widths: the test fails if the profiles are not radial.
+static void velocity_profiles_are_radial_in_a_cylinder(void **state)
+{
+    (void)state;
+    const double times[2] = {0.0, 2.0}, dt = 2.0;
+    gf_series s = make_series(2, times);
+    s.cfg.container_shape = GF_SHAPE_CYLINDER;
+    s.cfg.container_radius = 12.5;
+    int64_t id = 0;
+    for (int zi = 5; zi <= 35; zi++)
+        for (int k = 0; k < 12; k++)
+            for (int a = 0; a < 12; a++) {
+                double r = k + 0.5, th = 6.283185307179586 * (a + 0.25) / 12.0;
+                double x = r * cos(th), y = r * sin(th), z = zi, v = vz_model(r, z);
+                id++;
+                push(&s.frames[0], id, x, y, z - 0.5 * v * dt);
+                push(&s.frames[1], id, x, y, z + 0.5 * v * dt);
+            }
+    s.n_initial = s.frames[0].pk.n;
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    o.t0 = 0.0; // the one pair
+    o.t1 = 2.0;
+    o.vel_nheights = 3;
+    o.vel_heights[0] = 10.0, o.vel_heights[1] = 20.0, o.vel_heights[2] = 30.0;
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
+    const gf_table *tv = gf_test_table(&out, "velocity_variance");
+    assert_int_equal(tv->nrow, 3);
+    for (size_t r = 0; r < 3; r++) {
+        double h = 10.0 * (double)(r + 1);
+        gf_assert_near(cell(tv, r, 1), 2.0 * h + 1.0, 1e-8 * (2.0 * h + 1.0));
+        gf_assert_near(cell(tv, r, 2), VEL_A, 1e-8);
+        gf_assert_near(cell(tv, r, 3), 0.0, 1e-8);
+    }
+    // One row per annulus and height, at r = k + 1/2, the data equal to v_z(r).
+    const gf_table *tp = gf_test_table(&out, "velocity_profiles");
+    assert_int_equal(tp->nrow, 3 * 12);
+    assert_string_equal(tp->cols[1], "r_d");
+    for (size_t r = 0; r < tp->nrow; r++) {
+        double rr = cell(tp, r, 1);
+        gf_assert_near(rr - floor(rr), 0.5, 1e-12);
+        gf_assert_near(cell(tp, r, 2), vz_model(rr, cell(tp, r, 0)), 1e-12);
+    }
+    gf_assert_near(gf_test_value(&out, "velocity_variance_slope"), 2.0, 1e-8);
+    assert_non_null(strstr(out.gnuplot, "v_z(r)"));
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
 static void velocity_depth_profile(void **state)
 {
     (void)state;
@@ -355,6 +410,7 @@ static void correlation_ignores_bursts(void **state)
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_recovers_variance_line),
+    cmocka_unit_test(velocity_profiles_are_radial_in_a_cylinder),
     cmocka_unit_test(velocity_depth_profile),
     cmocka_unit_test(diffusion_recovers_random_walk),
     cmocka_unit_test(correlation_recovers_length),

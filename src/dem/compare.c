@@ -87,7 +87,7 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bo
             "set title 'particles exited'\nset xlabel 't (tau)'\nset ylabel 'exited'\nset key top left\n"
             "plot 'dem_outflow.csv' skip 1 u 1:2 w steps lw 2 @D t 'DEM', "
             "'spot_outflow.csv' skip 1 u 1:2 w steps lw 2 @S t 'spot'\n"
-            "set title 'v_z(x) at z = %g .. %g'\nset xlabel 'x (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right\n"
+            "set title 'v_z(x), or v_z(r) in a cylinder, at z = %g .. %g'\nset xlabel 'x or r (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right\n"
             "plot 'dem_velocity_profiles.csv' skip 1 u 2:3 w p pt 7 ps 0.3 @D t 'DEM', "
             "'spot_velocity_profiles.csv' skip 1 u 2:3 w p pt 6 ps 0.3 @S t 'spot'\n"
             "set title 'Gaussian variance of v_z(x)'\nset xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left\n"
