@@ -87,6 +87,56 @@ static void recovers_chosen_parameters(void **state)
     gf_series_free(&s);
 }
 
+// A cylinder (radius 12 d, the chosen parameters above, 30 tau): what the
+// calibration measures that depends on the container's shape. The profiles
+// are radial (per-axis Var), so d Var/dz comes from >= 5 heights and gives
+// step_xy back within 10% (+4.3% measured); the density slice's volume is the
+// disc's and the spot balls are placed about the axis, so the particles a
+// ball holds agree with phi V_ball / V_p within 3% (0.4% measured; with the
+// box's 50 x 8 section the slice's phi came out 12% high) and phi is a
+// packing's. Not asserted, and documented (docs/dem.md): beta and b_p come
+// out +37% and ~4x here, because the correlation and diffusion estimators
+// subtract a mean flow of (x, z), averaged over y, which an axisymmetric
+// flow is not.
+static void calibration_measures_a_cylinder(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.container_shape = GF_SHAPE_CYLINDER;
+    c.container_radius = 12;
+    c.orifice_diameter = 6;
+    c.packing_particles = 12500;
+    c.spot_radius = 2.2;
+    c.spot_step_xy = 0.55;
+    c.spot_w = 300;
+    c.spot_insertion_rate = 300;
+    c.spot_move_rate = 40;
+    c.relax_method = GF_RELAX_NONE;
+    c.run_duration = 30;
+    c.run_seed = 11;
+    c.output_snapshot_interval = 1;
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/cylinder", gf_test_tmpdir());
+    gf_run_opts ro = {.dir = dir};
+    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
+    gf_series s;
+    gf_dem_load_report rep;
+    assert_int_equal(gf_dem_series_load(dir, NULL, &s, &rep), GF_OK);
+    gf_analysis_opts o;
+    gf_dem_calibration_opts(&s, NULL, &o);
+    gf_dem_calibration cal;
+    if (gf_dem_calibrate(&s, &o, &s.cfg, &cal) != GF_OK) fail_msg("%s", gf_last_error());
+    gf_dem_calibration_print(&cal, stdout);
+    print_message("cylinder: %zu heights, step_xy %.4g (chosen 0.55), p %.4g, bulk %.4g\n", cal.var_heights,
+                  cal.step_xy.value, cal.ball_count.value, cal.ball_count_bulk);
+    assert_true(cal.var_heights >= 5);
+    gf_assert_near(cal.step_xy.value, c.spot_step_xy, 0.10 * c.spot_step_xy);
+    gf_assert_near(cal.ball_count.value, cal.ball_count_bulk, 0.03 * cal.ball_count_bulk);
+    double rs = cal.spot_radius.value, phi = cal.ball_count_bulk / (8.0 * rs * rs * rs); // p = phi (2 r_s / d)^3
+    assert_true(phi > 0.55 && phi < 0.64);
+    gf_series_free(&s);
+}
+
 static void show_refine(void *ctx, int iter, int max_iter, const gf_config *c, const gf_dem_flowstats *dem,
                         const gf_dem_flowstats *spot, bool match)
 {
@@ -160,6 +210,7 @@ static void refine_recovers_flow_and_width(void **state)
 
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(recovers_chosen_parameters),
+    cmocka_unit_test(calibration_measures_a_cylinder),
     cmocka_unit_test(refine_recovers_flow_and_width),
 };
 

@@ -15,12 +15,33 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "geom/container.h"
 #include "granflow/dem.h"
 
 #define GF_CAL_PI 3.14159265358979323846
 #define GF_CAL_MAXPARTS 4
 #define GF_CAL_BALLS 400   // spot balls placed per frame for p
 #define GF_CAL_WALLSD 5.0  // a profile is fitted only where its sd is below W / this (tails inside the walls)
+
+/// Width of the container's cross-section, d: a box's width, a cylinder's
+/// diameter (the scale of the regions and of the widest profile fitted).
+static double gf_cal_width(const gf_config *cfg)
+{
+    return cfg->container_shape == GF_SHAPE_CYLINDER ? 2.0 * cfg->container_radius : cfg->container_width;
+}
+
+/// Volume inside the container between heights z0 < z1, d^3: a box's
+/// W D (z1 - z0); otherwise the cross-section integrated (midpoint rule, 64
+/// slabs: a funnel's area is smooth in z).
+static double gf_cal_volume(const gf_config *cfg, double z0, double z1)
+{
+    if (cfg->container_shape != GF_SHAPE_CYLINDER)
+        return (z1 - z0) * cfg->container_width * cfg->container_depth;
+    gf_container c = gf_container_make(cfg);
+    double v = 0.0, dz = (z1 - z0) / 64.0;
+    for (int k = 0; k < 64; k++) v += c.ops->section_area(&c, z0 + ((double)k + 0.5) * dz) * dz;
+    return v;
+}
 
 /// Top of the packing in a frame: the mean of its 20 highest centres with
 /// |x| < xhalf (the centre of a draining silo is lower than its sides).
@@ -56,7 +77,7 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     gf_analysis_window(o, s, &t0, &t1);
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
-    double W = s->cfg.container_width;
+    double W = gf_cal_width(&s->cfg);
     // h1: the lowest the surface gets in the window, in the centre (a
     // crater forms above the orifice), so that no region leaves the packing.
     double h0 = gf_cal_top(&s->frames[0].pk, INFINITY);
@@ -171,24 +192,39 @@ static void gf_cal_variance(const gf_measure_out *m, double width, gf_cal_est *e
 /// spots go: heights in the slice, x Gaussian with the spot spread there (the
 /// profile variance less the ball's own r_s^2 / 5), y uniform, both no closer
 /// than d_w to a wall, in every frame of the window. Walls cut these balls.
+/// In a cylinder x and y are both Gaussian with that per-axis spread (the
+/// radial profile's), redrawn until the centre clears the wall by d_w.
 static double gf_cal_balls(const gf_series *s, const gf_analysis_opts *o, const gf_cal_est *e, double rs, double dw,
                            size_t k0, size_t k1)
 {
     gf_rng rng;
     gf_rng_seed(&rng, 20090701u, 3);
     double hw = 0.5 * s->cfg.container_width - dw, hd = 0.5 * s->cfg.container_depth - dw;
+    const bool cyl = s->cfg.container_shape == GF_SHAPE_CYLINDER;
+    gf_container box = gf_container_make(&s->cfg);
+    if (cyl) hw = 0.5 * gf_cal_width(&s->cfg) - dw;
     double sum = 0.0, n = 0.0, r2 = rs * rs;
     for (size_t k = k0; k < k1; k++) {
         const gf_packing *p = &s->frames[k].pk;
         for (int b = 0; b < GF_CAL_BALLS; b++) {
             double z = o->dens_z0 + (o->dens_z1 - o->dens_z0) * gf_rng_uniform(&rng);
             double var = isfinite(e->slope) ? e->slope * z + e->icpt - r2 / 5.0 : 1.0;
-            double sd = sqrt(fmax(var, 1.0)), x;
-            do { // Box-Muller, redrawn outside the walk's room
-                double u = gf_rng_uniform_pos(&rng), v = gf_rng_uniform(&rng);
-                x = sd * sqrt(-2.0 * log(u)) * cos(2.0 * GF_CAL_PI * v);
-            } while (fabs(x) > hw);
-            double y = hd * (2.0 * gf_rng_uniform(&rng) - 1.0);
+            double sd = sqrt(fmax(var, 1.0)), x, y;
+            if (cyl) {
+                int tries = 0;
+                do { // both Box-Muller normals, redrawn outside the walk's room
+                    double u = gf_rng_uniform_pos(&rng), v = gf_rng_uniform(&rng), g = sd * sqrt(-2.0 * log(u));
+                    x = g * cos(2.0 * GF_CAL_PI * v);
+                    y = g * sin(2.0 * GF_CAL_PI * v);
+                } while (!box.ops->inside_xy(&box, x, y, dw) && ++tries < 1000);
+                if (tries >= 1000) x = y = 0.0; // a spread far wider than the container: the axis
+            } else {
+                do { // Box-Muller, redrawn outside the walk's room
+                    double u = gf_rng_uniform_pos(&rng), v = gf_rng_uniform(&rng);
+                    x = sd * sqrt(-2.0 * log(u)) * cos(2.0 * GF_CAL_PI * v);
+                } while (fabs(x) > hw);
+                y = hd * (2.0 * gf_rng_uniform(&rng) - 1.0);
+            }
             size_t c = 0;
             for (size_t i = 0; i < p->n; i++) {
                 double dz = p->z[i] - z;
@@ -225,7 +261,7 @@ static gf_status gf_cal_measure(const gf_series *s, const gf_analysis_opts *base
     } while (0)
     GF_CAL_RUN(gf_measure_outflow, e->q = gf_cal_value(&m, "flow_rate"));
     GF_CAL_RUN(gf_measure_correlation, e->beta = gf_cal_value(&m, "correlation_length"));
-    GF_CAL_RUN(gf_measure_velocity, gf_cal_variance(&m, s->cfg.container_width, e));
+    GF_CAL_RUN(gf_measure_velocity, gf_cal_variance(&m, gf_cal_width(&s->cfg), e));
     GF_CAL_RUN(gf_measure_density, e->slice = gf_cal_value(&m, "density_steady"));
     GF_CAL_RUN(gf_measure_diffusion, e->bp = gf_cal_value(&m, "diffusion_length"));
 #undef GF_CAL_RUN
@@ -304,7 +340,7 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     for (size_t i = 0; i < p0->n; i++) n0 += p0->z[i] > o->dens_z0 && p0->z[i] < o->dens_z1;
     c->slice_initial = (gf_dem_value){(double)n0, sqrt((double)n0) * 0.0};
     double h = o->dens_z1 - o->dens_z0;
-    double phi = c->slice_steady.value * (GF_CAL_PI / 6.0) / (h * s->cfg.container_width * s->cfg.container_depth);
+    double phi = c->slice_steady.value * (GF_CAL_PI / 6.0) / gf_cal_volume(&s->cfg, o->dens_z0, o->dens_z1);
 
     if (!(c->flow_rate.value > 0))
         return gf_error_set(GF_ERR_PARAM,
