@@ -78,7 +78,7 @@ typedef struct gf_par {
     gf_block *block;
     gf_celllist colours;       ///< the blocks by colour: colour c's are colours.idx[start[c], start[c + 1])
     uint32_t *blockof;         ///< per grid cell: its block
-    uint32_t *pstart; ///< block b's spots of phase p: order[pstart[b (P+1) + p], pstart[b (P+1) + p + 1])
+    uint32_t *pstart; ///< block b's spots of phase p: spots.idx[pstart[b (P+1) + p], pstart[b (P+1) + p + 1])
     gf_celllist spots;              ///< spots by block (cell = block): spots.idx is their order (then by phase)
     uint32_t *tmp;                  ///< scratch
     uint8_t *dead;                  ///< per spot: removed this step
