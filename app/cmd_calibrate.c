@@ -165,7 +165,7 @@ int gf_cmd_calibrate(int argc, char **argv)
         if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
     }
     gf_packing start = {0};
-    if (st == GF_OK && refine) st = gf_packing_import(&cfg, &start, NULL);
+    if (st == GF_OK && refine) st = gf_packing_for_config(&cfg, &start, NULL);
     if (st == GF_OK && refine) {
         if (!a.quiet)
             fprintf(stderr,

@@ -18,20 +18,15 @@ int gf_cmd_pack(int argc, char **argv)
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     gf_packing pk = {0};
-    gf_status st;
-    if (cfg.packing_file[0]) {
-        gf_packing_import_report rep;
-        st = gf_packing_import(&cfg, &pk, &rep);
-        if (st == GF_OK && !cli.quiet && (rep.below_base || rep.other_types))
-            fprintf(stderr, "granflow pack: kept %zu of %zu particles (%zu below the base, %zu of other atom types)\n",
-                    pk.n, rep.read, rep.below_base, rep.other_types);
-    } else {
-        if (!cli.quiet && cfg.packing_fill_height > 0.0)
-            fprintf(stderr, "granflow pack: filling to z = %g...\n", cfg.packing_fill_height);
-        else if (!cli.quiet)
-            fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
-        st = gf_packing_generate_stoppable(&cfg, gf_cli_catch_stop(), &pk);
-    }
+    if (!cli.quiet && !cfg.packing_file[0] && cfg.packing_fill_height > 0.0)
+        fprintf(stderr, "granflow pack: filling to z = %g...\n", cfg.packing_fill_height);
+    else if (!cli.quiet && !cfg.packing_file[0])
+        fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
+    gf_packing_import_report rep;
+    gf_status st = gf_packing_for_config_stoppable(&cfg, gf_cli_catch_stop(), &pk, &rep);
+    if (st == GF_OK && !cli.quiet && (rep.below_base || rep.other_types))
+        fprintf(stderr, "granflow pack: kept %zu of %zu particles (%zu below the base, %zu of other atom types)\n",
+                pk.n, rep.read, rep.below_base, rep.other_types);
     if (st == GF_OK) st = gf_packing_check(&pk, &cfg);
     if (st == GF_OK) st = gf_packing_write(&pk, cli.out, GF_FORMAT_AUTO, &cfg);
     if (st != GF_OK) {

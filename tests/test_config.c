@@ -20,6 +20,8 @@ static size_t key_size(const gf_key *k)
     switch (k->type) {
     case GF_KEY_ENUM: return sizeof(int);
     case GF_KEY_PATH: return GF_PATH_MAX;
+    case GF_KEY_LIST: return sizeof(double) * k->list_max;
+    case GF_KEY_SIZE: return sizeof(size_t);
     case GF_KEY_DOUBLE:
     case GF_KEY_AUTO:
     case GF_KEY_INT64:
@@ -144,7 +146,7 @@ static void key_table_covers_struct(void **state)
         if (k->offset - end >= 8)
             fail_msg("no key for the field(s) before %s.%s", k->section, k->name);
         end = k->offset + key_size(k);
-        assert_ptr_equal(gf_keys_find(k->section, k->name), k); // names are unique
+        assert_ptr_equal(gf_keys_find(&gf_config_keys, k->section, k->name), k); // names are unique
     }
     assert_true(offsetof(gf_config, cookie_) >= end && offsetof(gf_config, cookie_) - end < 8);
 }
@@ -166,8 +168,8 @@ static void defaults_match_key_table(void **state)
         assert_string_equal(text, gf_keys[i].def);
     }
     assert_same_fields(&c, &d);
-    assert_string_equal(gf_keys_find("spot", "step_xy")->def, "0.676");
-    assert_string_equal(gf_keys_find("relax", "radius")->def, "auto");
+    assert_string_equal(gf_keys_find(&gf_config_keys, "spot", "step_xy")->def, "0.676");
+    assert_string_equal(gf_keys_find(&gf_config_keys, "relax", "radius")->def, "auto");
 }
 
 // ---- loading -------------------------------------------------------------

@@ -13,6 +13,7 @@
 
 #include "geom/container.h"
 #include "granflow/dem.h"
+#include "granflow/granflow.h"
 
 static const char *path_in(const char *sub)
 {
@@ -199,6 +200,80 @@ static void import_types_and_below_base(void **state)
     if (!strstr(gf_last_error(), "no particle left of 6")) fail_msg("%s", gf_last_error());
 }
 
+// One packing for a config, whoever asks (gf_packing_for_config): a run's
+// first snapshot and the DEM inputs' fill.data hold the same particles of a
+// dump filtered by packing.types (a floor of type 2 and a type-1 particle
+// below the base dropped), at the same places.
+static void run_and_dem_get_the_same_packing(void **state)
+{
+    (void)state;
+    char text[16384];
+    int len = snprintf(text, sizeof text, "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n%d\n" BOX "ITEM: ATOMS id type x y z\n",
+                       60 + 8 + 1);
+    int id = 1;
+    for (int iz = 0; iz < 4; iz++)
+        for (int iy = -1; iy <= 1; iy++)
+            for (int ix = -2; ix <= 2; ix++)
+                len += snprintf(text + len, sizeof text - (size_t)len, "%d 1 %g %g %g\n", id++, 1.01 * ix + 0.003 * iz,
+                                1.01 * iy, 0.5 + 1.01 * iz);
+    for (int k = 0; k < 8; k++) len += snprintf(text + len, sizeof text - (size_t)len, "%d 2 %d 2 -0.5\n", id++, k - 4);
+    snprintf(text + len, sizeof text - (size_t)len, "%d 1 0 0 -1.5\n", id++);
+    gf_config c = gf_config_default();
+    c.container_width = 10;
+    c.container_depth = 6;
+    c.orifice_diameter = 4;
+    c.run_duration = 0.5;
+    c.dem_fill_method = GF_DEM_GENERATE;
+    snprintf(c.packing_file, sizeof c.packing_file, "%s", wdump("typed.dump", text));
+    snprintf(c.packing_types, sizeof c.packing_types, "1");
+    gf_packing ref = {0}, snap = {0};
+    gf_packing_import_report rep;
+    assert_int_equal(gf_packing_for_config(&c, &ref, &rep), GF_OK);
+    assert_int_equal(ref.n, 60);
+    assert_int_equal(rep.other_types, 8);
+    assert_int_equal(rep.below_base, 1);
+
+    char dir[900], path[1000];
+    snprintf(dir, sizeof dir, "%s", path_in("typed_run"));
+    gf_run_opts ro = gf_run_opts_default();
+    ro.dir = dir;
+    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
+    snprintf(path, sizeof path, "%s/snapshots/snap_000000.dump", dir);
+    assert_int_equal(gf_packing_read(path, GF_FORMAT_LAMMPS, &snap), GF_OK);
+    assert_int_equal(snap.n, ref.n);
+    for (size_t k = 0; k < ref.n; k++) {
+        size_t j = 0;
+        while (j < snap.n && snap.id[j] != ref.id[k]) j++;
+        assert_true(j < snap.n);
+        assert_true(fabs(snap.x[j] - ref.x[k]) < 1e-9 && fabs(snap.y[j] - ref.y[k]) < 1e-9 &&
+                    fabs(snap.z[j] - ref.z[k]) < 1e-9);
+    }
+
+    snprintf(dir, sizeof dir, "%s", path_in("typed_dem"));
+    gf_dem_plan plan;
+    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(plan.particles, 60);
+    snprintf(path, sizeof path, "%s/fill.data", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[512];
+    while (fgets(line, sizeof line, f) && strncmp(line, "Atoms", 5) != 0) {}
+    size_t k = 0;
+    while (fgets(line, sizeof line, f)) {
+        long n, type;
+        double diam, rho, x, y, z;
+        if (sscanf(line, "%ld %ld %lf %lf %lf %lf %lf", &n, &type, &diam, &rho, &x, &y, &z) != 7) continue;
+        assert_true(k < ref.n);
+        assert_int_equal(n, (long)k + 1);
+        assert_true(fabs(x - ref.x[k]) < 1e-9 && fabs(y - ref.y[k]) < 1e-9 && fabs(z - ref.z[k]) < 1e-9);
+        k++;
+    }
+    fclose(f);
+    assert_int_equal(k, ref.n);
+    gf_packing_free(&ref);
+    gf_packing_free(&snap);
+}
+
 static void types_parse(void **state)
 {
     (void)state;
@@ -318,6 +393,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(lammps_run_gives_readable_dumps),
     cmocka_unit_test(lammps_hopper_walls_hold),
     cmocka_unit_test(import_types_and_below_base),
+    cmocka_unit_test(run_and_dem_get_the_same_packing),
     cmocka_unit_test(types_parse),
     cmocka_unit_test(series_scaled_steps_types),
     cmocka_unit_test(truncated_dump_is_an_error),

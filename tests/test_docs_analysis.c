@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // docs/analysis.md cannot drift from the code: its options table lists
-// exactly the keys of src/analysis/options.c with their defaults and ranges;
+// exactly the analysis options of the code with their defaults and ranges;
 // every measurement has a section naming its CSV files, columns, plot and
 // summary.json keys, as the measurements produce them.
 #include "support.h"
@@ -15,7 +15,6 @@
 #include "granflow/granflow.h"
 
 #define DOC_PATH GF_TEST_DATA "/../../docs/analysis.md"
-#define OPTIONS_PATH GF_TEST_DATA "/../../src/analysis/options.c"
 
 enum { MAX_KEYS = 64, KEY_LEN = 64, CELL_LEN = 128 };
 
@@ -100,19 +99,15 @@ static size_t doc_rows(const char *doc, doc_row *rows)
     return n;
 }
 
-/// The keys of gf_opt_keys, read from the source: every GF_OPT("key", ...).
-static size_t code_keys(char keys[][KEY_LEN])
+/// The keys of the code (gf_analysis_opts_key_name); *defs gets their defaults.
+static size_t code_keys(char keys[][KEY_LEN], const char *defs[])
 {
-    char *src = gf_test_read_file(OPTIONS_PATH, NULL);
-    if (!src) fail_msg("cannot read %s", OPTIONS_PATH);
-    size_t n = 0;
-    for (const char *p = strstr(src, "GF_OPT(\""); p; p = strstr(p + 1, "GF_OPT(\"")) {
-        const char *k = p + 8, *e = strchr(k, '"');
-        assert_non_null(e);
-        assert_true(n < MAX_KEYS && (size_t)(e - k) < KEY_LEN);
-        snprintf(keys[n++], KEY_LEN, "%.*s", (int)(e - k), k);
+    size_t n = gf_analysis_opts_key_count();
+    assert_true(n <= MAX_KEYS);
+    for (size_t i = 0; i < n; i++) {
+        assert_int_equal(gf_analysis_opts_key_name(i, keys[i], KEY_LEN), GF_OK);
+        defs[i] = gf_analysis_opts_key_default(i);
     }
-    free(src);
     return n;
 }
 
@@ -153,11 +148,17 @@ static void options_table_matches_the_code(void **state)
     doc_row rows[MAX_KEYS];
     size_t nrow = doc_rows(doc, rows);
     char keys[MAX_KEYS][KEY_LEN];
-    size_t nkey = code_keys(keys);
-    assert_true(nkey >= 20); // the parse found the table, not a stray match
+    const char *defs[MAX_KEYS];
+    size_t nkey = code_keys(keys, defs);
+    assert_true(nkey >= 20);
     for (size_t k = 0; k < nkey; k++) {
         size_t hits = 0;
-        for (size_t r = 0; r < nrow; r++) hits += strcmp(rows[r].key, keys[k]) == 0;
+        for (size_t r = 0; r < nrow; r++) {
+            if (strcmp(rows[r].key, keys[k]) != 0) continue;
+            hits++;
+            if (strcmp(rows[r].def, defs[k]) != 0)
+                fail_msg("docs/analysis.md: %s: default %s, the code's is %s", keys[k], rows[r].def, defs[k]);
+        }
         if (hits != 1) fail_msg("docs/analysis.md: key %s has %zu rows in the options table", keys[k], hits);
     }
     assert_int_equal(nrow, nkey); // and no row for a key the code does not have

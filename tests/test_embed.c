@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/options.h"
 #include "config/keys.h"
 #include "core/alloc.h"
 #include "core/error.h"
@@ -26,16 +27,25 @@ static void other_value(const gf_key *k, char *buf, size_t n)
     }
     case GF_KEY_PATH: snprintf(buf, n, "/tmp/a dir/%s.dump", k->name); return;
     case GF_KEY_UINT64: snprintf(buf, n, "18446744073709551557"); return;
+    case GF_KEY_LIST: { // two increasing values in range
+        double lo = fmax(k->min, -1e3), hi = fmin(k->max, 1e3);
+        char a[32], b[32];
+        gf_keys_format_double(lo + 0.25 * (hi - lo), a, sizeof a);
+        gf_keys_format_double(lo + 0.625 * (hi - lo), b, sizeof b);
+        snprintf(buf, n, "%s,%s", a, b);
+        return;
+    }
     case GF_KEY_DOUBLE:
     case GF_KEY_AUTO:
-    case GF_KEY_INT64: break;
+    case GF_KEY_INT64:
+    case GF_KEY_SIZE: break;
     }
     double lo = k->min, hi = k->max, v;
     if (isfinite(lo) && isfinite(hi)) v = lo + 0.375 * (hi - lo);
     else if (isfinite(lo)) v = lo + 1.375;
     else if (isfinite(hi)) v = hi - 1.375;
     else v = -3.125;
-    if (k->type == GF_KEY_INT64) {
+    if (k->type == GF_KEY_INT64 || k->type == GF_KEY_SIZE) {
         v = floor(v) + (v == floor(v) ? 1 : 0);
         if (!strcmp(k->def, "1") && v == 1) v = 2;
         snprintf(buf, n, "%.0f", v);
@@ -77,6 +87,64 @@ static void config_get_set_round_trip_every_key(void **state)
     assert_memory_equal(cfg, copy, sizeof *cfg);
     gf_config_destroy(copy);
     gf_config_destroy(cfg);
+}
+
+// The analysis options go through the same key tables: every option's
+// default reads back as the table spells it, another valid value set by name
+// reads back the same, and a second set of options set option by option from
+// the first is the same bytes.
+static void analysis_get_set_round_trip_every_key(void **state)
+{
+    (void)state;
+    gf_analysis_opts o, copy;
+    gf_analysis_opts_default(&o);
+    gf_analysis_opts_default(&copy);
+    const size_t nkeys = gf_analysis_opts_key_count();
+    assert_int_equal(nkeys, gf_analysis_keys.count);
+    assert_true(nkeys >= 28);
+    char name[128], got[256], want[256], kv[400];
+    for (size_t i = 0; i < nkeys; i++) {
+        assert_int_equal(gf_analysis_opts_key_name(i, name, sizeof name), GF_OK);
+        assert_non_null(gf_analysis_opts_key_doc(i));
+        assert_int_equal(gf_analysis_opts_get(&o, name, got, sizeof got), GF_OK);
+        assert_string_equal(got, gf_analysis_opts_key_default(i));
+        other_value(&gf_analysis_keys.keys[i], want, sizeof want);
+        snprintf(kv, sizeof kv, "%s=%s", name, want);
+        if (gf_analysis_opts_set(&o, kv) != GF_OK) fail_msg("%s: %s", kv, gf_last_error());
+        assert_int_equal(gf_analysis_opts_get(&o, name, got, sizeof got), GF_OK);
+        if (strcmp(got, want)) fail_msg("%s: set %s, got %s", name, want, got);
+    }
+    for (size_t i = 0; i < nkeys; i++) {
+        assert_int_equal(gf_analysis_opts_key_name(i, name, sizeof name), GF_OK);
+        assert_int_equal(gf_analysis_opts_get(&o, name, got, sizeof got), GF_OK);
+        assert_string_not_equal(got, gf_analysis_opts_key_default(i));
+        snprintf(kv, sizeof kv, "%s = %s", name, got);
+        assert_int_equal(gf_analysis_opts_set(&copy, kv), GF_OK);
+    }
+    assert_memory_equal(&o, &copy, sizeof o);
+    // "auto" goes back to the automatic window and zones.
+    assert_int_equal(gf_analysis_opts_set(&o, "window.t0=auto"), GF_OK);
+    assert_true(isnan(o.t0));
+    assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=auto"), GF_OK);
+    assert_int_equal(o.zone_nradii, 0);
+    // Errors name the option and say what is wrong, and change nothing.
+    copy = o;
+    assert_int_equal(gf_analysis_opts_set(&o, "gr.rmax=200"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "gr.rmax"));
+    assert_non_null(strstr(gf_last_error(), "out of range [0.1, 100]"));
+    assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=2,1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "increase"));
+    assert_int_equal(gf_analysis_opts_set(&o, "velocity.heights=1,x"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "'x' is not a number"));
+    assert_int_equal(gf_analysis_opts_set(&o, "surface.columns=2.5"), GF_ERR_PARAM);
+    assert_int_equal(gf_analysis_opts_set(&o, "gr.nosuch=1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "unknown key 'nosuch' in section [gr] (known: x0, x1, z0, z1, rmax, dr)"));
+    assert_int_equal(gf_analysis_opts_set(&o, "nosuch.key=1"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "nosuch"));
+    assert_memory_equal(&o, &copy, sizeof o);
+    assert_int_equal(gf_analysis_opts_get(&o, "gr.nosuch", got, sizeof got), GF_ERR_PARAM);
+    assert_int_equal(gf_analysis_opts_key_name(nkeys, name, sizeof name), GF_ERR_PARAM);
+    assert_null(gf_analysis_opts_key_default(nkeys));
 }
 
 static void config_by_name_errors(void **state)
@@ -271,6 +339,7 @@ static void options_defaults(void **state)
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(options_defaults),
     cmocka_unit_test(config_get_set_round_trip_every_key),
+    cmocka_unit_test(analysis_get_set_round_trip_every_key),
     cmocka_unit_test(config_by_name_errors),
     cmocka_unit_test(version_from_cmake),
     cmocka_unit_test(warnings_are_kept_and_passed_on),

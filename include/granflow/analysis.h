@@ -160,6 +160,16 @@ typedef struct gf_analysis_opts {
 GF_API void gf_analysis_opts_default(gf_analysis_opts *o);
 /// Sets one option from "key=value" (keys in docs/analysis.md). Errors name the key.
 GF_API gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment);
+/// The value of option `key` as gf_analysis_opts_set reads it back (e.g. "10,20,30", "auto").
+GF_API gf_status gf_analysis_opts_get(const gf_analysis_opts *o, const char *key, char *buf, size_t size);
+/// Number of options; option i (0 <= i < count) is named by gf_analysis_opts_key_name.
+GF_API size_t gf_analysis_opts_key_count(void);
+/// "section.key" of option i.
+GF_API gf_status gf_analysis_opts_key_name(size_t i, char *buf, size_t size);
+/// One line on option i, or NULL past the end.
+GF_API const char *gf_analysis_opts_key_doc(size_t i);
+/// Option i's default as gf_analysis_opts_get writes it, or NULL past the end.
+GF_API const char *gf_analysis_opts_key_default(size_t i);
 /// The window [t0, t1] resolved against the series (auto -> a quarter in, to the end).
 GF_API void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1);
 

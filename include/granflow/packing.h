@@ -52,8 +52,14 @@ GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_pac
 
 /// The initial packing of a run of `cfg`: packing.file imported
 /// (gf_packing_import; `rep`, may be NULL, gets its counts), else generated
-/// (gf_packing_generate; `rep` zeroed).
+/// (gf_packing_generate; `rep` zeroed). The one way every user of a config's
+/// packing (a run, the DEM inputs, `granflow pack`, a binding) gets it.
 GF_API gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
+
+/// gf_packing_for_config whose generation polls `stop` (may be NULL) as
+/// gf_packing_generate_stoppable does.
+GF_API gf_status gf_packing_for_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out,
+                                                 gf_packing_import_report *rep);
 
 /// Checks that every centre lies in the container of `cfg`: between the side
 /// walls, and above the base unless over the orifice. GF_ERR_PARAM naming the

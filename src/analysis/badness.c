@@ -5,6 +5,7 @@
 
 #include "analysis/structure.h"
 #include "core/error.h"
+#include "geom/celllist.h"
 #include "granflow/analysis.h"
 
 // The paper's Fig. 9 values over 40 tau < t < 160 tau.
@@ -28,32 +29,29 @@ static gf_status gf_badness_sum(const gf_packing *pk, const double lo[3], const 
     double rmax = 0.0;
     for (size_t i = 0; i < pk->n; i++)
         if (pk->r[i] > rmax) rmax = pk->r[i];
-    gf_cell_list cl;
-    gf_status st = gf_cell_list_build(&cl, pk->x, pk->y, pk->z, pk->n, fmax(2.0 * rmax, 0.25));
-    if (st != GF_OK) return st;
+    gf_celllist cl = {0};
+    gf_status st = gf_celllist_fit(&cl, pk->x, pk->y, pk->z, pk->n, fmax(2.0 * rmax, 0.25));
+    if (st != GF_OK) {
+        gf_celllist_free(&cl);
+        return st;
+    }
     double s = 0.0;
     size_t count = 0;
     for (size_t i = 0; i < pk->n; i++) {
         if (!gf_in_box(pk, i, lo, hi)) continue;
         count++;
         const double c[3] = {pk->x[i], pk->y[i], pk->z[i]};
-        int a[3], b[3];
-        gf_cell_list_range(&cl, c, pk->r[i] + rmax, a, b);
-        for (int cz = a[2]; cz <= b[2]; cz++)
-            for (int cy = a[1]; cy <= b[1]; cy++)
-                for (int cx = a[0]; cx <= b[0]; cx++) {
-                    size_t cell = gf_cell_list_index(&cl, cx, cy, cz);
-                    for (size_t q = cl.start[cell]; q < cl.start[cell + 1]; q++) {
-                        size_t j = cl.idx[q];
-                        if (j == i) continue;
-                        double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
-                        double dist = sqrt(dx * dx + dy * dy + dz * dz);
-                        double delta = pk->r[i] + pk->r[j] - dist;
-                        if (delta > 0.0) s += delta * delta;
-                    }
-                }
+        gf_celllist_near it;
+        gf_celllist_near_start(&it, &cl, c, pk->r[i] + rmax);
+        for (size_t j; gf_celllist_near_next(&it, &j);) {
+            if (j == i) continue;
+            double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
+            double dist = sqrt(dx * dx + dy * dy + dz * dz);
+            double delta = pk->r[i] + pk->r[j] - dist;
+            if (delta > 0.0) s += delta * delta;
+        }
     }
-    gf_cell_list_free(&cl);
+    gf_celllist_free(&cl);
     *sum = s;
     *p = count;
     return GF_OK;

@@ -7,6 +7,7 @@
 #include "analysis/structure.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/celllist.h"
 #include "granflow/analysis.h"
 
 #define GF_PI 3.14159265358979323846
@@ -181,9 +182,12 @@ static gf_status gf_gr_frame(const gf_packing *pk, const gf_analysis_opts *o, co
                              gf_gr_acc *a)
 {
     double rmax = (double)a->nbin * a->dr, rmax2 = rmax * rmax, rcut2 = a->rcut * a->rcut;
-    gf_cell_list cl;
-    gf_status st = gf_cell_list_build(&cl, pk->x, pk->y, pk->z, pk->n, fmax(0.5 * rmax, 0.5));
-    if (st != GF_OK) return st;
+    gf_celllist cl = {0};
+    gf_status st = gf_celllist_fit(&cl, pk->x, pk->y, pk->z, pk->n, fmax(0.5 * rmax, 0.5));
+    if (st != GF_OK) {
+        gf_celllist_free(&cl);
+        return st;
+    }
     memset(a->vin, 0, sizeof(double) * a->nbin);
     size_t ncentre = 0;
     for (size_t i = 0; i < pk->n && st == GF_OK; i++) {
@@ -193,26 +197,17 @@ static gf_status gf_gr_frame(const gf_packing *pk, const gf_analysis_opts *o, co
         ncentre++;
         gf_shell_volumes(w, c, a->dr, a->nbin, a->vin);
         size_t nbond = 0;
-        int lo[3], hi[3];
-        gf_cell_list_range(&cl, c, rmax, lo, hi);
-        for (int cz = lo[2]; cz <= hi[2] && st == GF_OK; cz++)
-            for (int cy = lo[1]; cy <= hi[1] && st == GF_OK; cy++)
-                for (int cx = lo[0]; cx <= hi[0] && st == GF_OK; cx++) {
-                    size_t cell = gf_cell_list_index(&cl, cx, cy, cz);
-                    for (size_t q = cl.start[cell]; q < cl.start[cell + 1]; q++) {
-                        size_t j = cl.idx[q];
-                        if (j == i) continue;
-                        double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
-                        double d2 = dx * dx + dy * dy + dz * dz;
-                        if (d2 >= rmax2) continue;
-                        size_t bin = (size_t)(sqrt(d2) / a->dr);
-                        a->count[bin < a->nbin ? bin : a->nbin - 1] += 1.0;
-                        if (d2 < rcut2 && d2 > 0.0) {
-                            st = gf_gr_push_bond(a, &nbond, dx, dy, dz);
-                            if (st != GF_OK) break;
-                        }
-                    }
-                }
+        gf_celllist_near it;
+        gf_celllist_near_start(&it, &cl, c, rmax);
+        for (size_t j; st == GF_OK && gf_celllist_near_next(&it, &j);) {
+            if (j == i) continue;
+            double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
+            double d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 >= rmax2) continue;
+            size_t bin = (size_t)(sqrt(d2) / a->dr);
+            a->count[bin < a->nbin ? bin : a->nbin - 1] += 1.0;
+            if (d2 < rcut2 && d2 > 0.0) st = gf_gr_push_bond(a, &nbond, dx, dy, dz);
+        }
         a->bonds += (double)nbond;
         // Thesis Sec. 3.4: the angle j-i-k between every two first neighbours.
         for (size_t p = 0; p < nbond; p++) {
@@ -228,7 +223,7 @@ static gf_status gf_gr_frame(const gf_packing *pk, const gf_analysis_opts *o, co
             }
         }
     }
-    gf_cell_list_free(&cl);
+    gf_celllist_free(&cl);
     if (st != GF_OK) return st;
     // Ideal-gas reference: the frame's number density in the region.
     double rho = (double)ncentre / vregion;

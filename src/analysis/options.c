@@ -1,159 +1,114 @@
 // SPDX-License-Identifier: MIT
 // Options of the measurements: regions, heights and windows, with the papers'
-// values as defaults (SPEC 1.6), set by name from "key=value".
-#include <errno.h>
+// values as defaults (SPEC 1.6), set by name from "key=value": a key table
+// of config/keys.h, parsed, checked and printed by its one implementation.
+#include "analysis/options.h"
+
 #include <math.h>
 #include <stddef.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "granflow/analysis.h"
 
+#define GF_AOFF(field) offsetof(gf_analysis_opts, field)
+#define GF_IN(lo, hi) .min = (lo), .max = (hi)
+#define GF_Z GF_IN(-1e6, 1e6) // any height or abscissa
+
+// The options by section, defaults the papers' values (docs/analysis.md has
+// the same table, checked by tests/test_docs_analysis.c).
+static const gf_key gf_analysis_key_list[] = {
+    {"window", "t0", GF_KEY_AUTO, GF_AOFF(t0), GF_IN(0, 1e12), .def = "auto", .unit = "tau",
+     .doc = "start of the averaging window (auto: the start of the steady flow, else a quarter of the way through)"},
+    {"window", "t1", GF_KEY_AUTO, GF_AOFF(t1), GF_IN(0, 1e12), .def = "auto", .unit = "tau",
+     .doc = "end of the averaging window (auto: the end of the steady flow, else the last snapshot)"},
+    {"dump", "dt", GF_KEY_DOUBLE, GF_AOFF(dump_dt), GF_IN(0, 1e6), .def = "0", .unit = "tau",
+     .doc = "tau per TIMESTEP, for dumps without ITEM: TIME (0: such dumps are an error)"},
+    {"velocity", "bin", GF_KEY_DOUBLE, GF_AOFF(vel_bin), GF_IN(0.05, 100), .def = "1", .unit = "d",
+     .doc = "edge of the square (x, z) bins of the mean velocity field and of the v_z(x) profiles"},
+    {"velocity", "heights", GF_KEY_LIST, GF_AOFF(vel_heights), GF_Z, .def = "10,20,30,40,50,60", .unit = "d",
+     .doc = "heights z of the v_z(x) profiles, comma-separated, 1 to 16 values", .count_offset = GF_AOFF(vel_nheights),
+     .list_max = 16},
+    {"velocity", "band", GF_KEY_DOUBLE, GF_AOFF(vel_band), GF_IN(0.05, 100), .def = "1", .unit = "d",
+     .doc = "half-thickness of the band |z - height| < band of each profile"},
+    {"velocity", "y_xhalf", GF_KEY_DOUBLE, GF_AOFF(vely_xhalf), GF_IN(0.1, 1e6), .def = "10", .unit = "d",
+     .doc = "v_z(y) region: |x| < this (2009 paper Fig. 8)"},
+    {"velocity", "y_z0", GF_KEY_DOUBLE, GF_AOFF(vely_z0), GF_Z, .def = "50", .unit = "d",
+     .doc = "v_z(y) region: z above this"},
+    {"velocity", "y_z1", GF_KEY_DOUBLE, GF_AOFF(vely_z1), GF_Z, .def = "70", .unit = "d",
+     .doc = "v_z(y) region: z below this"},
+    {"diffusion", "xhalf", GF_KEY_DOUBLE, GF_AOFF(diff_xhalf), GF_IN(0.1, 1e6), .def = "5", .unit = "d",
+     .doc = "tracked particles start with |x| < this"},
+    {"diffusion", "z0", GF_KEY_DOUBLE, GF_AOFF(diff_z0), GF_Z, .def = "60", .unit = "d",
+     .doc = "... and with z above this"},
+    {"correlation", "size", GF_KEY_DOUBLE, GF_AOFF(corr_size), GF_IN(1, 1e6), .def = "16", .unit = "d",
+     .doc = "edge of the square region of the velocity correlation (thesis Sec. 3.3)"},
+    {"correlation", "zc", GF_KEY_DOUBLE, GF_AOFF(corr_zc), GF_Z, .def = "60", .unit = "d",
+     .doc = "height of its centre"},
+    {"gr", "x0", GF_KEY_DOUBLE, GF_AOFF(gr_x0), GF_Z, .def = "-15", .unit = "d",
+     .doc = "structure region, x from (g(r), g3, badness, bulk packing fraction; SPEC 1.6)"},
+    {"gr", "x1", GF_KEY_DOUBLE, GF_AOFF(gr_x1), GF_Z, .def = "15", .unit = "d", .doc = "structure region, x to"},
+    {"gr", "z0", GF_KEY_DOUBLE, GF_AOFF(gr_z0), GF_Z, .def = "15", .unit = "d", .doc = "structure region, z from"},
+    {"gr", "z1", GF_KEY_DOUBLE, GF_AOFF(gr_z1), GF_Z, .def = "45", .unit = "d", .doc = "structure region, z to"},
+    {"gr", "rmax", GF_KEY_DOUBLE, GF_AOFF(gr_rmax), GF_IN(0.1, 100), .def = "4", .unit = "d",
+     .doc = "g(r) computed for 0 < r < rmax"},
+    {"gr", "dr", GF_KEY_DOUBLE, GF_AOFF(gr_dr), GF_IN(1e-4, 1), .def = "0.02", .unit = "d", .doc = "g(r) bin width"},
+    {"g3", "rcut", GF_KEY_DOUBLE, GF_AOFF(g3_rcut), GF_IN(0.5, 10), .def = "1.38", .unit = "d",
+     .doc = "bond length: neighbours closer than this make the bond angles"},
+    {"voronoi", "radius", GF_KEY_DOUBLE, GF_AOFF(vor_avg_radius), GF_IN(0, 100), .def = "2.2", .unit = "d",
+     .doc = "radius of the averaged packing-fraction field (2009 paper Fig. 4)"},
+    {"density", "z0", GF_KEY_DOUBLE, GF_AOFF(dens_z0), GF_Z, .def = "50", .unit = "d",
+     .doc = "the counted slice: z above this (SPEC 1.6)"},
+    {"density", "z1", GF_KEY_DOUBLE, GF_AOFF(dens_z1), GF_Z, .def = "70", .unit = "d",
+     .doc = "the counted slice: z below this"},
+    {"surface", "dx", GF_KEY_DOUBLE, GF_AOFF(surf_dx), GF_IN(0.1, 1e6), .def = "2.5", .unit = "d",
+     .doc = "column spacing of the surface regression: x_j = dx j - dx/2 (2009 paper Sec. 4)"},
+    {"surface", "columns", GF_KEY_SIZE, GF_AOFF(surf_ncols), GF_IN(2, 1000), .def = "10", .unit = "",
+     .doc = "number of columns j = 1..columns"},
+    {"zones", "radii", GF_KEY_LIST, GF_AOFF(zone_radii), GF_IN(1e-6, 1e6), .def = "auto", .unit = "d",
+     .doc = "outer radii of the radial zones around the axis, increasing (auto: four zones of equal area)",
+     .count_offset = GF_AOFF(zone_nradii), .list_max = 16, .increasing = true, .auto_empty = true},
+    {"zones", "dr", GF_KEY_DOUBLE, GF_AOFF(zone_dr), GF_IN(0.01, 1e3), .def = "0.5", .unit = "d",
+     .doc = "radial bin of v_z(r)"},
+    {"zones", "dz", GF_KEY_DOUBLE, GF_AOFF(zone_dz), GF_IN(0.01, 1e3), .def = "2", .unit = "d",
+     .doc = "height bin of the streamlines"},
+};
+#undef GF_Z
+#undef GF_IN
+#undef GF_AOFF
+
+const gf_key_table gf_analysis_keys = {gf_analysis_key_list,
+                                              sizeof gf_analysis_key_list / sizeof gf_analysis_key_list[0]};
+
 void gf_analysis_opts_default(gf_analysis_opts *o)
 {
     memset(o, 0, sizeof *o);
-    o->t0 = o->t1 = NAN;
-    o->dump_dt = 0.0;
-    o->vel_bin = 1.0;
-    for (size_t k = 0; k < 6; k++) o->vel_heights[k] = 10.0 * (double)(k + 1);
-    o->vel_nheights = 6;
-    o->vel_band = 1.0;
-    o->vely_xhalf = 10.0; // 2009 paper Fig. 8: |x| < 10, 50 < z < 70
-    o->vely_z0 = 50.0;
-    o->vely_z1 = 70.0;
-    o->diff_xhalf = 5.0;
-    o->diff_z0 = 60.0;
-    o->corr_size = 16.0; // thesis Sec. 3.3: a 16 x 16 region high in the centre
-    o->corr_zc = 60.0;
-    o->gr_x0 = -15.0; // SPEC 1.6: -15 < x < 15, 15 < z < 45
-    o->gr_x1 = 15.0;
-    o->gr_z0 = 15.0;
-    o->gr_z1 = 45.0;
-    o->gr_rmax = 4.0;
-    o->gr_dr = 0.02;
-    o->g3_rcut = 1.38;
-    o->vor_avg_radius = 2.2; // 2009 paper Fig. 4
-    o->dens_z0 = 50.0;       // SPEC 1.6: the slice 50 < z < 70
-    o->dens_z1 = 70.0;
-    o->surf_dx = 2.5; // 2009 paper Sec. 4: x_j = 2.5 j - 1.25, j = 1..10
-    o->surf_ncols = 10;
-    o->zone_nradii = 0;
-    o->zone_dr = 0.5;
-    o->zone_dz = 2.0;
-}
-
-typedef enum { GF_OPT_REAL, GF_OPT_COUNT, GF_OPT_LIST } gf_opt_kind;
-
-typedef struct gf_opt_key {
-    const char *key;
-    gf_opt_kind kind;
-    size_t off;      ///< offset of the field in gf_analysis_opts
-    double lo, hi;   ///< accepted range (inclusive)
-} gf_opt_key;
-
-#define GF_OPT(k, kind, field, lo, hi) {k, kind, offsetof(gf_analysis_opts, field), lo, hi}
-static const gf_opt_key gf_opt_keys[] = {
-    GF_OPT("window.t0", GF_OPT_REAL, t0, 0.0, 1e12),
-    GF_OPT("window.t1", GF_OPT_REAL, t1, 0.0, 1e12),
-    GF_OPT("dump.dt", GF_OPT_REAL, dump_dt, 0.0, 1e6),
-    GF_OPT("velocity.bin", GF_OPT_REAL, vel_bin, 0.05, 100.0),
-    GF_OPT("velocity.heights", GF_OPT_LIST, vel_heights, -1e6, 1e6),
-    GF_OPT("velocity.band", GF_OPT_REAL, vel_band, 0.05, 100.0),
-    GF_OPT("velocity.y_xhalf", GF_OPT_REAL, vely_xhalf, 0.1, 1e6),
-    GF_OPT("velocity.y_z0", GF_OPT_REAL, vely_z0, -1e6, 1e6),
-    GF_OPT("velocity.y_z1", GF_OPT_REAL, vely_z1, -1e6, 1e6),
-    GF_OPT("diffusion.xhalf", GF_OPT_REAL, diff_xhalf, 0.1, 1e6),
-    GF_OPT("diffusion.z0", GF_OPT_REAL, diff_z0, -1e6, 1e6),
-    GF_OPT("correlation.size", GF_OPT_REAL, corr_size, 1.0, 1e6),
-    GF_OPT("correlation.zc", GF_OPT_REAL, corr_zc, -1e6, 1e6),
-    GF_OPT("gr.x0", GF_OPT_REAL, gr_x0, -1e6, 1e6),
-    GF_OPT("gr.x1", GF_OPT_REAL, gr_x1, -1e6, 1e6),
-    GF_OPT("gr.z0", GF_OPT_REAL, gr_z0, -1e6, 1e6),
-    GF_OPT("gr.z1", GF_OPT_REAL, gr_z1, -1e6, 1e6),
-    GF_OPT("gr.rmax", GF_OPT_REAL, gr_rmax, 0.1, 100.0),
-    GF_OPT("gr.dr", GF_OPT_REAL, gr_dr, 1e-4, 1.0),
-    GF_OPT("g3.rcut", GF_OPT_REAL, g3_rcut, 0.5, 10.0),
-    GF_OPT("voronoi.radius", GF_OPT_REAL, vor_avg_radius, 0.0, 100.0),
-    GF_OPT("density.z0", GF_OPT_REAL, dens_z0, -1e6, 1e6),
-    GF_OPT("density.z1", GF_OPT_REAL, dens_z1, -1e6, 1e6),
-    GF_OPT("surface.dx", GF_OPT_REAL, surf_dx, 0.1, 1e6),
-    GF_OPT("surface.columns", GF_OPT_COUNT, surf_ncols, 2.0, 1000.0),
-    GF_OPT("zones.radii", GF_OPT_LIST, zone_radii, 1e-6, 1e6),
-    GF_OPT("zones.dr", GF_OPT_REAL, zone_dr, 0.01, 1e3),
-    GF_OPT("zones.dz", GF_OPT_REAL, zone_dz, 0.01, 1e3),
-};
-#undef GF_OPT
-
-static gf_status gf_opt_number(const char *key, const char *text, double lo, double hi, double *v)
-{
-    char *end;
-    errno = 0;
-    double x = strtod(text, &end);
-    while (*end == ' ') end++;
-    if (end == text || *end || errno || !isfinite(x))
-        return gf_error_set(GF_ERR_PARAM, "analysis option %s: '%s' is not a number", key, text);
-    if (x < lo || x > hi)
-        return gf_error_set(GF_ERR_PARAM, "analysis option %s = %g is out of range [%g, %g]", key, x, lo, hi);
-    *v = x;
-    return GF_OK;
+    gf_keys_defaults(&gf_analysis_keys, o);
 }
 
 gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
 {
-    const char *eq = strchr(assignment, '=');
-    if (!eq) return gf_error_set(GF_ERR_PARAM, "analysis option '%s': expected key=value", assignment);
-    size_t klen = (size_t)(eq - assignment);
-    const char *val = eq + 1;
-    for (size_t k = 0; k < sizeof gf_opt_keys / sizeof gf_opt_keys[0]; k++) {
-        const gf_opt_key *d = &gf_opt_keys[k];
-        if (strlen(d->key) != klen || strncmp(d->key, assignment, klen) != 0) continue;
-        char *field = (char *)o + d->off;
-        // The window ends may go back to their automatic values.
-        if (d->kind == GF_OPT_REAL && (d->off == offsetof(gf_analysis_opts, t0) || d->off == offsetof(gf_analysis_opts, t1)) &&
-            !strcmp(val, "auto")) {
-            *(double *)(void *)field = NAN;
-            return GF_OK;
-        }
-        if (d->off == offsetof(gf_analysis_opts, zone_radii) && !strcmp(val, "auto")) {
-            o->zone_nradii = 0; // four zones of equal area
-            memset(o->zone_radii, 0, sizeof o->zone_radii);
-            return GF_OK;
-        }
-        if (d->kind == GF_OPT_REAL) return gf_opt_number(d->key, val, d->lo, d->hi, (double *)(void *)field);
-        if (d->kind == GF_OPT_COUNT) {
-            double x;
-            gf_status st = gf_opt_number(d->key, val, d->lo, d->hi, &x);
-            if (st != GF_OK) return st;
-            if (x != floor(x)) return gf_error_set(GF_ERR_PARAM, "analysis option %s: '%s' is not a whole number", d->key, val);
-            *(size_t *)(void *)field = (size_t)x;
-            return GF_OK;
-        }
-        // A comma-separated list of heights.
-        double list[16];
-        size_t n = 0;
-        char buf[512];
-        if (strlen(val) >= sizeof buf) return gf_error_set(GF_ERR_PARAM, "analysis option %s: value too long", d->key);
-        strcpy(buf, val);
-        for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-            if (n == 16) return gf_error_set(GF_ERR_PARAM, "analysis option %s: at most 16 values", d->key);
-            gf_status st = gf_opt_number(d->key, tok, d->lo, d->hi, &list[n]);
-            if (st != GF_OK) return st;
-            n++;
-        }
-        if (n == 0) return gf_error_set(GF_ERR_PARAM, "analysis option %s: empty list", d->key);
-        memcpy(field, list, sizeof(double) * n);
-        if (d->off == offsetof(gf_analysis_opts, zone_radii)) {
-            for (size_t k2 = 1; k2 < n; k2++)
-                if (!(list[k2] > list[k2 - 1]))
-                    return gf_error_set(GF_ERR_PARAM, "analysis option %s: the radii must increase", d->key);
-            o->zone_nradii = n;
-        } else {
-            o->vel_nheights = n;
-        }
-        return GF_OK;
-    }
-    return gf_error_set(GF_ERR_PARAM, "unknown analysis option '%.*s' (see docs/analysis.md)", (int)klen, assignment);
+    if (!o) return gf_error_set(GF_ERR_PARAM, "analysis option: NULL options");
+    return gf_keys_set(&gf_analysis_keys, o, assignment, "analysis option");
+}
+
+gf_status gf_analysis_opts_get(const gf_analysis_opts *o, const char *key, char *buf, size_t size)
+{
+    return gf_keys_get(&gf_analysis_keys, o, key, buf, size, "gf_analysis_opts_get");
+}
+
+size_t gf_analysis_opts_key_count(void) { return gf_analysis_keys.count; }
+
+gf_status gf_analysis_opts_key_name(size_t i, char *buf, size_t size)
+{
+    return gf_keys_name(&gf_analysis_keys, i, buf, size, "gf_analysis_opts_key_name");
+}
+
+const char *gf_analysis_opts_key_doc(size_t i) { return i < gf_analysis_keys.count ? gf_analysis_key_list[i].doc : NULL; }
+
+const char *gf_analysis_opts_key_default(size_t i)
+{
+    return i < gf_analysis_keys.count ? gf_analysis_key_list[i].def : NULL;
 }
 
 void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1)

@@ -7,6 +7,7 @@
 #include "analysis/voronoi_cells.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/celllist.h"
 #include "granflow/analysis.h"
 
 #define GF_PI 3.14159265358979323846
@@ -197,7 +198,7 @@ static gf_status gf_vor_field(const gf_packing *pk, const gf_vor_frame *f, doubl
 {
     size_t n = pk->n ? pk->n : 1;
     double *bx = GF_NEW(double, n), *by = GF_NEW(double, n), *bz = GF_NEW(double, n);
-    gf_cell_list cl = {0};
+    gf_celllist cl = {0};
     gf_status st = GF_OK;
     if (!bx || !by || !bz) {
         st = gf_error_set(GF_ERR_NOMEM, "voronoi: out of memory for %zu particles", pk->n);
@@ -208,31 +209,25 @@ static gf_status gf_vor_field(const gf_packing *pk, const gf_vor_frame *f, doubl
         by[i] = pk->y[i];
         bz[i] = pk->z[i];
     }
-    st = gf_cell_list_build(&cl, bx, by, bz, pk->n, fmax(R, 0.5));
+    st = gf_celllist_fit(&cl, bx, by, bz, pk->n, fmax(R, 0.5));
     if (st != GF_OK) goto done;
     for (size_t i = 0; i < pk->n; i++) {
         avg[i] = NAN;
         if (!isfinite(f->vol[i])) continue;
         const double c[3] = {pk->x[i], pk->y[i], pk->z[i]};
         double vp = 0.0, vc = 0.0;
-        int lo[3], hi[3];
-        gf_cell_list_range(&cl, c, R, lo, hi);
-        for (int cz = lo[2]; cz <= hi[2]; cz++)
-            for (int cy = lo[1]; cy <= hi[1]; cy++)
-                for (int cx = lo[0]; cx <= hi[0]; cx++) {
-                    size_t cell = gf_cell_list_index(&cl, cx, cy, cz);
-                    for (size_t q = cl.start[cell]; q < cl.start[cell + 1]; q++) {
-                        size_t j = cl.idx[q];
-                        double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
-                        if (dx * dx + dy * dy + dz * dz > R * R) continue;
-                        vp += gf_vor_sphere(pk->r[j]);
-                        vc += f->vol[j];
-                    }
-                }
+        gf_celllist_near it;
+        gf_celllist_near_start(&it, &cl, c, R);
+        for (size_t j; gf_celllist_near_next(&it, &j);) {
+            double dx = pk->x[j] - c[0], dy = pk->y[j] - c[1], dz = pk->z[j] - c[2];
+            if (dx * dx + dy * dy + dz * dz > R * R) continue;
+            vp += gf_vor_sphere(pk->r[j]);
+            vc += f->vol[j];
+        }
         if (vc > 0.0) avg[i] = vp / vc;
     }
 done:
-    gf_cell_list_free(&cl);
+    gf_celllist_free(&cl);
     GF_DELETE(bx, n);
     GF_DELETE(by, n);
     GF_DELETE(bz, n);

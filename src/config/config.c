@@ -47,40 +47,9 @@ gf_config gf_config_default(void)
 {
     gf_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    for (size_t i = 0; i < gf_keys_count; i++) {
-        char why[160];
-        gf_key_result r = gf_keys_assign(&gf_keys[i], &cfg, gf_keys[i].def, why, sizeof why);
-        GF_ASSERT(r == GF_KEY_OK); // the table's own defaults always parse
-        (void)r;
-    }
+    gf_keys_defaults(&gf_config_keys, &cfg);
     cfg.cookie_ = GF_CONFIG_COOKIE;
     return cfg;
-}
-
-// Stores one value. `lead` starts the message ("x.ini:3" or "--set spot.w=abc");
-// `show_value` adds "[section] key = value" after it (file style).
-static gf_status gf_config_apply(gf_config *cfg, const char *lead, bool show_value,
-                                 const char *section, const char *name, const char *value)
-{
-    char list[256];
-    if (!gf_keys_section_known(section)) {
-        gf_keys_list(NULL, list, sizeof list);
-        return gf_error_set(GF_ERR_PARAM, "%s: unknown section [%s] (known: %s)", lead, section,
-                            list);
-    }
-    const gf_key *k = gf_keys_find(section, name);
-    if (!k) {
-        gf_keys_list(section, list, sizeof list);
-        return gf_error_set(GF_ERR_PARAM, "%s: unknown key '%s' in section [%s] (known: %s)", lead,
-                            name, section, list);
-    }
-    char why[160];
-    gf_key_result r = gf_keys_assign(k, cfg, value, why, sizeof why);
-    if (r == GF_KEY_OK) return GF_OK;
-    if (!show_value) return gf_error_set(GF_ERR_PARAM, "%s: %s", lead, why);
-    const char *q = r == GF_KEY_BAD_VALUE ? "'" : "";
-    return gf_error_set(GF_ERR_PARAM, "%s: [%s] %s = %s%s%s: %s", lead, section, name, q, value, q,
-                        why);
 }
 
 // ---- loading -------------------------------------------------------------
@@ -133,9 +102,9 @@ static bool gf_config_check_line(gf_config_loader *ld, const char *p)
         snprintf(name, sizeof name, "%.*s", (int)(len < sizeof name ? len : sizeof name - 1),
                  p + 1);
         char *s = gf_config_trim(name);
-        if (!gf_keys_section_known(s)) {
+        if (!gf_keys_section_known(&gf_config_keys, s)) {
             char list[128];
-            gf_keys_list(NULL, list, sizeof list);
+            gf_keys_list(&gf_config_keys, NULL, list, sizeof list);
             gf_error_set(GF_ERR_PARAM, "%s:%d: unknown section [%s] (known: %s)", ld->path,
                          ld->line, s, list);
             return false;
@@ -200,7 +169,7 @@ static int gf_config_on_pair(void *user, const char *section, const char *name, 
     if (!*s) {
         st = gf_error_set(GF_ERR_PARAM, "%s: key '%s' is outside any [section]", lead, name);
     } else {
-        st = gf_config_apply(ld->cfg, lead, true, s, name, value ? value : "");
+        st = gf_keys_apply(&gf_config_keys, ld->cfg, lead, true, s, name, value ? value : "");
     }
     if (st != GF_OK) {
         gf_config_fail(ld, st);
@@ -238,35 +207,7 @@ gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *orig
     gf_status st = gf_config_check(cfg, "gf_config_set");
     if (st != GF_OK) return st;
     if (!origin || !*origin) origin = "gf_config_set";
-    if (!assignment) return gf_error_set(GF_ERR_PARAM, "%s: assignment is NULL", origin);
-    size_t size = strlen(assignment) + 1;
-    char *buf = gf_alloc(size);
-    if (!buf) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory", origin);
-    memcpy(buf, assignment, size);
-
-    char *eq = strchr(buf, '=');
-    char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
-    if (!eq || !dot) {
-        st = gf_error_set(GF_ERR_PARAM, "%s %s: malformed assignment, expected section.key=value",
-                          origin, assignment);
-    } else {
-        *eq = '\0';
-        *dot = '\0';
-        char *section = gf_config_trim(buf);
-        char *name = gf_config_trim(dot + 1);
-        char *value = gf_config_trim(eq + 1);
-        if (!*section || !*name) {
-            st = gf_error_set(GF_ERR_PARAM,
-                              "%s %s: malformed assignment, expected section.key=value", origin,
-                              assignment);
-        } else {
-            char lead[GF_PATH_MAX + 160];
-            snprintf(lead, sizeof lead, "%s %s.%s=%s", origin, section, name, value);
-            st = gf_config_apply(cfg, lead, false, section, name, value);
-        }
-    }
-    gf_free(buf, size);
-    return st;
+    return gf_keys_set(&gf_config_keys, cfg, assignment, origin);
 }
 
 // ---- validation ----------------------------------------------------------

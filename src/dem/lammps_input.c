@@ -206,9 +206,7 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_p
            vp = GF_DEM_PI / 6.0;
     gf_packing pk = {0};
     if (c->dem_fill_method == GF_DEM_GENERATE) {
-        if (c->packing_file[0]) st = gf_packing_import(c, &pk, NULL);
-        else st = gf_packing_generate(c, &pk);
-        if (st != GF_OK) return st;
+        if ((st = gf_packing_for_config(c, &pk, NULL)) != GF_OK) return st;
         plan.particles = (int64_t)pk.n;
     } else if (c->packing_fill_height > 0) {
         plan.particles = (int64_t)floor(GF_DEM_PHI_FILL * area * c->packing_fill_height / vp + 0.5);

@@ -2,6 +2,10 @@
 // Internal: uniform cell grid over the container with fixed-capacity cells
 // (STYLE item 8). Points outside the grid are clamped into its edge cells, so
 // every particle is always findable; queries test true distances.
+// Not the counting-sort cell list of geom/celllist.h: the engine moves one
+// particle at a time between two reads, so its cells must take O(1) inserts
+// and removals (and be saved in checkpoints slot by slot), which a list
+// sorted once per build cannot do.
 #ifndef GF_GEOM_GRID_H
 #define GF_GEOM_GRID_H
 

@@ -1,10 +1,17 @@
 // SPDX-License-Identifier: MIT
-// The initial packing a config asks for: packing.file imported, else generated.
+// The initial packing a config asks for: packing.file imported, else
+// generated. Every path to a config's packing goes through here.
 #include "granflow/packing.h"
+
+gf_status gf_packing_for_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out,
+                                          gf_packing_import_report *rep)
+{
+    if (rep) *rep = (gf_packing_import_report){0};
+    if (!cfg->packing_file[0]) return gf_packing_generate_stoppable(cfg, stop, out);
+    return gf_packing_import(cfg, out, rep);
+}
 
 gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep)
 {
-    if (rep) *rep = (gf_packing_import_report){0};
-    if (!cfg->packing_file[0]) return gf_packing_generate(cfg, out);
-    return gf_packing_import(cfg, out, rep);
+    return gf_packing_for_config_stoppable(cfg, NULL, out, rep);
 }

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/rng.h"
+#include "geom/celllist.h"
 #include "geom/container.h"
 #include "packing/bidisperse.h"
 
@@ -59,9 +60,7 @@ typedef struct gf_gen {
     size_t *start;        // CSR row starts of the half neighbour list, n + 1
     uint32_t *nbr;        // neighbours j of i in cell order (each pair once)
     size_t nbr_cap;
-    size_t *cell_start; // counting-sort scratch, ncell_cap + 1
-    size_t ncell_cap;
-    uint32_t *cell;       // cell of each particle during a build
+    gf_celllist cells;    // the particles by cell at the last build
     double width, depth;  // side walls at +-width/2, +-depth/2 (a cylinder: its bounding box)
     bool shaped;          // not a box: the container's walls bound the centres too
     gf_container box;     // ... these walls, at z + zoff
@@ -90,8 +89,7 @@ static void gf_gen_release(gf_gen *g)
     GF_DELETE(g->rz, n);
     GF_DELETE(g->start, n + 1);
     GF_DELETE(g->nbr, g->nbr_cap);
-    GF_DELETE(g->cell_start, g->ncell_cap + 1);
-    GF_DELETE(g->cell, n);
+    gf_celllist_free(&g->cells);
     GF_DELETE(g->slab_sum, g->slab_cap);
     GF_DELETE(g->slab_strain, g->slab_cap);
     GF_DELETE(g->slab_count, g->slab_cap);
@@ -110,11 +108,10 @@ static gf_status gf_gen_init(gf_gen *g, size_t n)
     g->ry = GF_NEW(double, n);
     g->rz = GF_NEW(double, n);
     g->start = GF_NEW(size_t, n + 1);
-    g->cell = GF_NEW(uint32_t, n);
     g->nbr_cap = 8 * n;
     g->nbr = GF_NEW(uint32_t, g->nbr_cap);
     if (!g->x || !g->y || !g->z || !g->ux || !g->uy || !g->uz || !g->rx || !g->ry || !g->rz ||
-        !g->start || !g->cell || !g->nbr)
+        !g->start || !g->nbr)
         return gf_error_set(GF_ERR_NOMEM, "packing: out of memory for %zu particles", n);
     return GF_OK;
 }
@@ -140,40 +137,23 @@ static gf_status gf_gen_build(gf_gen *g)
         h *= 1.25;
     }
     size_t nx = (size_t)fnx, ny = (size_t)fny, nz = (size_t)fnz;
-    size_t ncell = nx * ny * nz;
-    if (ncell > g->ncell_cap) {
-        GF_DELETE(g->cell_start, g->ncell_cap + 1);
-        g->ncell_cap = ncell + ncell / 2;
-        g->cell_start = GF_NEW(size_t, g->ncell_cap + 1);
-        if (!g->cell_start) {
-            g->ncell_cap = 0;
-            return gf_error_set(GF_ERR_NOMEM, "packing: out of memory for %zu cells", ncell);
-        }
-    }
-    size_t *cs = g->cell_start;
-    memset(cs, 0, sizeof *cs * (ncell + 1));
-    const double fx = (double)nx / g->width, fy = (double)ny / g->depth, fz = 1.0 / h;
-    const double hw = 0.5 * g->width, hd = 0.5 * g->depth;
-    for (size_t i = 0; i < n; i++) {
-        size_t ix = (size_t)((g->x[i] + hw) * fx), iy = (size_t)((g->y[i] + hd) * fy),
-               iz = (size_t)(g->z[i] * fz);
-        if (ix >= nx) ix = nx - 1;
-        if (iy >= ny) iy = ny - 1;
-        if (iz >= nz) iz = nz - 1;
-        g->cell[i] = (uint32_t)((iz * ny + iy) * nx + ix);
-        cs[g->cell[i] + 1]++;
-    }
-    for (size_t c = 0; c < ncell; c++) cs[c + 1] += cs[c];
-    // Counting sort (stable: equal cells keep their order) into the scratch
-    // arrays, then swap them in. cs[c] ends as the end of cell c.
-    for (size_t i = 0; i < n; i++) {
-        size_t k = cs[g->cell[i]]++;
+    // Cells of width / nx by depth / ny by h over the column (the floor 0.5 below z = 0.5).
+    const double corner[3] = {-0.5 * g->width, -0.5 * g->depth, 0.0};
+    const double inv[3] = {(double)nx / g->width, (double)ny / g->depth, 1.0 / h};
+    const int nc[3] = {(int)nx, (int)ny, (int)nz};
+    gf_celllist *cl = &g->cells;
+    gf_status st = gf_celllist_grid(cl, corner, inv, nc);
+    if (st == GF_OK) st = gf_celllist_bin(cl, g->x, g->y, g->z, n);
+    if (st != GF_OK) return st;
+    // The particles re-ordered by cell into the scratch arrays, then swapped
+    // in: from here on cell c holds the particles start[c] .. start[c + 1] - 1.
+    for (size_t k = 0; k < n; k++) {
+        size_t i = cl->idx[k];
         g->ux[k] = g->x[i];
         g->uy[k] = g->y[i];
         g->uz[k] = g->z[i];
     }
-    for (size_t c = ncell; c > 0; c--) cs[c] = cs[c - 1];
-    cs[0] = 0;
+    const size_t *cs = cl->start;
     double *t;
     t = g->x, g->x = g->ux, g->ux = t;
     t = g->y, g->y = g->uy, g->uy = t;
@@ -189,21 +169,8 @@ static gf_status gf_gen_build(gf_gen *g)
         for (size_t iy = 0; iy < ny; iy++)
             for (size_t ix = 0; ix < nx; ix++) {
                 size_t c = (iz * ny + iy) * nx + ix;
-                size_t lo[14], hi[14];
-                int ns = 0;
-                for (int dz = 0; dz <= 1; dz++)
-                    for (int dy = (dz ? -1 : 0); dy <= 1; dy++)
-                        for (int dx = (dz || dy ? -1 : 1); dx <= 1; dx++) {
-                            long jx = (long)ix + dx, jy = (long)iy + dy, jz = (long)iz + dz;
-                            if (jx < 0 || jy < 0 || jx >= (long)nx || jy >= (long)ny ||
-                                jz >= (long)nz)
-                                continue;
-                            size_t b = ((size_t)jz * ny + (size_t)jy) * nx + (size_t)jx;
-                            if (cs[b] == cs[b + 1]) continue;
-                            lo[ns] = cs[b];
-                            hi[ns] = cs[b + 1];
-                            ns++;
-                        }
+                size_t lo[13], hi[13];
+                int ns = gf_celllist_forward(cl, (int)ix, (int)iy, (int)iz, lo, hi);
                 for (size_t i = cs[c]; i < cs[c + 1]; i++) {
                     g->start[i] = m;
                     // Room for every candidate of this particle.

@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/celllist.h"
 #include "geom/container.h"
 
 void gf_packing_tag_layers(gf_packing *p, double thickness)
@@ -37,80 +38,38 @@ double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0,
 double gf_packing_min_distance(const gf_packing *p)
 {
     if (p->n < 2) return INFINITY;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double rmax = 0.0;
-    const double *c[3] = {p->x, p->y, p->z};
     for (size_t i = 0; i < p->n; i++) {
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], c[k][i]);
-            hi[k] = fmax(hi[k], c[k][i]);
-        }
+        if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->z[i])) return NAN; // (no reader lets these through)
         rmax = fmax(rmax, p->r[i]);
     }
     // Cells of side >= one diameter: every pair closer than that is in
     // neighbouring cells, so the result is exact whenever it is below h.
-    // Sparse or far-flung particles get bigger cells, so that there are never
-    // many more cells than particles (their count, in doubles, cannot wrap).
-    double h = fmax(2.0 * rmax, 1.0), fc[3];
-    for (int k = 0; k < 3; k++)
-        if (!isfinite(hi[k] - lo[k]) || !isfinite(h)) return NAN; // (no reader lets these through)
-    for (;;) {
-        for (int k = 0; k < 3; k++) fc[k] = floor((hi[k] - lo[k]) / h) + 1.0;
-        if (fc[0] * fc[1] * fc[2] <= 2.0 * (double)p->n + 64.0) break;
-        h *= 1.5;
-    }
-    size_t nc[3], ncell = 1;
-    for (int k = 0; k < 3; k++) {
-        nc[k] = (size_t)fc[k];
-        ncell *= nc[k];
-    }
-    size_t *head = GF_NEW(size_t, ncell + 1), *order = GF_NEW(size_t, p->n), *cell = GF_NEW(size_t, p->n);
-    if (!head || !order || !cell) {
-        GF_DELETE(head, ncell + 1);
-        GF_DELETE(order, p->n);
-        GF_DELETE(cell, p->n);
+    double h = fmax(2.0 * rmax, 1.0);
+    if (!isfinite(h)) return NAN;
+    gf_celllist cl = {0};
+    if (gf_celllist_fit(&cl, p->x, p->y, p->z, p->n, h) != GF_OK) {
+        gf_celllist_free(&cl);
         return NAN;
     }
-    size_t ci[3];
-    for (size_t i = 0; i < p->n; i++) {
-        for (int k = 0; k < 3; k++) {
-            size_t v = (size_t)((c[k][i] - lo[k]) / h);
-            ci[k] = v >= nc[k] ? nc[k] - 1 : v;
-        }
-        cell[i] = (ci[2] * nc[1] + ci[1]) * nc[0] + ci[0];
-        head[cell[i] + 1]++;
-    }
-    for (size_t k = 0; k < ncell; k++) head[k + 1] += head[k];
-    for (size_t i = 0; i < p->n; i++) order[head[cell[i]]++] = i;
-    for (size_t k = ncell; k > 0; k--) head[k] = head[k - 1];
-    head[0] = 0;
     double best2 = INFINITY;
-    for (size_t cz = 0; cz < nc[2]; cz++)
-        for (size_t cy = 0; cy < nc[1]; cy++)
-            for (size_t cx = 0; cx < nc[0]; cx++) {
-                size_t a = (cz * nc[1] + cy) * nc[0] + cx;
-                for (int dz = -1; dz <= 1; dz++)
-                    for (int dy = -1; dy <= 1; dy++)
-                        for (int dx = -1; dx <= 1; dx++) {
-                            long x = (long)cx + dx, y = (long)cy + dy, z = (long)cz + dz;
-                            if (x < 0 || y < 0 || z < 0 || x >= (long)nc[0] || y >= (long)nc[1] ||
-                                z >= (long)nc[2])
-                                continue;
-                            size_t b = ((size_t)z * nc[1] + (size_t)y) * nc[0] + (size_t)x;
-                            if (b < a) continue;
-                            for (size_t u = head[a]; u < head[a + 1]; u++)
-                                for (size_t v = (a == b ? u + 1 : head[b]); v < head[b + 1]; v++) {
-                                    size_t i = order[u], j = order[v];
-                                    double ddx = p->x[i] - p->x[j], ddy = p->y[i] - p->y[j],
-                                           ddz = p->z[i] - p->z[j];
-                                    double d2 = ddx * ddx + ddy * ddy + ddz * ddz;
-                                    if (d2 < best2) best2 = d2;
-                                }
+    for (int cz = 0; cz < cl.n[2]; cz++)
+        for (int cy = 0; cy < cl.n[1]; cy++)
+            for (int cx = 0; cx < cl.n[0]; cx++) {
+                size_t a = gf_celllist_index(&cl, cx, cy, cz), lo[13], hi[13];
+                int ns = gf_celllist_forward(&cl, cx, cy, cz, lo, hi);
+                for (size_t u = cl.start[a]; u < cl.start[a + 1]; u++) {
+                    size_t i = cl.idx[u];
+                    for (int s = -1; s < ns; s++)
+                        for (size_t v = s < 0 ? u + 1 : lo[s]; v < (s < 0 ? cl.start[a + 1] : hi[s]); v++) {
+                            size_t j = cl.idx[v];
+                            double dx = p->x[i] - p->x[j], dy = p->y[i] - p->y[j], dz = p->z[i] - p->z[j];
+                            double d2 = dx * dx + dy * dy + dz * dz;
+                            if (d2 < best2) best2 = d2;
                         }
+                }
             }
-    GF_DELETE(head, ncell + 1);
-    GF_DELETE(order, p->n);
-    GF_DELETE(cell, p->n);
+    gf_celllist_free(&cl);
     return sqrt(best2);
 }
 

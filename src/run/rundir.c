@@ -267,17 +267,13 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
 
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
-    if (!cfg->packing_file[0]) {
-        gf_status st = gf_packing_generate_stoppable(cfg, opts->stop, pk);
-        if (st == GF_ERR_INTERRUPTED)
-            gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
-        return st;
-    }
+    gf_packing_import_report rep;
+    gf_status st = gf_packing_for_config_stoppable(cfg, opts->stop, pk, &rep);
+    if (st == GF_ERR_INTERRUPTED)
+        gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
     // A DEM packing may hold other atom types (a frozen floor) and particles
     // already falling through the orifice: dropped, and said so.
-    gf_packing_import_report rep;
-    gf_status st = gf_packing_import(cfg, pk, &rep);
-    if (st == GF_OK && opts->progress) {
+    if (st == GF_OK && cfg->packing_file[0] && opts->progress) {
         char note[GF_PATH_MAX + 256];
         snprintf(note, sizeof note,
                  "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types dropped)",

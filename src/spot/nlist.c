@@ -12,6 +12,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/celllist.h"
 #include "spot/sim_internal.h"
 
 // Permutes every per-particle array so that entry k takes old entry order[k].
@@ -41,28 +42,16 @@ static gf_status gf_nlist_permute(gf_sim *sim, const uint32_t *order, size_t m)
 static gf_status gf_nlist_reorder(gf_sim *sim)
 {
     gf_grid *g = &sim->grid;
-    size_t ncell = g->ncell, n = sim->n;
-    uint32_t *first = GF_NEW(uint32_t, ncell + 1), *cell = GF_NEW(uint32_t, n ? n : 1),
-             *order = GF_NEW(uint32_t, n ? n : 1);
-    gf_status st = GF_OK;
-    if (!first || !cell || !order) {
-        st = gf_error_set(GF_ERR_NOMEM, "out of memory re-sorting particles");
-        goto done;
+    size_t n = sim->n;
+    gf_celllist cl = {0};
+    gf_status st = gf_celllist_keys(&cl, g->ncell, n);
+    if (st == GF_OK) {
+        for (size_t i = 0; i < n; i++)
+            cl.cell[i] = sim->alive[i] ? gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z) : GF_CELLLIST_OUT;
+        gf_celllist_sort(&cl, n);
+        st = gf_nlist_permute(sim, cl.idx, cl.nidx);
     }
-    for (size_t i = 0; i < n; i++) {
-        if (!sim->alive[i]) continue;
-        cell[i] = gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z);
-        first[cell[i] + 1]++;
-    }
-    for (size_t c = 0; c < ncell; c++) first[c + 1] += first[c];
-    size_t m = first[ncell];
-    for (size_t i = 0; i < n; i++)
-        if (sim->alive[i]) order[first[cell[i]]++] = (uint32_t)i;
-    st = gf_nlist_permute(sim, order, m);
-done:
-    GF_DELETE(first, ncell + 1);
-    GF_DELETE(cell, n ? n : 1);
-    GF_DELETE(order, n ? n : 1);
+    gf_celllist_free(&cl);
     return st;
 }
 

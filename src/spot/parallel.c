@@ -28,6 +28,7 @@
 #endif
 
 #include "core/alloc.h"
+#include "geom/celllist.h"
 #include "core/clock.h"
 #include "core/error.h"
 #include "spot/par_mpi.h"
@@ -75,15 +76,14 @@ typedef struct gf_par {
     int ncolour;     ///< nc[0] nc[1] nc[2]
     size_t nblock;
     gf_block *block;
-    uint32_t *cstart, *cblock; ///< colour c's blocks: cblock[cstart[c], cstart[c + 1])
+    gf_celllist colours;       ///< the blocks by colour: colour c's are colours.idx[start[c], start[c + 1])
     uint32_t *blockof;         ///< per grid cell: its block
-    uint32_t *pstart; ///< block b's spots of phase p: order[pstart[b (P+1) + p], pstart[b (P+1) + p + 1])
-    uint32_t *order, *tmp;          ///< spots grouped by block (then phase); scratch
-    uint32_t *blk;                  ///< each spot's block
+    uint32_t *pstart; ///< block b's spots of phase p: spots.idx[pstart[b (P+1) + p], pstart[b (P+1) + p + 1])
+    gf_celllist spots;              ///< spots by block (cell = block): spots.idx is their order (then by phase)
+    uint32_t *tmp;                  ///< scratch
     uint8_t *dead;                  ///< per spot: removed this step
     uint8_t *phase;                 ///< per spot: its phase this step
     size_t spot_cap;
-    uint32_t *bucket;               ///< counting sort: first entry of each block
     uint32_t *run;                  ///< blocks of the current colour, heaviest first
     double *coltop;                 ///< per grid column: its top z at the step start
     size_t ncol;
@@ -114,16 +114,13 @@ void gf_par_free(gf_sim *sim)
     for (int t = 0; t < q->threads; t++) gf_work_free(&q->work[t]);
     GF_DELETE(q->work, q->threads);
     GF_DELETE(q->block, q->nblock);
-    GF_DELETE(q->cstart, (size_t)q->ncolour + 1);
-    GF_DELETE(q->cblock, q->nblock);
+    gf_celllist_free(&q->colours);
     GF_DELETE(q->blockof, sim->grid.ncell);
     GF_DELETE(q->pstart, q->nblock * (GF_PAR_PHASES + 1));
-    GF_DELETE(q->order, q->spot_cap);
+    gf_celllist_free(&q->spots);
     GF_DELETE(q->tmp, q->spot_cap);
-    GF_DELETE(q->blk, q->spot_cap);
     GF_DELETE(q->dead, q->spot_cap);
     GF_DELETE(q->phase, q->spot_cap);
-    GF_DELETE(q->bucket, q->nblock + 1);
     GF_DELETE(q->run, q->nblock);
     GF_DELETE(q->coltop, q->ncol);
     gf_free(q, sizeof *q);
@@ -167,14 +164,13 @@ static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
     q->ncolour = q->nc[0] * q->nc[1] * q->nc[2];
     q->nblock = (size_t)q->nb[0] * (size_t)q->nb[1] * (size_t)q->nb[2];
     q->block = GF_NEW(gf_block, q->nblock);
-    q->cstart = GF_NEW(uint32_t, (size_t)q->ncolour + 1);
-    q->cblock = GF_NEW(uint32_t, q->nblock);
     q->blockof = GF_NEW(uint32_t, g->ncell);
     q->pstart = GF_NEW(uint32_t, q->nblock * (GF_PAR_PHASES + 1));
-    q->bucket = GF_NEW(uint32_t, q->nblock + 1);
     q->run = GF_NEW(uint32_t, q->nblock);
-    if (!q->block || !q->cstart || !q->cblock || !q->blockof || !q->pstart || !q->bucket || !q->run)
+    if (!q->block || !q->blockof || !q->pstart || !q->run)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
+    gf_status st = gf_celllist_keys(&q->colours, (size_t)q->ncolour, q->nblock);
+    if (st != GF_OK) return st;
     for (int cz = 0; cz < g->nz; cz++)
         for (int cy = 0; cy < g->ny; cy++)
             for (int cx = 0; cx < g->nx; cx++) {
@@ -182,23 +178,13 @@ static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
                 q->blockof[((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx] =
                     (uint32_t)((bz * (size_t)q->nb[1] + by) * (size_t)q->nb[0] + bx);
             }
-    memset(q->cstart, 0, sizeof(uint32_t) * ((size_t)q->ncolour + 1));
-    for (int pass = 0; pass < 2; pass++) {
-        for (size_t b = 0; b < q->nblock; b++) {
-            size_t bx = b % (size_t)q->nb[0], by = b / (size_t)q->nb[0] % (size_t)q->nb[1];
-            size_t bz = b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
-            size_t c = (bx % (size_t)q->nc[0]) +
-                       (size_t)q->nc[0] * ((by % (size_t)q->nc[1]) + (size_t)q->nc[1] * (bz % (size_t)q->nc[2]));
-            if (pass == 0)
-                q->cstart[c + 1]++;
-            else
-                q->cblock[q->bucket[c]++] = (uint32_t)b;
-        }
-        if (pass == 0) {
-            for (int c = 0; c < q->ncolour; c++) q->cstart[c + 1] += q->cstart[c];
-            memcpy(q->bucket, q->cstart, sizeof(uint32_t) * (size_t)q->ncolour);
-        }
+    for (size_t b = 0; b < q->nblock; b++) {
+        size_t bx = b % (size_t)q->nb[0], by = b / (size_t)q->nb[0] % (size_t)q->nb[1];
+        size_t bz = b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
+        q->colours.cell[b] = (uint32_t)((bx % (size_t)q->nc[0]) +
+                                        (size_t)q->nc[0] * ((by % (size_t)q->nc[1]) + (size_t)q->nc[1] * (bz % (size_t)q->nc[2])));
     }
+    gf_celllist_sort(&q->colours, q->nblock);
     return GF_OK;
 }
 
@@ -229,26 +215,21 @@ static gf_status gf_par_make(gf_sim *sim)
 
 static gf_status gf_par_spots(gf_par *q, size_t ns)
 {
-    if (ns <= q->spot_cap) return GF_OK;
+    gf_status st = gf_celllist_keys(&q->spots, q->nblock, ns);
+    if (st != GF_OK || ns <= q->spot_cap) return st;
     size_t cap = ns + ns / 2 + 64;
-    GF_DELETE(q->order, q->spot_cap);
     GF_DELETE(q->tmp, q->spot_cap);
-    GF_DELETE(q->blk, q->spot_cap);
     GF_DELETE(q->dead, q->spot_cap);
     GF_DELETE(q->phase, q->spot_cap);
-    q->order = GF_NEW(uint32_t, cap);
     q->tmp = GF_NEW(uint32_t, cap);
-    q->blk = GF_NEW(uint32_t, cap);
     q->dead = GF_NEW(uint8_t, cap);
     q->phase = GF_NEW(uint8_t, cap);
     q->spot_cap = cap;
-    if (!q->order || !q->tmp || !q->blk || !q->dead || !q->phase) {
-        GF_DELETE(q->order, cap);
+    if (!q->tmp || !q->dead || !q->phase) {
         GF_DELETE(q->tmp, cap);
-        GF_DELETE(q->blk, cap);
         GF_DELETE(q->dead, cap);
         GF_DELETE(q->phase, cap);
-        q->order = q->tmp = q->blk = NULL;
+        q->tmp = NULL;
         q->dead = q->phase = NULL;
         q->spot_cap = 0;
         return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu spots", ns);
@@ -263,22 +244,18 @@ static void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol)
         coltop[col] = gf_grid_column_top_at(&sim->grid, (uint32_t)col, &sim->p[0].z, 4);
 }
 
-// Spots grouped by block (in index order within a block) with a counting sort.
+// Spots grouped by block (in index order within a block).
 static void gf_par_sort(gf_sim *sim, gf_par *q)
 {
     const gf_grid *g = &sim->grid;
     const size_t ns = sim->ns;
-    memset(q->bucket, 0, sizeof(uint32_t) * (q->nblock + 1));
-    for (size_t k = 0; k < ns; k++) {
-        q->blk[k] = q->blockof[gf_grid_cell(g, sim->sx[k], sim->sy[k], sim->sz[k])];
-        q->bucket[q->blk[k] + 1]++;
-    }
-    for (size_t b = 0; b < q->nblock; b++) q->bucket[b + 1] += q->bucket[b];
+    gf_celllist *cl = &q->spots;
+    for (size_t k = 0; k < ns; k++) cl->cell[k] = q->blockof[gf_grid_cell(g, sim->sx[k], sim->sy[k], sim->sz[k])];
+    gf_celllist_sort(cl, ns);
     for (size_t b = 0; b < q->nblock; b++) {
-        q->block[b].first = q->bucket[b];
-        q->block[b].end = q->bucket[b + 1];
+        q->block[b].first = cl->start[b];
+        q->block[b].end = cl->start[b + 1];
     }
-    for (size_t k = 0; k < ns; k++) q->order[q->bucket[q->blk[k]]++] = (uint32_t)k;
 }
 
 // The random stream of spot k's move in this step: a function of the seed,
@@ -307,12 +284,12 @@ static void gf_par_phases(gf_sim *sim, gf_par *q, int phases)
         gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
         for (size_t k = bl->end - bl->first; k > 1; k--) { // Fisher-Yates
             size_t j = (size_t)gf_rng_below(&rng, k);
-            uint32_t tmp = q->order[bl->first + k - 1];
-            q->order[bl->first + k - 1] = q->order[bl->first + j];
-            q->order[bl->first + j] = tmp;
+            uint32_t tmp = q->spots.idx[bl->first + k - 1];
+            q->spots.idx[bl->first + k - 1] = q->spots.idx[bl->first + j];
+            q->spots.idx[bl->first + j] = tmp;
         }
         for (size_t o = bl->first; o < bl->end; o++) {
-            uint32_t k = q->order[o];
+            uint32_t k = q->spots.idx[o];
             gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x7068617365ull /* "phase" */,
                         (sim->sbirth[k] << 32) ^ (sim->fstep & 0xffffffffu));
             q->phase[k] = (uint8_t)gf_rng_below(&rng, (uint64_t)phases);
@@ -321,8 +298,8 @@ static void gf_par_phases(gf_sim *sim, gf_par *q, int phases)
         for (int p = 0; p < GF_PAR_PHASES; p++) ps[p + 1] += ps[p];
         uint32_t next[GF_PAR_PHASES];
         memcpy(next, ps, sizeof next);
-        for (size_t o = bl->first; o < bl->end; o++) q->tmp[next[q->phase[q->order[o]]]++] = q->order[o];
-        memcpy(q->order + bl->first, q->tmp + bl->first, sizeof(uint32_t) * (bl->end - bl->first));
+        for (size_t o = bl->first; o < bl->end; o++) q->tmp[next[q->phase[q->spots.idx[o]]]++] = q->spots.idx[o];
+        memcpy(q->spots.idx + bl->first, q->tmp + bl->first, sizeof(uint32_t) * (bl->end - bl->first));
     }
 }
 
@@ -337,7 +314,7 @@ static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
     w->rng = &rng;
     w->st = &bl->st;
     for (size_t o = ps[p]; o < ps[p + 1]; o++) {
-        size_t k = q->order[o];
+        size_t k = q->spots.idx[o];
         gf_par_seed(sim, k, &rng);
         double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
         bool deleted;
@@ -503,8 +480,8 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
             // threads take them in turn; which thread runs a block does not
             // change its result).
             size_t nrun = 0, moves = 0;
-            for (uint32_t i = q->cstart[colour]; i < q->cstart[colour + 1]; i++) {
-                const uint32_t b = q->cblock[i], *ps = &q->pstart[(size_t)b * (GF_PAR_PHASES + 1)];
+            for (size_t i = q->colours.start[colour]; i < q->colours.start[colour + 1]; i++) {
+                const uint32_t b = q->colours.idx[i], *ps = &q->pstart[(size_t)b * (GF_PAR_PHASES + 1)];
                 uint32_t load = ps[p + 1] - ps[p];
                 if (load == 0) continue;
                 moves += load;
