@@ -167,10 +167,9 @@ static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void
     h = gf_mpi_hash(h, sim->scount, sim->ns * sizeof *sim->scount);
     h = gf_mpi_hash(h, dead, sim->ns);
     h = gf_mpi_hash(h, blocks, block_bytes);
-    uint64_t lo = h, hi = h;
-    MPI_Allreduce(&h, &lo, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
-    MPI_Allreduce(&h, &hi, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
-    if (lo != hi)
+    uint64_t mine[2] = {h, ~h}, most[2]; // the largest hash and the complement of the smallest
+    MPI_Allreduce(mine, most, 2, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
+    if (most[0] != ~most[1])
         return gf_error_set(GF_ERR_STATE, "GF_MPI_CHECK: the ranks hold different states after colour phase %" PRIu64
                                           " (step %" PRIu64 "): the exchange missed a change",
                             gf_mpi_st.phases, sim->fstep);
