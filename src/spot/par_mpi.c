@@ -393,13 +393,15 @@ gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dea
     bool failed = false;
     for (int t = 0; t < threads; t++) failed = failed || work[t].log_failed;
     if (failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange's logs");
-    if (!gf_mpi_st.counts) {
+    if (!gf_mpi_st.counts) { // (or made by gf_mpi_merge_exits, in a step with no phase to exchange)
         gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
         gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
+        if (!gf_mpi_st.counts || !gf_mpi_st.displs) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+    }
+    if (!gf_mpi_st.tcounts) {
         gf_mpi_st.tcounts = calloc((size_t)R, sizeof(int));
         gf_mpi_st.tdispls = calloc((size_t)R, sizeof(int));
-        if (!gf_mpi_st.counts || !gf_mpi_st.displs || !gf_mpi_st.tcounts || !gf_mpi_st.tdispls)
-            return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+        if (!gf_mpi_st.tcounts || !gf_mpi_st.tdispls) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
         gf_mpi_st.chunk = 16384;
     }
     size_t mine = 0;
