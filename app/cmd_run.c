@@ -109,6 +109,9 @@ int gf_cmd_run(int argc, char **argv)
     }
 #endif
     if (st == GF_ERR_INTERRUPTED) {
+#ifdef GF_MPI
+        if (scratch[0]) return GF_EXIT_INTERRUPTED; // rank 0 says where the run stopped
+#endif
         fprintf(stderr, "\ngranflow run: %s\n", gf_last_error());
         if (s.particles_initial > 0) // the run had begun: its checkpoint is on disk
             fprintf(stderr, "granflow run: continue with: granflow run --resume %s\n", dir);

@@ -12,6 +12,7 @@
 #include "core/alloc.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "spot/par_mpi.h"
 #include "spot/sim_internal.h"
 
 // Time of the next global relaxation (relax.method = global, event mode):
@@ -132,6 +133,17 @@ gf_status gf_sim_step(gf_sim *sim)
     return st;
 }
 
+// Whether the run is to stop here. MPI ranks agree (any rank's flag stops
+// all of them at the same point: every rank asks at the same points).
+static bool gf_sim_stopping(const gf_run_hooks *hooks)
+{
+#ifdef GF_MPI
+    return gf_mpi_stop(hooks->stop);
+#else
+    return hooks->stop && *hooks->stop;
+#endif
+}
+
 gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
 {
     static const gf_run_hooks none = {0};
@@ -142,18 +154,18 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
     uint64_t countdown = every;
     gf_status st = GF_OK;
     for (;;) {
-        if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
+        if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
         gf_sim_draw_pending(sim);
         const double tn = gf_sim_next_time(sim);
         for (double ts; (ts = (double)sim->next_snap * dsnap) <= tn && ts <= last_snap;) {
-            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
+            if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
             if (ts > sim->t_reached) sim->t_reached = ts;
             if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
                 return st;
             sim->next_snap++;
         }
         while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
-            if (hooks->stop && *hooks->stop) return GF_ERR_INTERRUPTED;
+            if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
             if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
             // Due times that no longer advance (an interval below the rounding

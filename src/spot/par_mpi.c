@@ -4,10 +4,13 @@
 // global draws (phases, colour orders, insertions), so all agree on which
 // blocks run in each colour phase; rank r runs the phase's blocks run[k] with
 // k % R == r. Blocks of one colour never share a particle, a cell or a list
-// (parallel.c), so the bytes one rank's blocks change are bytes no other
-// rank's blocks touch: after the phase each rank sends the 8-byte words that
-// differ from the copy it took before (value and a byte mask), every rank
-// applies the others', and all hold the state a single process would have.
+// (parallel.c), so the records one rank's blocks change are records no other
+// rank's blocks touch. The workers log what their moves change (gf_work.touched:
+// the particles moved or whose list rows changed, the cells they left or
+// entered, the spots and blocks run); after the phase each rank sends those
+// records whole (as its blocks left them), every rank applies the others',
+// and all hold the state a single process would have. GF_MPI_CHECK=1 then
+// compares a hash of the whole state across ranks after every phase.
 #include <mpi.h>
 #include <inttypes.h>
 #include <stdint.h>
@@ -19,29 +22,40 @@
 #include "core/error.h"
 #include "spot/par_mpi.h"
 
-#define GF_MPI_NREG 20
+/// A particle's record in the exchange, followed by its list row.
+typedef struct gf_mpi_part {
+    uint32_t i, cell, slot, alive;
+    gf_pos p;
+    gf_ref p0;
+} gf_mpi_part;
 
-typedef struct gf_mpi_word {
-    uint64_t at;   ///< region << 48 | word index
-    uint64_t val;  ///< the word's new bytes
-    uint64_t mask; ///< which of its bytes changed
-} gf_mpi_word;
+/// A cell's record, followed by its GF_CELL_CAP slots.
+typedef struct gf_mpi_cell {
+    uint32_t c, count;
+} gf_mpi_cell;
+
+/// A spot's record.
+typedef struct gf_mpi_spot {
+    double x, y, z;
+    uint32_t k, count, dead, pad_;
+} gf_mpi_spot;
 
 static struct {
-    unsigned char *reg[GF_MPI_NREG];
-    size_t len[GF_MPI_NREG];
-    size_t off[GF_MPI_NREG];
-    int nreg;
-    unsigned char *shadow;
-    size_t shadow_cap;
-    gf_mpi_word *out, *in;
-    size_t out_cap, in_cap;
-    int *counts, *displs;
-    uint64_t bytes, phases; ///< exchanged so far (all ranks' records), and phases exchanged
+    unsigned char *out, *whole, *in; ///< this rank's message; every rank's chunk; every rank's message
+    size_t out_cap, whole_cap, in_cap;
+    size_t chunk;                    ///< bytes every rank sends in the phase's first collective
+    uint8_t *flag;                   ///< per entry of a kind: already in this phase's message
+    size_t flag_cap;
+    uint32_t *list; ///< this phase's entries, kind by kind, each once
+    size_t list_cap;
+    int *counts, *displs, *tcounts, *tdispls;
+    uint64_t bytes, phases; ///< exchanged so far (all ranks' messages), and phases exchanged
     uint64_t exit_bytes;    ///< exits exchanged so far
-    uint64_t applied;       ///< words this rank took from the others
+    uint64_t applied;       ///< bytes of messages this rank took from the others
+    uint64_t applied_p, applied_c; ///< particle and cell records among them
     int rank, size;
-    bool stats_on;
+    bool stats_on, check;
+    double wait;
 } gf_mpi_st;
 
 int gf_mpi_rank(void)
@@ -60,29 +74,46 @@ int gf_mpi_size(void)
     return n;
 }
 
+bool gf_mpi_stop(volatile sig_atomic_t *stop)
+{
+    int mine = stop && *stop, any = mine;
+    if (gf_mpi_size() < 2) return mine;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (any && stop) *stop = 1;
+    return any;
+}
+
 // GF_MPI_STATS=1: at exit, rank 0 prints the exchange's counters to stderr
 // (docs/performance.md quotes them).
 static void gf_mpi_print_stats(void)
 {
     if (gf_mpi_st.rank != 0) return;
     fprintf(stderr, "granflow mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
-                    " bytes of changed words (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
-                    " words from the others\n",
+                    " bytes of changed records (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
+                    " words from the others (%" PRIu64 " particle and %" PRIu64 " cell records)\n",
             gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes,
             gf_mpi_st.phases ? (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases : 0.0, gf_mpi_st.exit_bytes,
-            gf_mpi_st.applied);
+            gf_mpi_st.applied / 8, gf_mpi_st.applied_p, gf_mpi_st.applied_c);
+    fprintf(stderr, "granflow mpi: rank 0 spent %.3f s in the exchange's collectives (waiting included)\n",
+            gf_mpi_st.wait);
 }
 
-static void gf_mpi_add(void *p, size_t bytes)
+// Room for `need` bytes (or entries of `size` bytes) in *a; false when out of memory.
+static bool gf_mpi_room(void **a, size_t *cap, size_t need, size_t size)
 {
-    if (!p || bytes == 0) return;
-    int k = gf_mpi_st.nreg++;
-    gf_mpi_st.reg[k] = p;
-    gf_mpi_st.len[k] = bytes;
+    if (need <= *cap) return true;
+    size_t c = need + need / 2 + 1024;
+    void *p = realloc(*a, c * size);
+    if (!p) return false;
+    if (size == 1) memset((unsigned char *)p + *cap, 0, c - *cap); // flags start clear
+    *a = p;
+    *cap = c;
+    return true;
 }
 
-gf_status gf_mpi_phase_begin(gf_sim *sim, void *dead, void *blocks, size_t block_bytes)
+gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads)
 {
+    (void)sim;
     if (gf_mpi_size() < 2) return GF_OK;
     if (!gf_mpi_st.stats_on) {
         gf_mpi_st.stats_on = true;
@@ -90,112 +121,303 @@ gf_status gf_mpi_phase_begin(gf_sim *sim, void *dead, void *blocks, size_t block
         gf_mpi_st.size = gf_mpi_size();
         const char *e = getenv("GF_MPI_STATS");
         if (e && *e && *e != '0') atexit(gf_mpi_print_stats);
+        e = getenv("GF_MPI_CHECK");
+        gf_mpi_st.check = e && *e && *e != '0';
     }
-    const size_t n = sim->n;
-    gf_grid *g = &sim->grid;
-    gf_mpi_st.nreg = 0;
-    gf_mpi_add(sim->p, n * sizeof *sim->p);
-    gf_mpi_add(sim->p0, n * sizeof *sim->p0);
-    gf_mpi_add(sim->id, n * sizeof *sim->id);
-    gf_mpi_add(sim->layer, n * sizeof *sim->layer);
-    gf_mpi_add(sim->alive, n * sizeof *sim->alive);
-    gf_mpi_add(sim->hist, n * sizeof *sim->hist);
-    if (sim->use_nlist && sim->nl) gf_mpi_add(sim->nl, (n << sim->nl_shift) * sizeof *sim->nl);
-    gf_mpi_add(sim->mark, n * sizeof *sim->mark);
-    gf_mpi_add(g->count, g->ncell * sizeof *g->count);
-    gf_mpi_add(g->slot, g->ncell * GF_CELL_CAP * sizeof *g->slot);
-    gf_mpi_add(g->top, (size_t)g->nx * (size_t)g->ny * sizeof *g->top);
-    gf_mpi_add(g->cell_of, g->np * sizeof *g->cell_of);
-    gf_mpi_add(g->slot_of, g->np * sizeof *g->slot_of);
-    gf_mpi_add(sim->sx, sim->ns * sizeof *sim->sx);
-    gf_mpi_add(sim->sy, sim->ns * sizeof *sim->sy);
-    gf_mpi_add(sim->sz, sim->ns * sizeof *sim->sz);
-    gf_mpi_add(sim->scount, sim->ns * sizeof *sim->scount);
-    gf_mpi_add(dead, sim->ns);
-    gf_mpi_add(blocks, block_bytes);
-    size_t total = 0;
-    for (int k = 0; k < gf_mpi_st.nreg; k++) {
-        gf_mpi_st.off[k] = total;
-        total += gf_mpi_st.len[k];
+    for (int t = 0; t < threads; t++) {
+        work[t].log = true;
+        for (int k = 0; k < GF_TOUCH_KINDS; k++) work[t].touched[k].n = 0;
     }
-    if (total > gf_mpi_st.shadow_cap) {
-        free(gf_mpi_st.shadow);
-        gf_mpi_st.shadow = malloc(total);
-        gf_mpi_st.shadow_cap = gf_mpi_st.shadow ? total : 0;
-        if (!gf_mpi_st.shadow) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
-    }
-    for (int k = 0; k < gf_mpi_st.nreg; k++)
-        memcpy(gf_mpi_st.shadow + gf_mpi_st.off[k], gf_mpi_st.reg[k], gf_mpi_st.len[k]);
     return GF_OK;
 }
 
-static bool gf_mpi_grow(gf_mpi_word **a, size_t *cap, size_t need)
+// A 64-bit hash of every byte the exchange keeps equal across ranks (GF_MPI_CHECK).
+static uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes)
 {
-    if (need <= *cap) return true;
-    size_t c = need + need / 2 + 1024;
-    gf_mpi_word *p = realloc(*a, c * sizeof *p);
-    if (!p) return false;
-    *a = p;
-    *cap = c;
-    return true;
+    const unsigned char *b = p;
+    for (size_t o = 0; o < bytes; o += 8) {
+        uint64_t w = 0;
+        memcpy(&w, b + o, bytes - o < 8 ? bytes - o : 8);
+        h = (h ^ w) * 0x100000001b3ull;
+        h ^= h >> 29;
+    }
+    return h;
 }
 
-gf_status gf_mpi_phase_end(gf_sim *sim)
+static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void *blocks, size_t block_bytes)
 {
-    (void)sim;
+    const size_t n = sim->n;
+    const gf_grid *g = &sim->grid;
+    uint64_t h = 0xcbf29ce484222325ull;
+    h = gf_mpi_hash(h, sim->p, n * sizeof *sim->p);
+    h = gf_mpi_hash(h, sim->p0, n * sizeof *sim->p0);
+    h = gf_mpi_hash(h, sim->id, n * sizeof *sim->id);
+    h = gf_mpi_hash(h, sim->layer, n * sizeof *sim->layer);
+    h = gf_mpi_hash(h, sim->alive, n * sizeof *sim->alive);
+    h = gf_mpi_hash(h, sim->hist, n * sizeof *sim->hist);
+    h = gf_mpi_hash(h, sim->mark, n * sizeof *sim->mark);
+    if (sim->use_nlist && sim->nl) h = gf_mpi_hash(h, sim->nl, (n << sim->nl_shift) * sizeof *sim->nl);
+    h = gf_mpi_hash(h, g->count, g->ncell * sizeof *g->count);
+    h = gf_mpi_hash(h, g->slot, g->ncell * GF_CELL_CAP * sizeof *g->slot);
+    h = gf_mpi_hash(h, g->cell_of, g->np * sizeof *g->cell_of);
+    h = gf_mpi_hash(h, g->slot_of, g->np * sizeof *g->slot_of);
+    h = gf_mpi_hash(h, sim->sx, sim->ns * sizeof *sim->sx);
+    h = gf_mpi_hash(h, sim->sy, sim->ns * sizeof *sim->sy);
+    h = gf_mpi_hash(h, sim->sz, sim->ns * sizeof *sim->sz);
+    h = gf_mpi_hash(h, sim->scount, sim->ns * sizeof *sim->scount);
+    h = gf_mpi_hash(h, dead, sim->ns);
+    h = gf_mpi_hash(h, blocks, block_bytes);
+    uint64_t mine[2] = {h, ~h}, most[2]; // the largest hash and the complement of the smallest
+    MPI_Allreduce(mine, most, 2, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
+    if (most[0] != ~most[1])
+        return gf_error_set(GF_ERR_STATE, "GF_MPI_CHECK: the ranks hold different states after colour phase %" PRIu64
+                                          " (step %" PRIu64 "): the exchange missed a change",
+                            gf_mpi_st.phases, sim->fstep);
+    return GF_OK;
+}
+
+// Entry limits and record sizes of each kind of log (GF_TOUCH_*).
+static void gf_mpi_kinds(const gf_sim *sim, size_t nblock, size_t block_size, size_t limit[GF_TOUCH_KINDS],
+                         size_t rec[GF_TOUCH_KINDS])
+{
+    const size_t row = sim->use_nlist && sim->nl ? sizeof(uint32_t) << sim->nl_shift : 0;
+    limit[GF_TOUCH_PARTICLE] = limit[GF_TOUCH_ROW] = row ? sim->n : 0;
+    limit[GF_TOUCH_PARTICLE] = sim->n;
+    limit[GF_TOUCH_CELL] = sim->grid.ncell;
+    limit[GF_TOUCH_SPOT] = sim->ns;
+    limit[GF_TOUCH_BLOCK] = nblock;
+    rec[GF_TOUCH_PARTICLE] = sizeof(gf_mpi_part);
+    rec[GF_TOUCH_ROW] = sizeof(uint32_t) + row;
+    rec[GF_TOUCH_CELL] = sizeof(gf_mpi_cell) + GF_CELL_CAP * sizeof(uint32_t);
+    rec[GF_TOUCH_SPOT] = sizeof(gf_mpi_spot);
+    rec[GF_TOUCH_BLOCK] = sizeof(uint32_t) + block_size;
+}
+
+// This rank's message: its length, the number of records of each kind, then
+// the records kind by kind (each entry once, as this rank's blocks left it).
+static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint8_t *dead, const void *blocks,
+                             size_t nblock, size_t block_size, size_t *bytes)
+{
+    const gf_grid *g = &sim->grid;
+    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS], logged = 0;
+    gf_mpi_kinds(sim, nblock, block_size, limit, rec);
+    for (int t = 0; t < threads; t++)
+        for (int k = 0; k < GF_TOUCH_KINDS; k++) logged += work[t].touched[k].n;
+    size_t flags = sim->n > g->ncell ? sim->n : g->ncell;
+    if (flags < sim->ns) flags = sim->ns;
+    if (flags < nblock) flags = nblock;
+    if (!gf_mpi_room((void **)&gf_mpi_st.flag, &gf_mpi_st.flag_cap, flags, 1) ||
+        !gf_mpi_room((void **)&gf_mpi_st.list, &gf_mpi_st.list_cap, logged, sizeof(uint32_t)))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
+    // Each kind's entries, each once, one after the other in list[].
+    uint32_t head[1 + GF_TOUCH_KINDS];
+    size_t first[GF_TOUCH_KINDS], n = 0, need = sizeof head;
+    for (int k = 0; k < GF_TOUCH_KINDS; k++) {
+        first[k] = n;
+        for (int t = 0; t < threads; t++) {
+            const gf_touch *l = &work[t].touched[k];
+            for (size_t e = 0; e < l->n; e++) {
+                uint32_t v = l->v[e];
+                if (v >= limit[k] || gf_mpi_st.flag[v]) continue;
+                gf_mpi_st.flag[v] = 1;
+                gf_mpi_st.list[n++] = v;
+            }
+        }
+        for (size_t e = first[k]; e < n; e++) gf_mpi_st.flag[gf_mpi_st.list[e]] = 0;
+        head[1 + k] = (uint32_t)(n - first[k]);
+        need += head[1 + k] * rec[k];
+    }
+    head[0] = (uint32_t)need;
+    if (!gf_mpi_room((void **)&gf_mpi_st.out, &gf_mpi_st.out_cap, need > gf_mpi_st.chunk ? need : gf_mpi_st.chunk, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
+    unsigned char *o = gf_mpi_st.out;
+    memcpy(o, head, sizeof head);
+    o += sizeof head;
+    const size_t row = rec[GF_TOUCH_ROW] - sizeof(uint32_t), cell_row = GF_CELL_CAP * sizeof(uint32_t);
+    for (int k = 0; k < GF_TOUCH_KINDS; k++)
+        for (size_t e = first[k]; e < first[k] + head[1 + k]; e++) {
+            uint32_t v = gf_mpi_st.list[e];
+            switch (k) {
+            case GF_TOUCH_PARTICLE: {
+                gf_mpi_part r = {v, g->cell_of[v], g->slot_of[v], sim->alive[v], sim->p[v], sim->p0[v]};
+                memcpy(o, &r, sizeof r);
+                break;
+            }
+            case GF_TOUCH_ROW:
+                memcpy(o, &v, sizeof v);
+                memcpy(o + sizeof v, sim->nl + ((size_t)v << sim->nl_shift), row);
+                break;
+            case GF_TOUCH_CELL: {
+                gf_mpi_cell r = {v, g->count[v]};
+                memcpy(o, &r, sizeof r);
+                memcpy(o + sizeof r, g->slot + (size_t)v * GF_CELL_CAP, cell_row);
+                break;
+            }
+            case GF_TOUCH_SPOT: {
+                gf_mpi_spot r = {sim->sx[v], sim->sy[v], sim->sz[v], v, sim->scount[v], dead[v], 0};
+                memcpy(o, &r, sizeof r);
+                break;
+            }
+            default:
+                memcpy(o, &v, sizeof v);
+                memcpy(o + sizeof v, (const unsigned char *)blocks + v * block_size, block_size);
+            }
+            o += rec[k];
+        }
+    *bytes = need;
+    return GF_OK;
+}
+
+// Another rank's message, applied: every kind but the cells (cells = false),
+// or the cells (cells = true), whose slots also give the cell and slot of
+// every particle in them (taken last, over the particles' own records).
+static void gf_mpi_apply(gf_sim *sim, const unsigned char *o, uint8_t *dead, void *blocks, size_t nblock,
+                         size_t block_size, bool cells)
+{
+    gf_grid *g = &sim->grid;
+    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS];
+    gf_mpi_kinds(sim, nblock, block_size, limit, rec);
+    uint32_t head[1 + GF_TOUCH_KINDS];
+    memcpy(head, o, sizeof head);
+    o += sizeof head;
+    const size_t row = rec[GF_TOUCH_ROW] - sizeof(uint32_t), cell_row = GF_CELL_CAP * sizeof(uint32_t);
+    for (int k = 0; k < GF_TOUCH_KINDS; k++) {
+        if ((k == GF_TOUCH_CELL) != cells) {
+            o += head[1 + k] * rec[k];
+            continue;
+        }
+        for (size_t e = 0; e < head[1 + k]; e++, o += rec[k]) {
+            switch (k) {
+            case GF_TOUCH_PARTICLE: {
+                gf_mpi_part r;
+                memcpy(&r, o, sizeof r);
+                g->cell_of[r.i] = r.cell;
+                g->slot_of[r.i] = r.slot;
+                sim->alive[r.i] = (uint8_t)r.alive;
+                sim->p[r.i] = r.p;
+                sim->p0[r.i] = r.p0;
+                break;
+            }
+            case GF_TOUCH_ROW: {
+                uint32_t i;
+                memcpy(&i, o, sizeof i);
+                memcpy(sim->nl + ((size_t)i << sim->nl_shift), o + sizeof i, row);
+                break;
+            }
+            case GF_TOUCH_CELL: {
+                gf_mpi_cell r;
+                memcpy(&r, o, sizeof r);
+                uint32_t *s = g->slot + (size_t)r.c * GF_CELL_CAP;
+                memcpy(s, o + sizeof r, cell_row);
+                g->count[r.c] = r.count;
+                for (uint32_t j = 0; j < r.count; j++) {
+                    g->cell_of[s[j]] = r.c;
+                    g->slot_of[s[j]] = j;
+                }
+                break;
+            }
+            case GF_TOUCH_SPOT: {
+                gf_mpi_spot r;
+                memcpy(&r, o, sizeof r);
+                sim->sx[r.k] = r.x;
+                sim->sy[r.k] = r.y;
+                sim->sz[r.k] = r.z;
+                sim->scount[r.k] = r.count;
+                dead[r.k] = (uint8_t)r.dead;
+                break;
+            }
+            default: {
+                uint32_t b;
+                memcpy(&b, o, sizeof b);
+                memcpy((unsigned char *)blocks + b * block_size, o + sizeof b, block_size);
+            }
+            }
+        }
+        if (k == GF_TOUCH_PARTICLE) gf_mpi_st.applied_p += head[1 + k];
+        if (k == GF_TOUCH_CELL) gf_mpi_st.applied_c += head[1 + k];
+    }
+}
+
+// Every rank's message into gf_mpi_st.in, rank r's from in + displs[r]. One
+// collective in the common case: every rank sends `chunk` bytes (its message,
+// or the head of it); the longer messages' tails follow in a second one. The
+// chunk then grows to the longest message seen (all ranks see the same).
+static gf_status gf_mpi_swap(size_t mine)
+{
+    const int R = gf_mpi_st.size;
+    const size_t C = gf_mpi_st.chunk;
+    if (!gf_mpi_room((void **)&gf_mpi_st.whole, &gf_mpi_st.whole_cap, (size_t)R * C, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
+    MPI_Allgather(gf_mpi_st.out, (int)C, MPI_BYTE, gf_mpi_st.whole, (int)C, MPI_BYTE, MPI_COMM_WORLD);
+    size_t total = 0, longest = 0, tails = 0;
+    for (int r = 0; r < R; r++) {
+        uint32_t len;
+        memcpy(&len, gf_mpi_st.whole + (size_t)r * C, sizeof len);
+        gf_mpi_st.displs[r] = (int)total;
+        gf_mpi_st.counts[r] = (int)len;
+        total += len;
+        tails += len > C ? len - C : 0;
+        if (len > longest) longest = len;
+    }
+    if (!gf_mpi_room((void **)&gf_mpi_st.in, &gf_mpi_st.in_cap, total + tails, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
+    for (int r = 0; r < R; r++) {
+        size_t len = (size_t)gf_mpi_st.counts[r];
+        memcpy(gf_mpi_st.in + gf_mpi_st.displs[r], gf_mpi_st.whole + (size_t)r * C, len < C ? len : C);
+    }
+    if (tails > 0) {
+        // The tails land after the messages, then join their heads.
+        int *tc = gf_mpi_st.tcounts, *td = gf_mpi_st.tdispls;
+        size_t at = total;
+        for (int r = 0; r < R; r++) {
+            size_t len = (size_t)gf_mpi_st.counts[r];
+            tc[r] = len > C ? (int)(len - C) : 0;
+            td[r] = (int)at;
+            at += (size_t)tc[r];
+        }
+        MPI_Allgatherv(gf_mpi_st.out + C, mine > C ? (int)(mine - C) : 0, MPI_BYTE, gf_mpi_st.in, tc, td, MPI_BYTE,
+                       MPI_COMM_WORLD);
+        for (int r = 0; r < R; r++)
+            if (tc[r] > 0) memmove(gf_mpi_st.in + gf_mpi_st.displs[r] + C, gf_mpi_st.in + td[r], (size_t)tc[r]);
+        gf_mpi_st.chunk = (longest + 4095) / 4096 * 4096;
+    }
+    gf_mpi_st.bytes += total;
+    return GF_OK;
+}
+
+gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dead, void *blocks, size_t nblock,
+                          size_t block_size)
+{
     const int R = gf_mpi_size(), me = gf_mpi_rank();
     if (R < 2) return GF_OK;
-    size_t nout = 0;
-    for (int k = 0; k < gf_mpi_st.nreg; k++) {
-        const unsigned char *now = gf_mpi_st.reg[k], *was = gf_mpi_st.shadow + gf_mpi_st.off[k];
-        const size_t len = gf_mpi_st.len[k];
-        for (size_t o = 0; o < len; o += 8) {
-            size_t m = len - o < 8 ? len - o : 8;
-            if (!memcmp(now + o, was + o, m)) continue;
-            uint64_t a = 0, b = 0, mask = 0;
-            memcpy(&a, now + o, m);
-            memcpy(&b, was + o, m);
-            for (size_t i = 0; i < m; i++)
-                if (((a >> (8 * i)) & 0xff) != ((b >> (8 * i)) & 0xff)) mask |= 0xffull << (8 * i);
-            if (!gf_mpi_grow(&gf_mpi_st.out, &gf_mpi_st.out_cap, nout + 1))
-                return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
-            gf_mpi_st.out[nout++] = (gf_mpi_word){(uint64_t)k << 48 | (o / 8), a, mask};
-        }
-    }
-    if (!gf_mpi_st.counts) {
+    bool failed = false;
+    for (int t = 0; t < threads; t++) failed = failed || work[t].log_failed;
+    if (failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange's logs");
+    if (!gf_mpi_st.counts) { // (or made by gf_mpi_merge_exits, in a step with no phase to exchange)
         gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
         gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
         if (!gf_mpi_st.counts || !gf_mpi_st.displs) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
     }
-    int mine = (int)(nout * sizeof(gf_mpi_word));
-    MPI_Allgather(&mine, 1, MPI_INT, gf_mpi_st.counts, 1, MPI_INT, MPI_COMM_WORLD);
-    size_t total = 0;
-    for (int r = 0; r < R; r++) {
-        gf_mpi_st.displs[r] = (int)total;
-        total += (size_t)gf_mpi_st.counts[r];
+    if (!gf_mpi_st.tcounts) {
+        gf_mpi_st.tcounts = calloc((size_t)R, sizeof(int));
+        gf_mpi_st.tdispls = calloc((size_t)R, sizeof(int));
+        if (!gf_mpi_st.tcounts || !gf_mpi_st.tdispls) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+        gf_mpi_st.chunk = 16384;
     }
-    if (!gf_mpi_grow(&gf_mpi_st.in, &gf_mpi_st.in_cap, total / sizeof(gf_mpi_word)))
-        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
-    MPI_Allgatherv(gf_mpi_st.out, mine, MPI_BYTE, gf_mpi_st.in, gf_mpi_st.counts, gf_mpi_st.displs, MPI_BYTE,
-                   MPI_COMM_WORLD);
-    gf_mpi_st.bytes += total;
+    size_t mine = 0;
+    gf_status st = gf_mpi_pack(sim, work, threads, dead, blocks, nblock, block_size, &mine);
+    if (st != GF_OK) return st;
+    double t0 = MPI_Wtime();
+    if ((st = gf_mpi_swap(mine)) != GF_OK) return st;
+    gf_mpi_st.wait += MPI_Wtime() - t0;
     gf_mpi_st.phases++;
-    for (int r = 0; r < R; r++) {
-        if (r == me) continue;
-        const gf_mpi_word *w = (const gf_mpi_word *)((const unsigned char *)gf_mpi_st.in + gf_mpi_st.displs[r]);
-        size_t nw = (size_t)gf_mpi_st.counts[r] / sizeof(gf_mpi_word);
-        gf_mpi_st.applied += nw;
-        for (size_t i = 0; i < nw; i++) {
-            int k = (int)(w[i].at >> 48);
-            size_t o = (size_t)(w[i].at & 0xffffffffffffull) * 8;
-            size_t m = gf_mpi_st.len[k] - o < 8 ? gf_mpi_st.len[k] - o : 8;
-            uint64_t cur = 0;
-            memcpy(&cur, gf_mpi_st.reg[k] + o, m);
-            cur = (cur & ~w[i].mask) | (w[i].val & w[i].mask);
-            memcpy(gf_mpi_st.reg[k] + o, &cur, m);
+    for (int pass = 0; pass < 2; pass++)
+        for (int r = 0; r < R; r++) {
+            if (r == me) continue;
+            gf_mpi_apply(sim, gf_mpi_st.in + gf_mpi_st.displs[r], dead, blocks, nblock, block_size, pass == 1);
+            if (pass == 0) gf_mpi_st.applied += (uint64_t)gf_mpi_st.counts[r];
         }
-    }
-    return GF_OK;
+    return gf_mpi_st.check ? gf_mpi_check(sim, dead, blocks, nblock * block_size) : GF_OK;
 }
 
 gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)

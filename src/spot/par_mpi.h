@@ -6,7 +6,9 @@
 #ifndef GF_SPOT_PAR_MPI_H
 #define GF_SPOT_PAR_MPI_H
 
+#include <signal.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "spot/sim_internal.h"
 
@@ -14,12 +16,18 @@
 /// This process's rank and the number of ranks (0 and 1 before MPI_Init).
 int gf_mpi_rank(void);
 int gf_mpi_size(void);
-/// Before a colour phase: remembers the state the blocks can change (the
-/// particle, list, grid and spot arrays, and the phase's dead[] and blocks).
-gf_status gf_mpi_phase_begin(gf_sim *sim, void *dead, void *blocks, size_t block_bytes);
-/// After it: every rank sends the bytes its blocks changed and applies the
-/// others' (same-colour blocks never change the same byte).
-gf_status gf_mpi_phase_end(gf_sim *sim);
+/// Before a colour phase: empties the workers' logs of what their moves
+/// change (gf_work.touched) and has them log.
+gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads);
+/// After it: every rank sends the records its workers logged (particles,
+/// cells, spots with their dead[] flags, blocks: nblock of block_size bytes)
+/// and applies the others' (same-colour blocks never change the same record).
+gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dead, void *blocks, size_t nblock,
+                          size_t block_size);
+/// Whether a stop was asked on any rank (*stop on one of them): every rank
+/// calls it at the same point of the run and gets the same answer, and
+/// *stop is set on all when it is true. Without ranks: *stop.
+bool gf_mpi_stop(volatile sig_atomic_t *stop);
 /// After the phases: the exits every rank's workers found, appended to the
 /// sim (sorted by id, re-insertions queued) as gf_par_merge_exits does.
 gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads);

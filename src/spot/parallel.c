@@ -313,8 +313,10 @@ static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
     gf_rng rng;
     w->rng = &rng;
     w->st = &bl->st;
+    gf_work_touch(w, GF_TOUCH_BLOCK, (uint32_t)b);
     for (size_t o = ps[p]; o < ps[p + 1]; o++) {
         size_t k = q->spots.idx[o];
+        gf_work_touch(w, GF_TOUCH_SPOT, (uint32_t)k);
         gf_par_seed(sim, k, &rng);
         double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
         bool deleted;
@@ -496,8 +498,7 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
             }
             q->shared_phases += nrun >= 2;
 #ifdef GF_MPI
-            if (nrun > 0 && (st = gf_mpi_phase_begin(sim, q->dead, q->block, q->nblock * sizeof *q->block)) != GF_OK)
-                break;
+            if (nrun > 0 && (st = gf_mpi_phase_begin(sim, q->work, q->threads)) != GF_OK) break;
 #endif
             int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
             if (threads < 1 || moves < GF_PAR_MIN_SHARED) threads = 1;
@@ -513,7 +514,9 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
                 if (GF_MPI_OWNS(r)) gf_par_block(sim, q, w, q->run[r], p);
             }
 #ifdef GF_MPI
-            if (nrun > 0 && (st = gf_mpi_phase_end(sim)) != GF_OK) break;
+            if (nrun > 0 &&
+                (st = gf_mpi_phase_end(sim, q->work, q->threads, q->dead, q->block, q->nblock, sizeof *q->block)) != GF_OK)
+                break;
 #endif
             if (q->profiling && nrun > 0) gf_par_record(q, nrun);
             for (size_t r = 0; r < nrun && st == GF_OK; r++)

@@ -41,6 +41,16 @@ bool gf_sim_exits_reserve(gf_sim *sim, size_t extra)
     return true;
 }
 
+// Logs the list row of particle i and the rows of the particles it names
+// (MPI exchange: the rows a drop or a refresh of i changes).
+static void gf_touch_row(const gf_sim *sim, gf_work *w, uint32_t i)
+{
+    if (!w->log || !sim->use_nlist) return;
+    gf_work_touch(w, GF_TOUCH_ROW, i);
+    const uint32_t *row = sim->nl + ((size_t)i << sim->nl_shift);
+    for (uint32_t k = 1; k <= row[0]; k++) gf_work_touch(w, GF_TOUCH_ROW, row[k]);
+}
+
 bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
 {
     gf_pos *q = &sim->p[i];
@@ -83,6 +93,10 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
         sim->exits[k] = e;
         sim->n_alive--;
     }
+    // Its cell (whose last particle takes its slot) and the rows it leaves.
+    gf_work_touch(w, GF_TOUCH_PARTICLE, i);
+    if (sim->grid.cell_of[i] != GF_NO_CELL) gf_work_touch(w, GF_TOUCH_CELL, sim->grid.cell_of[i]);
+    gf_touch_row(sim, w, i);
     gf_grid_remove(&sim->grid, i);
     gf_nlist_drop(sim, i);
     sim->alive[i] = 0;
@@ -107,15 +121,20 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
         double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->h - GF_SKIN_SLACK;
         cross[nc] = i;
         nc += dx * dx + dy * dy + dz * dz > lim * lim;
+        gf_work_touch(w, GF_TOUCH_PARTICLE, i);
         uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);
         if (c != g->cell_of[i]) {
+            gf_work_touch(w, GF_TOUCH_CELL, g->cell_of[i]);
+            gf_work_touch(w, GF_TOUCH_CELL, c);
             gf_grid_remove(g, i);
             gf_status st = gf_grid_insert(g, i, c);
             if (st != GF_OK) return st;
         }
     }
     for (size_t k = 0; sim->use_nlist && k < nc; k++) {
+        gf_touch_row(sim, w, cross[k]); // the rows it leaves and joins
         gf_status st = gf_nlist_refresh(sim, cross[k]);
+        gf_touch_row(sim, w, cross[k]);
         if (st != GF_OK) return st;
     }
     return GF_OK;

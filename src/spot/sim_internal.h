@@ -37,6 +37,18 @@ typedef struct gf_hist {
     int32_t pad_;
 } gf_hist;
 
+/// What a worker's moves changed in the shared state, logged for the MPI
+/// exchange (par_mpi.c) when its `log` flag is set: particles whose record
+/// (position, list reference, alive, cell, slot) may differ, particles whose
+/// neighbour-list row may differ, grid cells whose count or slots may differ,
+/// the spots moved and the blocks run. Entries may repeat. Nothing is logged
+/// in a build without GF_MPI.
+enum { GF_TOUCH_PARTICLE, GF_TOUCH_ROW, GF_TOUCH_CELL, GF_TOUCH_SPOT, GF_TOUCH_BLOCK, GF_TOUCH_KINDS };
+typedef struct gf_touch {
+    uint32_t *v;
+    size_t n, cap;
+} gf_touch;
+
 /// What one thread needs to run spot steps: scratch for one gather, the
 /// random stream and the counters the steps draw on and add to, and, in the
 /// parallel step, the exits it found (merged after each phase).
@@ -57,7 +69,30 @@ typedef struct gf_work {
     gf_exit *exits;
     uint32_t *exit_slot; ///< per exits[] entry: the particle's index, when it is to be put back (else UINT32_MAX)
     size_t nexit, exit_cap;
+    bool log;        ///< log what the moves change into touched[] (MPI ranks)
+    bool log_failed; ///< a log could not grow (out of memory)
+    gf_touch touched[GF_TOUCH_KINDS];
 } gf_work;
+
+/// Grows a log by half (walk.c); false when out of memory.
+bool gf_touch_grow(gf_touch *t);
+/// Logs entry v of kind `kind` (GF_TOUCH_*) when the worker logs.
+static inline void gf_work_touch(gf_work *w, int kind, uint32_t v)
+{
+#ifdef GF_MPI
+    if (!w->log) return;
+    gf_touch *t = &w->touched[kind];
+    if (t->n == t->cap && !gf_touch_grow(t)) {
+        w->log_failed = true;
+        return;
+    }
+    t->v[t->n++] = v;
+#else
+    (void)w;
+    (void)kind;
+    (void)v;
+#endif
+}
 
 struct gf_sim {
     gf_config cfg;

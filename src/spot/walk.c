@@ -47,7 +47,18 @@ void gf_work_free(gf_work *w)
     gf_free(w->disp, sizeof(double[3]) * w->scratch_cap);
     GF_DELETE(w->exits, w->exit_cap);
     GF_DELETE(w->exit_slot, w->exit_cap);
+    for (int k = 0; k < GF_TOUCH_KINDS; k++) GF_DELETE(w->touched[k].v, w->touched[k].cap);
     *w = (gf_work){0};
+}
+
+bool gf_touch_grow(gf_touch *t)
+{
+    size_t cap = t->cap ? t->cap + t->cap / 2 : 1024;
+    uint32_t *v = gf_realloc(t->v, t->cap * sizeof(uint32_t), cap * sizeof(uint32_t));
+    if (!v) return false;
+    t->v = v;
+    t->cap = cap;
+    return true;
 }
 
 gf_status gf_spot_insert(gf_sim *sim)

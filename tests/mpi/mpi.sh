@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # MPI test (build-mpi only, label mpi): `mpirun -np N granflow run` writes the
 # run directory of a single process, byte for byte, for 1, 2 and 4 ranks with
-# 1 and 2 threads each; a run stopped at 2 ranks and resumed at 1 matches the
-# uninterrupted one. summary.json is compared without its timing fields
+# 1 and 2 threads each; a run stopped at 2 ranks (at a set time, or by a
+# signal) and resumed at 1 matches the uninterrupted one. summary.json is compared without its timing fields
 # (t_relax, wall_seconds, steps_per_second); checkpoint.bin without the two
 # timing doubles of its stored counters (spot_seconds, relax_seconds) and the
 # CRC that covers them.
@@ -65,9 +65,13 @@ for np in 1 2 4; do
 done
 [ -z "$(ls -d "${TMPDIR:-/tmp}"/granflow-rank* 2>/dev/null)" ] || echo "note: scratch dirs left in ${TMPDIR:-/tmp}"
 
-# Stopped at t = 1 on 2 ranks, resumed on 1 process to t = 2.
-mpi 2 run -q "${SILO[@]}" --set run.duration=1 --set run.threads=2 -o P
-expect_rc 0 "2 ranks to t = 1"
+# Stopped at t = 1 on 2 ranks, resumed on 1 process to t = 2. GF_MPI_CHECK=1:
+# after every colour phase the ranks compare a hash of their whole state (the
+# exchange sends only what the moves logged; a write it missed fails here even
+# when the outputs do not show it yet: checked by leaving out the rows a list
+# refresh leaves, which left this run's outputs unchanged).
+GF_MPI_CHECK=1 mpi 2 run -q "${SILO[@]}" --set run.duration=1 --set run.threads=2 -o P
+expect_rc 0 "2 ranks to t = 1 (GF_MPI_CHECK=1: the ranks' states agree after every phase)"
 gf run -q --resume P --set run.duration=2
 expect_rc 0 "resumed on 1 process"
 same S P
@@ -79,6 +83,57 @@ mpi 4 run -q --resume Q --set run.duration=2
 expect_rc 0 "resumed on 4 ranks"
 same S Q
 ok "1 process to t = 1, then 4 ranks to t = 2: the uninterrupted run"
+
+# A stop request (SIGINT to mpirun, or SIGTERM to one rank only) stops every
+# rank at the same step: rank 0 writes the checkpoint, the run resumes on one
+# process and ends as the uninterrupted run. (Open MPI 4.1's mpirun answers
+# SIGINT with SIGCONT, then SIGTERM odls_base_sigkill_timeout seconds later,
+# 1 by default, and SIGKILL as long again after that.)
+# interrupt DIR WHO: a 2-rank run into DIR, signalled once it has begun (its
+# first snapshot is written) through WHO (mpirun, or rank1), then resumed on
+# one process to D, the first snapshot time >= 2 at or after the stop, and
+# compared with the uninterrupted run S continued to D on one process.
+interrupt() {
+    local dir=$1 who=$2 pid k mp d
+    LAST="mpirun -np 2 granflow run (stopped by a signal to $who)"
+    timeout -s KILL 300 "$MPIRUN" --oversubscribe -np 2 "$GF" run -q "${SILO[@]}" --set run.duration=30 \
+        --set run.threads=1 -o "$dir" >"$T/out" 2>"$T/err" &
+    pid=$!
+    for k in $(seq 600); do
+        [ -e "$dir/snapshots/snap_000000.dump" ] && break
+        sleep 0.05
+    done
+    mp=$(pgrep -P "$pid") # mpirun, under timeout; the ranks are its children
+    if [ "$who" = mpirun ]; then
+        kill -INT "$mp"
+    else
+        for k in $(pgrep -P "$mp"); do
+            tr '\0' '\n' <"/proc/$k/environ" 2>/dev/null | grep -q '^OMPI_COMM_WORLD_RANK=1$' && kill -TERM "$k"
+        done
+    fi
+    wait "$pid"
+    RC=$?
+    STOPRC=$RC
+    [ "$RC" -ne 0 ] || fail "$who signalled: the run was not stopped (exit code 0)"
+    [ "$RC" -ne 137 ] || fail "$who signalled: the ranks hung or were killed"
+    grep -q '"status": "interrupted"' "$dir/summary.json" || fail "$who signalled: $dir/summary.json is not interrupted"
+    grep -q "stopped at t = .*checkpoint written to $dir/checkpoint.bin" "$T/err" ||
+        fail "$who signalled: rank 0 does not report its checkpoint: $(cat "$T/err")"
+    [ "$(grep -c 'stopped at t' "$T/err")" -eq 1 ] || fail "$who signalled: more than one rank reports the stop"
+    stop_t=$(sed -n 's/.*stopped at t = \([0-9.e+-]*\) tau.*/\1/p' "$T/err")
+    d=$(python3 -c "import math; print(max(2.0, math.ceil(float('$stop_t') * 2) / 2))")
+    gf run -q --resume "$dir" --set run.duration="$d"
+    expect_rc 0 "resumed on 1 process to t = $d after a signal to $who at t = $stop_t"
+    rm -rf "S$dir"
+    cp -r S "S$dir"
+    gf run -q --resume "S$dir" --set run.duration="$d"
+    expect_rc 0 "the uninterrupted run continued to t = $d"
+    same "S$dir" "$dir"
+}
+interrupt I mpirun
+ok "SIGINT to mpirun (exit code $STOPRC): both ranks stop at t = $stop_t, rank 0 checkpoints, 1 process resumes to the uninterrupted run"
+interrupt J rank1
+ok "SIGTERM to rank 1 only: both ranks stop at t = $stop_t (exit code $STOPRC), 1 process resumes to the uninterrupted run"
 
 # The event engine is not split between ranks: refused with a message.
 mpi 2 run -q --set packing.particles=500 --set run.duration=0.1 -o E
