@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Mean velocity: the field v(x, z), horizontal profiles v_z(x) with Gaussian
-// fits whose variance grows linearly with height (thesis Sec. 3.3, DEM:
-// Var = 2.28 z + 1.60), and the profile across the depth v_z(y) (2009 paper Fig. 8).
+// Mean velocity: the field v(x, z), horizontal profiles v_z(x) (in a
+// cylinder: radial, v_z(r)) with Gaussian fits whose variance grows linearly
+// with height (thesis Sec. 3.3, DEM: Var = 2.28 z + 1.60), and the profile
+// across the depth v_z(y) (2009 paper Fig. 8).
 #include <math.h>
+#include <stdbool.h>
 #include <string.h>
 
 #include "analysis/motion.h"
@@ -20,7 +22,10 @@
 typedef struct gf_vel_acc {
     gf_vfield field;
     size_t nh;      ///< heights
-    double *prof;   ///< nh x field.nx x 2: sum vz, samples
+    bool radial;    ///< cylinder: profiles in r = sqrt(x^2 + y^2), not x
+    bool mirror;    ///< radial, no central column: fit with the points mirrored to -r
+    size_t np;      ///< profile bins: field.nx, or radial bins of field.bin from the axis
+    double *prof;   ///< nh x np x 2: sum vz, samples
     size_t ny;      ///< depth bins
     double y0;      ///< lower edge of depth bin 0, d
     double *depth;  ///< ny x 2: sum vz, samples
@@ -28,7 +33,7 @@ typedef struct gf_vel_acc {
 
 static void gf_vel_acc_free(gf_vel_acc *a)
 {
-    if (a->prof) GF_DELETE(a->prof, 2 * a->nh * a->field.nx);
+    if (a->prof) GF_DELETE(a->prof, 2 * a->nh * a->np);
     if (a->depth) GF_DELETE(a->depth, 2 * a->ny);
     gf_vfield_free(&a->field);
 }
@@ -39,11 +44,11 @@ static void gf_vel_acc_add(gf_vel_acc *a, const gf_steps *st, const gf_analysis_
     const gf_vfield *f = &a->field;
     for (size_t j = 0; j < st->n; j++) {
         double x = st->x[j], z = st->z[j];
-        double ix = floor(x / f->bin) - (double)f->ix0;
-        if (ix >= 0.0 && ix < (double)f->nx)
+        double ix = a->radial ? floor(hypot(x, st->y[j]) / f->bin) : floor(x / f->bin) - (double)f->ix0;
+        if (ix >= 0.0 && ix < (double)a->np)
             for (size_t h = 0; h < a->nh; h++)
                 if (fabs(z - o->vel_heights[h]) < o->vel_band) {
-                    double *b = a->prof + 2 * (h * f->nx + (size_t)ix);
+                    double *b = a->prof + 2 * (h * a->np + (size_t)ix);
                     b[0] += st->vz[j];
                     b[1] += 1.0;
                 }
@@ -95,23 +100,36 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             st = gf_table_add(tf, row);
         }
 
-    // Profiles v_z(x) at each height, and the Gaussian fit of the downward speed.
+    // Profiles v_z(x) (radial: v_z(r)) at each height, and the Gaussian fit
+    // of the downward speed. A radial profile about the axis is fitted with
+    // its points mirrored to -r, so the Gaussian is centred on the axis and
+    // its Var is the variance along one horizontal axis, as in the box (a
+    // spot's walk spreads x and y alike: Var = 2 b_s z + c, thesis Sec. 3.3).
+    // Around a central column (inner_radius > 0) the flow peaks on a ring:
+    // the points are fitted as they are, the centre mu is the ring's radius.
     gf_table *tp = gf_vel_table(out, "velocity_profiles", "z_d,x_d,vz_d_per_tau,vz_fit", &st);
     gf_table *tv = gf_vel_table(out, "velocity_variance", "z_d,variance_d2,amplitude_d_per_tau,centre_d", &st);
-    double *px = f->nx ? GF_NEW(double, f->nx) : NULL, *pv = f->nx ? GF_NEW(double, f->nx) : NULL;
+    size_t cap = 2 * a->np;
+    double *px = cap ? GF_NEW(double, cap) : NULL, *pv = cap ? GF_NEW(double, cap) : NULL;
     double hz[16], hv[16];
     *nfit = 0;
-    if (st == GF_OK && f->nx && (!px || !pv)) st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory");
+    if (st == GF_OK && cap && (!px || !pv)) st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory");
     for (size_t h = 0; st == GF_OK && h < a->nh; h++) {
         size_t m = 0;
-        for (size_t i = 0; i < f->nx; i++) {
-            const double *b = a->prof + 2 * (h * f->nx + i);
+        for (size_t i = 0; i < a->np; i++) {
+            const double *b = a->prof + 2 * (h * a->np + i);
             if (b[1] == 0.0) continue;
-            px[m] = f->bin * ((double)f->ix0 + (double)i + 0.5);
+            px[m] = a->radial ? f->bin * ((double)i + 0.5) : f->bin * ((double)f->ix0 + (double)i + 0.5);
             pv[m++] = -b[0] / b[1]; // downward speed
         }
+        size_t mfit = m;
+        if (a->mirror)
+            for (size_t i = 0; i < m; i++) {
+                px[mfit] = -px[i];
+                pv[mfit++] = pv[i];
+            }
         double amp = NAN, mu = NAN, var = NAN;
-        if (m > 0 && gf_fit_gaussian(px, pv, m, &amp, &mu, &var) != GF_OK) {
+        if (m > 0 && gf_fit_gaussian(px, pv, mfit, &amp, &mu, &var) != GF_OK) {
             gf_error_clear(); // no Gaussian at this height (e.g. no flow yet): NaN
             amp = mu = var = NAN;
         }
@@ -127,8 +145,8 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             hv[(*nfit)++] = var;
         }
     }
-    if (px) GF_DELETE(px, f->nx);
-    if (pv) GF_DELETE(pv, f->nx);
+    if (px) GF_DELETE(px, cap);
+    if (pv) GF_DELETE(pv, cap);
     // Var = s z + c over the fitted heights (thesis Sec. 3.3: linear regression).
     *slope = *icpt = NAN;
     if (st == GF_OK && *nfit >= 2 && gf_fit_linear(hz, hv, *nfit, slope, icpt) != GF_OK) {
@@ -155,16 +173,18 @@ static gf_status gf_vel_nodata(gf_measure_out *out, const char *title)
 }
 
 static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts *o, double slope, double icpt,
-                             gf_measure_out *out)
+                             bool radial, gf_measure_out *out)
 {
     const gf_table *tp = &tabs->tables[1], *tv = &tabs->tables[2], *td = &tabs->tables[3], *tf = &tabs->tables[0];
     gf_status st = gf_measure_gnuplot(out, "set datafile separator ','\nset multiplot layout 2,2\n");
     // Profiles with their fits.
-    if (st == GF_OK && tp->nrow == 0) st = gf_vel_nodata(out, "v_z(x) profiles");
+    const char *c = radial ? "r" : "x";
+    if (st == GF_OK && tp->nrow == 0) st = gf_vel_nodata(out, radial ? "v_z(r) profiles" : "v_z(x) profiles");
     else if (st == GF_OK) {
         st = gf_measure_gnuplot(out,
-                                "set title 'v_z(x) at heights z, Gaussian fits'\n"
-                                "set xlabel 'x (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right font ',7'\nplot ");
+                                "set title 'v_z(%s) at heights z, Gaussian fits'\n"
+                                "set xlabel '%s (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right font ',7'\nplot ",
+                                c, c);
         for (size_t h = 0; st == GF_OK && h < o->vel_nheights; h++) {
             double z = o->vel_heights[h];
             st = gf_measure_gnuplot(out,
@@ -179,9 +199,10 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
     // Var vs z with the regression and the paper's DEM line.
     if (st == GF_OK) {
         st = gf_measure_gnuplot(out,
-                                "set title 'Gaussian variance of v_z(x)'\n"
+                                "set title 'Gaussian variance of v_z(%s)'\n"
                                 "set xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left font ',8'\n"
-                                "plot 2.28*x+1.60 with lines dt 2 lc 'black' title 'DEM: 2.28 z + 1.60'");
+                                "plot 2.28*x+1.60 with lines dt 2 lc 'black' title 'DEM: 2.28 z + 1.60'",
+                                c);
         if (st == GF_OK && isfinite(slope))
             st = gf_measure_gnuplot(out, ", \\\n  (%.10g)*x+(%.10g) with lines lc 2 title 'fit: %.3g z %c %.3g'", slope,
                                     icpt, slope, icpt < 0.0 ? '-' : '+', fabs(icpt));
@@ -223,9 +244,15 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     gf_vel_acc a = {0};
     st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin);
     a.nh = o->vel_nheights;
+    a.np = a.field.nx;
+    if (s->cfg.container_shape == GF_SHAPE_CYLINDER && s->cfg.container_radius > 0.0) {
+        a.radial = true; // bins of r out to the wall
+        a.mirror = !(s->cfg.inner_radius > 0.0);
+        a.np = (size_t)ceil(s->cfg.container_radius / o->vel_bin);
+    }
     double depth = s->cfg.container_depth;
-    if (st == GF_OK && a.field.nx && a.nh) {
-        a.prof = GF_NEW(double, 2 * a.nh * a.field.nx);
+    if (st == GF_OK && a.np && a.nh) {
+        a.prof = GF_NEW(double, 2 * a.nh * a.np);
         if (!a.prof) st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory for profiles");
     }
     if (st == GF_OK && depth > 0.0) {
@@ -246,9 +273,10 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     double slope = NAN, icpt = NAN;
     size_t nfit = 0;
     if (st == GF_OK) st = gf_vel_tables(&a, o, out, &slope, &icpt, &nfit);
+    bool radial = a.radial;
     gf_vel_acc_free(&a);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_slope", slope);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_intercept", icpt);
-    if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, out);
+    if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, radial, out);
     return st;
 }
