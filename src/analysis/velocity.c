@@ -1,11 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Mean velocity: the field v(x, z), horizontal profiles v_z(x) with Gaussian
-// fits whose variance grows linearly with height (thesis Sec. 3.3, DEM:
-// Var = 2.28 z + 1.60), and the profile across the depth v_z(y) (2009 paper Fig. 8).
-// In a cylinder the profiles are radial, v_z(r) about the axis: the mean speed
-// of each annulus, whose Gaussian A exp(-r^2 / 2 Var) has the same per-axis
-// Var as a box's v_z(x) (a chord's mean across a circle would mix the profile
-// with the chord length).
+// Mean velocity: the field v(x, z), horizontal profiles v_z(x) (in a
+// cylinder: radial, v_z(r)) with Gaussian fits whose variance grows linearly
+// with height (thesis Sec. 3.3, DEM: Var = 2.28 z + 1.60), and the profile
+// across the depth v_z(y) (2009 paper Fig. 8).
 #include <math.h>
 #include <stdbool.h>
 #include <string.h>
@@ -25,8 +22,9 @@
 typedef struct gf_vel_acc {
     gf_vfield field;
     size_t nh;      ///< heights
-    bool radial;    ///< cylinder: profile bins are annuli r in [i bin, (i + 1) bin)
-    size_t np;      ///< profile bins: field.nx (box) or annuli (cylinder)
+    bool radial;    ///< cylinder: profiles in r = sqrt(x^2 + y^2), not x
+    bool mirror;    ///< radial, no central column: fit with the points mirrored to -r
+    size_t np;      ///< profile bins: field.nx, or radial bins of field.bin from the axis
     double *prof;   ///< nh x np x 2: sum vz, samples
     size_t ny;      ///< depth bins
     double y0;      ///< lower edge of depth bin 0, d
@@ -102,14 +100,17 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             st = gf_table_add(tf, row);
         }
 
-    // Profiles v_z(x) (v_z(r) in a cylinder) at each height, and the Gaussian
-    // fit of the downward speed.
+    // Profiles v_z(x) (radial: v_z(r)) at each height, and the Gaussian fit
+    // of the downward speed. A radial profile about the axis is fitted with
+    // its points mirrored to -r, so the Gaussian is centred on the axis and
+    // its Var is the variance along one horizontal axis, as in the box (a
+    // spot's walk spreads x and y alike: Var = 2 b_s z + c, thesis Sec. 3.3).
+    // Around a central column (inner_radius > 0) the flow peaks on a ring:
+    // the points are fitted as they are, the centre mu is the ring's radius.
     gf_table *tp = gf_vel_table(out, "velocity_profiles",
                                 a->radial ? "z_d,r_d,vz_d_per_tau,vz_fit" : "z_d,x_d,vz_d_per_tau,vz_fit", &st);
     gf_table *tv = gf_vel_table(out, "velocity_variance", "z_d,variance_d2,amplitude_d_per_tau,centre_d", &st);
-    // A radial profile is fitted mirrored (points at -r and r): a Gaussian in
-    // r centred on the axis, its variance the per-axis one.
-    size_t cap = a->radial ? 2 * a->np : a->np;
+    size_t cap = 2 * a->np;
     double *px = cap ? GF_NEW(double, cap) : NULL, *pv = cap ? GF_NEW(double, cap) : NULL;
     double hz[16], hv[16];
     *nfit = 0;
@@ -122,11 +123,14 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             px[m] = a->radial ? f->bin * ((double)i + 0.5) : f->bin * ((double)f->ix0 + (double)i + 0.5);
             pv[m++] = -b[0] / b[1]; // downward speed
         }
-        size_t nfitpts = m;
-        if (a->radial)
-            for (size_t r = 0; r < m; r++) px[m + r] = -px[r], pv[m + r] = pv[r], nfitpts++;
+        size_t mfit = m;
+        if (a->mirror)
+            for (size_t i = 0; i < m; i++) {
+                px[mfit] = -px[i];
+                pv[mfit++] = pv[i];
+            }
         double amp = NAN, mu = NAN, var = NAN;
-        if (m > 0 && gf_fit_gaussian(px, pv, nfitpts, &amp, &mu, &var) != GF_OK) {
+        if (m > 0 && gf_fit_gaussian(px, pv, mfit, &amp, &mu, &var) != GF_OK) {
             gf_error_clear(); // no Gaussian at this height (e.g. no flow yet): NaN
             amp = mu = var = NAN;
         }
@@ -169,19 +173,19 @@ static gf_status gf_vel_nodata(gf_measure_out *out, const char *title)
                               title);
 }
 
-static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts *o, bool radial, double slope,
-                             double icpt, gf_measure_out *out)
+static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts *o, double slope, double icpt,
+                             bool radial, gf_measure_out *out)
 {
     const gf_table *tp = &tabs->tables[1], *tv = &tabs->tables[2], *td = &tabs->tables[3], *tf = &tabs->tables[0];
     gf_status st = gf_measure_gnuplot(out, "set datafile separator ','\nset multiplot layout 2,2\n");
     // Profiles with their fits.
-    const char *u = radial ? "r" : "x";
+    const char *c = radial ? "r" : "x";
     if (st == GF_OK && tp->nrow == 0) st = gf_vel_nodata(out, radial ? "v_z(r) profiles" : "v_z(x) profiles");
     else if (st == GF_OK) {
         st = gf_measure_gnuplot(out,
                                 "set title 'v_z(%s) at heights z, Gaussian fits'\n"
                                 "set xlabel '%s (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right font ',7'\nplot ",
-                                u, u);
+                                c, c);
         for (size_t h = 0; st == GF_OK && h < o->vel_nheights; h++) {
             double z = o->vel_heights[h];
             st = gf_measure_gnuplot(out,
@@ -199,7 +203,7 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
                                 "set title 'Gaussian variance of v_z(%s)'\n"
                                 "set xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left font ',8'\n"
                                 "plot 2.28*x+1.60 with lines dt 2 lc 'black' title 'DEM: 2.28 z + 1.60'",
-                                u);
+                                c);
         if (st == GF_OK && isfinite(slope))
             st = gf_measure_gnuplot(out, ", \\\n  (%.10g)*x+(%.10g) with lines lc 2 title 'fit: %.3g z %c %.3g'", slope,
                                     icpt, slope, icpt < 0.0 ? '-' : '+', fabs(icpt));
@@ -241,16 +245,12 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     gf_vel_acc a = {0};
     st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin);
     a.nh = o->vel_nheights;
-    a.radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
     a.np = a.field.nx;
-    if (a.radial && a.field.nx) { // annuli out to the farthest particle of the window
-        double rmax = 0.0;
-        for (size_t k = k0; k < k1; k++)
-            for (size_t i = 0; i < s->frames[k].pk.n; i++)
-                rmax = fmax(rmax, hypot(s->frames[k].pk.x[i], s->frames[k].pk.y[i]));
-        a.np = (size_t)floor(rmax / o->vel_bin) + 1;
+    if (s->cfg.container_shape == GF_SHAPE_CYLINDER && s->cfg.container_radius > 0.0) {
+        a.radial = true; // bins of r out to the wall
+        a.mirror = !(s->cfg.inner_radius > 0.0);
+        a.np = (size_t)ceil(s->cfg.container_radius / o->vel_bin);
     }
-    const bool radial = a.radial;
     double depth = s->cfg.container_depth;
     if (st == GF_OK && a.np && a.nh) {
         a.prof = GF_NEW(double, 2 * a.nh * a.np);
@@ -274,9 +274,10 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     double slope = NAN, icpt = NAN;
     size_t nfit = 0;
     if (st == GF_OK) st = gf_vel_tables(&a, o, out, &slope, &icpt, &nfit);
+    bool radial = a.radial;
     gf_vel_acc_free(&a);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_slope", slope);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_intercept", icpt);
-    if (st == GF_OK) st = gf_vel_plot(out, o, radial, slope, icpt, out);
+    if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, radial, out);
     return st;
 }
