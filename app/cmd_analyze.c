@@ -130,7 +130,7 @@ int gf_cmd_analyze(int argc, char **argv)
     st = gf_analyze(&s, &opts, name, outdir, plots);
     gf_series_free(&s);
     if (st != GF_OK)
-        return gf_cli_fail_hint("analyze", st, strstr(gf_last_error(), "unknown measurement") ? "(granflow analyze --list)" : NULL);
+        return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
     if (!quiet) fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", outdir);
     return GF_EXIT_OK;
 }

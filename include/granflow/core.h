@@ -27,6 +27,7 @@ typedef enum gf_status {
     GF_ERR_NOMEM,       ///< an allocation failed
     GF_ERR_STATE,       ///< the call does not fit the object's state (e.g. corrupt checkpoint)
     GF_ERR_INTERRUPTED, ///< a run stopped early on request (SIGINT/SIGTERM); state is saved
+    GF_ERR_EXISTS,      ///< the output directory already holds a run or results (resume, force, or another one)
 } gf_status;
 
 /// Short fixed name of a status ("ok", "invalid parameter", ...). Never NULL.

@@ -37,6 +37,7 @@ static struct {
     gf_mpi_word *out, *in;
     size_t out_cap, in_cap;
     int *counts, *displs;
+    size_t ncounts; ///< entries of counts and displs (the ranks)
     uint64_t bytes, phases; ///< exchanged so far (all ranks' records), and phases exchanged
     uint64_t exit_bytes;    ///< exits exchanged so far
     uint64_t applied;       ///< words this rank took from the others
@@ -119,8 +120,8 @@ gf_status gf_mpi_phase_begin(gf_sim *sim, void *dead, void *blocks, size_t block
         total += gf_mpi_st.len[k];
     }
     if (total > gf_mpi_st.shadow_cap) {
-        free(gf_mpi_st.shadow);
-        gf_mpi_st.shadow = malloc(total);
+        gf_free(gf_mpi_st.shadow, gf_mpi_st.shadow_cap);
+        gf_mpi_st.shadow = gf_alloc(total);
         gf_mpi_st.shadow_cap = gf_mpi_st.shadow ? total : 0;
         if (!gf_mpi_st.shadow) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
     }
@@ -133,7 +134,7 @@ static bool gf_mpi_grow(gf_mpi_word **a, size_t *cap, size_t need)
 {
     if (need <= *cap) return true;
     size_t c = need + need / 2 + 1024;
-    gf_mpi_word *p = realloc(*a, c * sizeof *p);
+    gf_mpi_word *p = gf_realloc(*a, *cap * sizeof *p, c * sizeof *p);
     if (!p) return false;
     *a = p;
     *cap = c;
@@ -163,8 +164,8 @@ gf_status gf_mpi_phase_end(gf_sim *sim)
         }
     }
     if (!gf_mpi_st.counts) {
-        gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
-        gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
+        gf_mpi_st.counts = GF_NEW(int, gf_mpi_st.ncounts = (size_t)R);
+        gf_mpi_st.displs = GF_NEW(int, R);
         if (!gf_mpi_st.counts || !gf_mpi_st.displs) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
     }
     int mine = (int)(nout * sizeof(gf_mpi_word));
@@ -208,7 +209,7 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
         gf_exit e;
         uint32_t slot, pad_;
     } rec;
-    rec *out = calloc(mine + 1, sizeof *out);
+    rec *out = GF_NEW(rec, mine + 1);
     if (!out) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exits");
     size_t k = 0;
     for (int t = 0; t < threads; t++) {
@@ -221,10 +222,10 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
     int bytes = (int)(mine * sizeof(rec));
     int *counts = gf_mpi_st.counts, *displs = gf_mpi_st.displs;
     if (!counts) {
-        counts = gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
-        displs = gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
+        counts = gf_mpi_st.counts = GF_NEW(int, gf_mpi_st.ncounts = (size_t)R);
+        displs = gf_mpi_st.displs = GF_NEW(int, R);
         if (!counts || !displs) {
-            free(out);
+            GF_DELETE(out, mine + 1);
             return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
         }
     }
@@ -234,13 +235,13 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
         displs[r] = (int)total;
         total += (size_t)counts[r];
     }
-    rec *all = malloc(total + sizeof(rec));
+    rec *all = gf_alloc(total + sizeof(rec));
     if (!all) {
-        free(out);
+        GF_DELETE(out, mine + 1);
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exits");
     }
     MPI_Allgatherv(out, bytes, MPI_BYTE, all, counts, displs, MPI_BYTE, MPI_COMM_WORLD);
-    free(out);
+    GF_DELETE(out, mine + 1);
     gf_mpi_st.exit_bytes += total;
     size_t n = total / sizeof(rec);
     gf_status st = GF_OK;
@@ -253,6 +254,19 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
     }
     // The owner's gf_sim_exit_slow changed the particle's cell and lists:
     // the phase exchange carried those. The caller sorts the step's exits.
-    free(all);
+    gf_free(all, total + sizeof(rec));
     return st;
+}
+
+void gf_mpi_release(void)
+{
+    gf_free(gf_mpi_st.shadow, gf_mpi_st.shadow_cap);
+    gf_free(gf_mpi_st.out, gf_mpi_st.out_cap * sizeof *gf_mpi_st.out);
+    gf_free(gf_mpi_st.in, gf_mpi_st.in_cap * sizeof *gf_mpi_st.in);
+    GF_DELETE(gf_mpi_st.counts, gf_mpi_st.ncounts);
+    GF_DELETE(gf_mpi_st.displs, gf_mpi_st.ncounts);
+    gf_mpi_st.shadow = NULL;
+    gf_mpi_st.out = gf_mpi_st.in = NULL;
+    gf_mpi_st.counts = gf_mpi_st.displs = NULL;
+    gf_mpi_st.shadow_cap = gf_mpi_st.out_cap = gf_mpi_st.in_cap = gf_mpi_st.ncounts = 0;
 }
