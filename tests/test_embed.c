@@ -258,8 +258,7 @@ static void allocator_counts_a_whole_session(void **state)
     // The analysis (tables, gnuplot scripts, summary) without running gnuplot.
     gf_series s = {0};
     assert_int_equal(gf_series_load(dir, 0, &s), GF_OK);
-    gf_analysis_opts ao;
-    gf_analysis_opts_default(&ao);
+    gf_analysis_opts ao = gf_analysis_opts_default();
     snprintf(path, sizeof path, "%s/analysis", dir);
     assert_int_equal(gf_analyze(&s, &ao, NULL, path, false), GF_OK);
     gf_series_free(&s);
@@ -368,7 +367,8 @@ static void sim_arrays_account_for_every_particle(void **state)
     gf_sim_destroy(sim);
 }
 
-// The by-value defaults are what a NULL options pointer means.
+// Every options struct of include/granflow has a by-value default; NULL
+// options pointers mean these.
 static void options_defaults(void **state)
 {
     (void)state;
@@ -382,6 +382,15 @@ static void options_defaults(void **state)
     assert_true(!l.dir && !l.force && !l.stop && !l.progress);
     gf_report_opts o = gf_report_opts_default();
     assert_true(!o.out && !o.compare && !o.title);
+    gf_dem_refine_opts ro = gf_dem_refine_opts_default();
+    assert_true(ro.max_iter == 0 && ro.flow_tol == 0 && ro.var_tol == 0 && !ro.progress && !ro.stop && !ro.start);
+    gf_run_hooks h = gf_run_hooks_default();
+    assert_true(!h.ctx && !h.snapshot && !h.checkpoint && !h.progress && h.progress_every == 0 && !h.stop);
+    // The analysis defaults, by value: the values docs/analysis.md gives.
+    gf_analysis_opts a = gf_analysis_opts_default();
+    assert_true(isnan(a.t0) && isnan(a.t1) && a.vel_bin == 1.0 && a.vel_nheights == 6 && a.vel_heights[5] == 60.0);
+    gf_render_opts ren = gf_render_opts_default();
+    assert_true(ren.px_per_d == 10.0 && ren.phi_lo == 0.55 && ren.phi_hi == 0.65 && isnan(ren.zmax) && ren.label);
 }
 
 static const struct CMUnitTest tests[] = {

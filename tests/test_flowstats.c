@@ -97,7 +97,7 @@ static void outflow_from_exits(void **state)
     series_exits(&s, e, N);
     GF_DELETE(e, N);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "flow_rate"), R, 1e-9 * R);
@@ -136,7 +136,7 @@ static void outflow_from_counts(void **state)
         for (int i = 0; i < 600 - 50 * k; i++) push(&s.frames[k].pk, i + 1, 1, 0.0, 1.0 + i);
     s.n_initial = 600;
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "flow_rate"), 25.0, 1e-12);
@@ -180,7 +180,7 @@ static void density_counts_the_slice(void **state)
     }
     s.n_initial = s.frames[0].pk.n;
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "density");
@@ -268,7 +268,7 @@ static void surface_angle_regression(void **state)
     push(&s.frames[0].pk, 99998, 1, 0.0, 1000.0);
     s.n_initial = s.frames[0].pk.n;
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_surface(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "surface");
@@ -314,7 +314,7 @@ static void rtd_per_layer(void **state)
                          {.id = 4, .time = 6.0}, {.id = 5, .time = 8.0}, {.id = 3, .time = 10.0}};
     series_exits(&s, e, sizeof e / sizeof e[0]);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "rtd");
@@ -359,7 +359,7 @@ static void rtd_needs_exits(void **state)
     series_init(&s, 1, times);
     push(&s.frames[0].pk, 1, 1, 0.0, 1.0);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "rtd: needs the exit time of every particle"));

@@ -39,7 +39,7 @@ static void gr_random_points_tend_to_one(void **state)
                                              D * (uniform(&seed) - 0.5), H * uniform(&seed), 0.5),
                              GF_OK);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.t0 = 0;
     o.t1 = (double)F;
     o.gr_x0 = -7; // the whole width
@@ -115,7 +115,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
     gf_series s = gf_test_series(1, W, D);
     fcc_fill(&s.frames[0].pk, W, D, H);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.gr_x0 = -2;
     o.gr_x1 = 2;
     o.gr_z0 = 3;
@@ -202,13 +202,13 @@ static void gr_rejects_bad_options(void **state)
     (void)state;
     gf_series s = gf_test_series(1, 10, 8);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.gr_x0 = 20; // entirely outside the 10 d wide container
     o.gr_x1 = 30;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_gr(&s, &o, &out), GF_ERR_PARAM);
     gf_measure_free(&out);
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.gr_dr = 0;
     assert_int_equal(gf_measure_gr(&s, &o, &out), GF_ERR_PARAM);
     gf_measure_free(&out);
@@ -253,7 +253,7 @@ static void badness_measure_averages_the_window(void **state)
     const double shift[3] = {0.3, 0.0, 0.1}; // B's overlap with A: 0.4, 0.1, 0.2
     for (size_t k = 0; k < 3; k++) overlaps(&s.frames[k].pk, shift[k]);
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o); // region -15 < x < 15, 15 < z < 45: all five
+    o = gf_analysis_opts_default(); // region -15 < x < 15, 15 < z < 45: all five
     o.t0 = 0.5;                   // frames at t = 1 and 2
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_badness(&s, &o, &out), GF_OK);

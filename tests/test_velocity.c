@@ -75,7 +75,7 @@ static void velocity_recovers_variance_line(void **state)
     s.n_initial = s.frames[0].pk.n;
 
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
 
@@ -148,7 +148,7 @@ static void velocity_depth_profile(void **state)
         }
     }
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.t1 = 1.0;
     gf_measure_out out = {0};
@@ -223,7 +223,7 @@ static void diffusion_recovers_random_walk(void **state)
         }
     }
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "diffusion_particles"), N, 0.0);
@@ -306,7 +306,7 @@ static void correlation_case(double spread)
         }
     }
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.corr_size = 32.0;
     o.vel_bin = 16.0;

@@ -10,8 +10,9 @@
 #include "core/error.h"
 #include "granflow/analysis.h"
 
-void gf_analysis_opts_default(gf_analysis_opts *o)
+gf_analysis_opts gf_analysis_opts_default(void)
 {
+    gf_analysis_opts d, *o = &d;
     memset(o, 0, sizeof *o);
     o->t0 = o->t1 = NAN;
     o->dump_dt = 0.0;
@@ -41,6 +42,7 @@ void gf_analysis_opts_default(gf_analysis_opts *o)
     o->zone_nradii = 0;
     o->zone_dr = 0.5;
     o->zone_dz = 2.0;
+    return d;
 }
 
 typedef enum { GF_OPT_REAL, GF_OPT_COUNT, GF_OPT_LIST } gf_opt_kind;

@@ -132,6 +132,8 @@ gf_status gf_sim_step(gf_sim *sim)
     return st;
 }
 
+gf_run_hooks gf_run_hooks_default(void) { return (gf_run_hooks){.ctx = NULL}; }
+
 gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
 {
     static const gf_run_hooks none = {0};
