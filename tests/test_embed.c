@@ -295,13 +295,14 @@ static void allocator_counts_a_whole_session(void **state)
     assert_int_equal(gf_bytes_allocated(), bytes0);
 }
 
-static int assert_calls;
+static int assert_calls, assert_line;
+static char assert_cond[64], assert_file[256];
 
 static int soft_assert(const char *condition, const char *file, int line)
 {
-    (void)file;
-    assert_string_equal(condition, "1 == 2");
-    assert_int_equal(line, 42);
+    snprintf(assert_cond, sizeof assert_cond, "%s", condition);
+    snprintf(assert_file, sizeof assert_file, "%s", file);
+    assert_line = line;
     assert_calls++;
     return 0; // continue
 }
@@ -310,9 +311,21 @@ static void assert_hook_is_called(void **state)
 {
     (void)state;
     gf_set_assert_fn(soft_assert);
-    gf_assert_fail("1 == 2", __FILE__, 42);
-    gf_set_assert_fn(NULL);
+    gf_assert_fail("1 == 2", "here.c", 42);
     assert_int_equal(assert_calls, 1);
+    assert_string_equal(assert_cond, "1 == 2");
+    assert_string_equal(assert_file, "here.c");
+    assert_int_equal(assert_line, 42);
+    // The library's checks (GF_ASSERT) reach the hook in this Release
+    // (NDEBUG) build too, with the condition's text and place.
+    const int line = __LINE__ + 1;
+    GF_ASSERT(assert_calls == 0);
+    GF_ASSERT(assert_calls == 2); // holds: no call
+    gf_set_assert_fn(NULL);
+    assert_int_equal(assert_calls, 2);
+    assert_string_equal(assert_cond, "assert_calls == 0");
+    assert_non_null(strstr(assert_file, "test_embed.c"));
+    assert_int_equal(assert_line, line);
 }
 
 // A small silo through the flat-array API: the particles plus the exits are

@@ -62,7 +62,7 @@ typedef void gf_free_fn(void *block, size_t size);
 GF_API void gf_set_allocator(gf_alloc_fn *alloc, gf_free_fn *free);
 
 /// Called when an internal consistency check fails (a bug in granflow or a
-/// misuse of its API, never bad input; checks are compiled in unless NDEBUG).
+/// misuse of its API, never bad input; compiled into every build).
 /// Return non-zero to abort (the default does: prints the condition, aborts),
 /// zero to continue.
 typedef int gf_assert_fn(const char *condition, const char *file, int line);
