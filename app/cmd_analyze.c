@@ -37,8 +37,7 @@ int gf_cmd_analyze(int argc, char **argv)
     const char *sets[64];
     size_t nsets = 0;
     const char *config = NULL;
-    gf_analysis_opts opts;
-    opts = gf_analysis_opts_default();
+    gf_analysis_opts opts = gf_analysis_opts_default();
     const char *pos[2] = {NULL, NULL};
     int npos = 0;
     const char *outdir = NULL;
