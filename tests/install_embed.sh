@@ -14,17 +14,19 @@ for f in lib/libgranflow.so lib/libgranflow.a bin/granflow include/granflow/gran
   [ -e "$prefix/$f" ] || { echo "install: $f missing under $prefix"; find "$prefix" -type f; exit 1; }
 done
 # The installed CLI runs from its prefix (RPATH $ORIGIN/../lib).
-"$prefix/bin/granflow" --version | grep -q "granflow [0-9]" || { echo "installed CLI does not run"; exit 1; }
+grep -q "granflow [0-9]" <<< "$("$prefix/bin/granflow" --version)" || { echo "installed CLI does not run"; exit 1; }
 
 # 1. CMake: find_package(granflow) from the prefix, shared and static.
 cmake -S "$src/examples/embed" -B "$work/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/cmake-build" >/dev/null
 out=$("$work/cmake-build/embed")
-echo "$out" | grep -q '^ok: ' || { echo "find_package build: $out"; exit 1; }
+grep -q '^ok: ' <<< "$out" || { echo "find_package build: $out"; exit 1; }
 [ "$("$work/cmake-build/embed_static")" = "$out" ] || { echo "the static build prints differently"; exit 1; }
-ldd "$work/cmake-build/embed_static" | grep -q libgranflow && { echo "embed_static links libgranflow.so"; exit 1; }
+# (ldd's output is read whole first: `ldd | grep -q` under pipefail fails
+# whenever grep stops reading before ldd has written everything.)
+grep -q libgranflow <<< "$(ldd "$work/cmake-build/embed_static")" && { echo "embed_static links libgranflow.so"; exit 1; }
 # It uses the installed library, not the build tree's.
-ldd "$work/cmake-build/embed" | grep -q "$prefix/lib/libgranflow.so" ||
+grep -q "$prefix/lib/libgranflow.so" <<< "$(ldd "$work/cmake-build/embed")" ||
   { echo "embed (cmake) is not linked to the installed library:"; ldd "$work/cmake-build/embed"; exit 1; }
 
 # 2. pkg-config, as a Makefile would.

@@ -12,4 +12,4 @@ awk -F, 'NR == 1 { next }
          $2 < last { print "row " NR ": exits fell"; bad = 1 }
          { last = $2 }
          END { if (last == 0) { print "nothing drained"; bad = 1 } exit bad }' "$out/outflow.csv"
-head -c 8 "$out/outflow.png" | od -An -c | grep -q 'P   N   G' || { echo "outflow.png is not a PNG"; exit 1; }
+grep -q 'P   N   G' <<< "$(head -c 8 "$out/outflow.png" | od -An -c)" || { echo "outflow.png is not a PNG"; exit 1; }
