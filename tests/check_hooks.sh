@@ -34,7 +34,6 @@ declare -A allowed=(
   [alloc:src/core/alloc.c]="the default allocator behind gf_set_allocator (aligned_alloc/free)"
   [assert:src/core/hooks.c]="the assert hook itself: the default aborts"
   [print:src/core/hooks.c]="the default assert hook prints the failed check before it aborts"
-  [print:src/spot/par_mpi.c]="GF_MPI_STATS=1 (MPI build only, opt-in): rank 0 prints the exchange's counters at exit"
 )
 
 bad=0 files=0

@@ -42,7 +42,8 @@ static struct {
     uint64_t exit_bytes;    ///< exits exchanged so far
     uint64_t applied;       ///< words this rank took from the others
     int rank, size;
-    bool stats_on;
+    bool stats_on;          ///< rank, size and report set
+    bool report;            ///< GF_MPI_STATS is set
 } gf_mpi_st;
 
 int gf_mpi_rank(void)
@@ -61,17 +62,18 @@ int gf_mpi_size(void)
     return n;
 }
 
-// GF_MPI_STATS=1: at exit, rank 0 prints the exchange's counters to stderr
-// (docs/performance.md quotes them).
-static void gf_mpi_print_stats(void)
+// GF_MPI_STATS=1: when the exchange ends (gf_mpi_release), rank 0 passes
+// its counters to gf_warn (the library never prints; docs/performance.md
+// quotes them), then starts counting afresh.
+static void gf_mpi_report_stats(void)
 {
-    if (gf_mpi_st.rank != 0) return;
-    fprintf(stderr, "granflow mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
-                    " bytes of changed words (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
-                    " words from the others\n",
-            gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes,
-            gf_mpi_st.phases ? (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases : 0.0, gf_mpi_st.exit_bytes,
-            gf_mpi_st.applied);
+    if (gf_mpi_st.report && gf_mpi_st.rank == 0 && gf_mpi_st.phases > 0)
+        gf_warn("mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
+                " bytes of changed words (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
+                " words from the others",
+                gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes, (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases,
+                gf_mpi_st.exit_bytes, gf_mpi_st.applied);
+    gf_mpi_st.bytes = gf_mpi_st.phases = gf_mpi_st.exit_bytes = gf_mpi_st.applied = 0;
 }
 
 static void gf_mpi_add(void *p, size_t bytes)
@@ -90,7 +92,7 @@ gf_status gf_mpi_phase_begin(gf_sim *sim, void *dead, void *blocks, size_t block
         gf_mpi_st.rank = gf_mpi_rank();
         gf_mpi_st.size = gf_mpi_size();
         const char *e = getenv("GF_MPI_STATS");
-        if (e && *e && *e != '0') atexit(gf_mpi_print_stats);
+        gf_mpi_st.report = e && *e && *e != '0';
     }
     const size_t n = sim->n;
     gf_grid *g = &sim->grid;
@@ -260,6 +262,7 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
 
 void gf_mpi_release(void)
 {
+    gf_mpi_report_stats();
     gf_free(gf_mpi_st.shadow, gf_mpi_st.shadow_cap);
     gf_free(gf_mpi_st.out, gf_mpi_st.out_cap * sizeof *gf_mpi_st.out);
     gf_free(gf_mpi_st.in, gf_mpi_st.in_cap * sizeof *gf_mpi_st.in);

@@ -24,7 +24,8 @@ gf_status gf_mpi_phase_end(gf_sim *sim);
 /// sim (sorted by id, re-insertions queued) as gf_par_merge_exits does.
 gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads);
 /// Frees the exchange's buffers (they are kept from phase to phase and
-/// regrow on the next run); gf_par_free calls it.
+/// regrow on the next run) and, with GF_MPI_STATS=1, passes rank 0's
+/// counters to gf_warn; gf_par_free calls it.
 void gf_mpi_release(void);
 #define GF_MPI_OWNS(r) ((int)((r) % (size_t)gf_mpi_size()) == gf_mpi_rank())
 #else
