@@ -107,7 +107,8 @@ int gf_cli_fail_hint(const char *cmd, gf_status st, const char *hint)
             hint ? " " : "", hint ? hint : "");
     switch (st) {
     case GF_OK: return GF_EXIT_OK;
-    case GF_ERR_PARAM: return GF_EXIT_USAGE;
+    case GF_ERR_PARAM:
+    case GF_ERR_EXISTS: return GF_EXIT_USAGE;
     case GF_ERR_FORMAT: return GF_EXIT_DATA;
     case GF_ERR_INTERRUPTED: return GF_EXIT_INTERRUPTED;
     default: return GF_EXIT_FAIL;

@@ -37,8 +37,7 @@ int gf_cmd_analyze(int argc, char **argv)
     const char *sets[64];
     size_t nsets = 0;
     const char *config = NULL;
-    gf_analysis_opts opts;
-    gf_analysis_opts_default(&opts);
+    gf_analysis_opts opts = gf_analysis_opts_default();
     const char *pos[2] = {NULL, NULL};
     int npos = 0;
     const char *outdir = NULL;
@@ -130,7 +129,7 @@ int gf_cmd_analyze(int argc, char **argv)
     st = gf_analyze(&s, &opts, name, outdir, plots);
     gf_series_free(&s);
     if (st != GF_OK)
-        return gf_cli_fail_hint("analyze", st, strstr(gf_last_error(), "unknown measurement") ? "(granflow analyze --list)" : NULL);
+        return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
     if (!quiet) fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", outdir);
     return GF_EXIT_OK;
 }

@@ -24,7 +24,7 @@ int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
 {
     memset(a, 0, sizeof *a);
     a->plots = true;
-    gf_analysis_opts_default(&a->opts);
+    a->opts = gf_analysis_opts_default();
     for (int i = 0; i < argc; i++) {
         const char *s = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;

@@ -65,7 +65,7 @@ int gf_cmd_lga(int argc, char **argv)
     }
     if (st != GF_OK)
         return gf_cli_fail_hint("lga", st,
-                                st == GF_ERR_PARAM && !opts.force && strstr(gf_last_error(), "is not empty")
+                                st == GF_ERR_EXISTS
                                     ? "(choose another -o, or overwrite it with --force)"
                                     : NULL);
     if (!cli.quiet) {

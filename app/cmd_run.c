@@ -118,11 +118,8 @@ int gf_cmd_run(int argc, char **argv)
         return GF_EXIT_INTERRUPTED;
     }
     if (st != GF_OK) {
-        char ckpt[4096];
-        snprintf(ckpt, sizeof ckpt, "%s/checkpoint.bin", dir);
         char hint[4200] = "";
-        if (st == GF_ERR_PARAM && strstr(gf_last_error(), "holds a run") && !opts.resume && !opts.force &&
-            access(ckpt, F_OK) == 0)
+        if (st == GF_ERR_EXISTS) // the library's kind, not its wording
             snprintf(hint, sizeof hint, "(resume it with --resume %s, overwrite it with --force, or choose another -o)", dir);
         return gf_cli_fail_hint("run", st, *hint ? hint : NULL);
     }

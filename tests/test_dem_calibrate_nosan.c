@@ -173,8 +173,7 @@ static void refine_recovers_flow_and_width(void **state)
     assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
     gf_series s;
     assert_int_equal(gf_dem_series_load(dir, NULL, &s, NULL), GF_OK);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     assert_int_equal(gf_dem_window(&s, &o, NULL), GF_OK);
     gf_dem_calibration_opts(&s, &o, &o);
 

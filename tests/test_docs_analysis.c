@@ -163,8 +163,7 @@ static void options_table_matches_the_code(void **state)
     }
     assert_int_equal(nrow, nkey); // and no row for a key the code does not have
 
-    gf_analysis_opts def;
-    gf_analysis_opts_default(&def);
+    gf_analysis_opts def = gf_analysis_opts_default();
     gf_series s = times_only();
     double a0, a1;
     gf_analysis_window(&def, &s, &a0, &a1);
@@ -267,8 +266,7 @@ static void every_measurement_is_documented(void **state)
     (void)state;
     char *doc = read_doc();
     gf_series s = flowing_silo();
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     // The papers' heights scaled to a silo ~14 d tall, as tests/cli/analyze.sh does.
     const char *sets[] = {"velocity.heights=3,6,9", "velocity.y_z0=4", "velocity.y_z1=10", "diffusion.z0=8",
                           "correlation.size=8",     "correlation.zc=7", "gr.x0=-5",      "gr.x1=5",

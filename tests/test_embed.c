@@ -248,13 +248,162 @@ static void allocator_hook_sees_every_block(void **state)
     gf_set_allocator(NULL, NULL);
 }
 
-static int assert_calls;
+// A counting allocator, installed through the public API for a whole
+// session: config from an INI file, a run with checkpoints into a directory,
+// a resume, the analysis, the report, a long error message. Every block the
+// library takes must come through it and go back.
+static _Atomic size_t count_allocs, count_frees, count_bytes_in, count_bytes_out;
+
+static void *count_alloc(size_t size, size_t alignment)
+{
+    void *p = aligned_alloc(alignment, size);
+    if (p) {
+        count_allocs++;
+        count_bytes_in += size;
+    }
+    return p;
+}
+
+static void count_free(void *block, size_t size)
+{
+    count_frees++;
+    count_bytes_out += size;
+    free(block);
+}
+
+// Blocks taken and given back since the counters were last read.
+typedef struct counted {
+    size_t allocs, frees;
+} counted;
+
+static counted count_since(counted *last)
+{
+    counted now = {count_allocs, count_frees}, d = {now.allocs - last->allocs, now.frees - last->frees};
+    *last = now;
+    return d;
+}
+
+static void allocator_counts_a_whole_session(void **state)
+{
+    (void)state;
+    const size_t bytes0 = gf_bytes_allocated();
+    gf_set_allocator(count_alloc, count_free);
+    counted last = {0}, d;
+    char dir[512], ini[600], path[700];
+    snprintf(dir, sizeof dir, "%s/counted", gf_test_tmpdir());
+    snprintf(ini, sizeof ini, "%s/counted.ini", gf_test_tmpdir());
+
+    // A config by name, written and read back (the INI reader's lines).
+    gf_config *cfg = gf_config_create();
+    const char *sets[][2] = {{"container.width", "8"}, {"container.depth", "6"}, {"container.orifice_diameter", "4"},
+                             {"packing.particles", "400"}, {"run.seed", "11"}, {"run.duration", "1"},
+                             {"run.checkpoint_interval", "0.5"}, {"output.snapshot_interval", "0.25"}};
+    for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
+        assert_int_equal(gf_config_set_key(cfg, sets[i][0], sets[i][1]), GF_OK);
+    assert_int_equal(gf_config_save(cfg, ini), GF_OK);
+    count_since(&last);
+    gf_config *loaded = gf_config_create();
+    assert_int_equal(gf_config_load(loaded, ini), GF_OK);
+    gf_config_destroy(loaded);
+    d = count_since(&last);
+    assert_true(d.allocs >= 2); // the config and the INI reader's line buffer
+    assert_int_equal(d.allocs, d.frees);
+
+    // A run into a directory, then resumed from its checkpoint.
+    gf_run_opts o = gf_run_opts_default();
+    o.dir = dir;
+    assert_int_equal(gf_run_dir(cfg, &o, NULL), GF_OK);
+    d = count_since(&last);
+    assert_true(d.allocs > 10);
+    assert_int_equal(d.allocs, d.frees);
+    assert_int_equal(gf_config_set_key(cfg, "run.duration", "1.5"), GF_OK);
+    o.resume = true;
+    assert_int_equal(gf_run_dir(cfg, &o, NULL), GF_OK);
+    d = count_since(&last);
+    assert_true(d.allocs > 10); // the checkpoint read in, the config compared as text
+    assert_int_equal(d.allocs, d.frees);
+
+    // The analysis (tables, gnuplot scripts, summary) without running gnuplot.
+    gf_series s = {0};
+    assert_int_equal(gf_series_load(dir, 0, &s), GF_OK);
+    gf_analysis_opts ao = gf_analysis_opts_default();
+    snprintf(path, sizeof path, "%s/analysis", dir);
+    assert_int_equal(gf_analyze(&s, &ao, NULL, path, false), GF_OK);
+    gf_series_free(&s);
+    d = count_since(&last);
+    assert_true(d.allocs > 10);
+    assert_int_equal(d.allocs, d.frees);
+
+    // The report page: tables read line by line, the pictures listed.
+    snprintf(path, sizeof path, "%s/analysis", dir);
+    gf_test_write_file(path, "extra.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"/>");
+    gf_report_info info;
+    assert_int_equal(gf_report_write(dir, NULL, &info), GF_OK);
+    assert_int_equal(info.images, 1);
+    d = count_since(&last);
+    assert_true(d.allocs >= 3);
+    assert_int_equal(d.allocs, d.frees);
+
+    // An error message longer than the kept text is built in a block too.
+    char key[6000];
+    memset(key, 'k', sizeof key - 1);
+    key[sizeof key - 1] = '\0';
+    assert_int_equal(gf_config_set_key(cfg, key, "1"), GF_ERR_PARAM);
+    assert_true(strlen(gf_last_error()) < 4096);
+    d = count_since(&last);
+    assert_true(d.allocs >= 1);
+    assert_int_equal(d.allocs, d.frees);
+
+    gf_config_destroy(cfg);
+    gf_set_allocator(NULL, NULL);
+    // Everything taken was given back, block for block and byte for byte.
+    assert_true(count_allocs > 50);
+    assert_int_equal(count_allocs, count_frees);
+    assert_int_equal(count_bytes_in, count_bytes_out);
+    assert_int_equal(gf_bytes_allocated(), bytes0);
+}
+
+// gf_getline, the library's getline(3) on the core allocator: whole lines
+// of any length, the last one without its newline, -1 at the end.
+static void getline_on_the_core_allocator(void **state)
+{
+    (void)state;
+    const size_t bytes0 = gf_bytes_allocated();
+    char longline[1001];
+    memset(longline, 'x', 1000);
+    longline[1000] = '\0';
+    char text[1100];
+    snprintf(text, sizeof text, "a\n\n%s\nlast", longline);
+    const char *path = gf_test_write_file(gf_test_tmpdir(), "lines.txt", text);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char *line = NULL;
+    size_t cap = 0;
+    assert_int_equal(gf_getline(&line, &cap, f), 2);
+    assert_string_equal(line, "a\n");
+    assert_int_equal(gf_getline(&line, &cap, f), 1);
+    assert_string_equal(line, "\n");
+    assert_int_equal(gf_getline(&line, &cap, f), 1001);
+    assert_int_equal(strncmp(line, longline, 1000), 0);
+    assert_true(cap >= 1002);
+    assert_int_equal(gf_getline(&line, &cap, f), 4);
+    assert_string_equal(line, "last");
+    assert_int_equal(gf_getline(&line, &cap, f), -1);
+    assert_int_equal(gf_getline(&line, &cap, f), -1);
+    fclose(f);
+    assert_int_equal(gf_bytes_allocated(), bytes0 + cap);
+    gf_free(line, cap);
+    assert_int_equal(gf_bytes_allocated(), bytes0);
+}
+
+static int assert_calls, assert_line;
+static char assert_cond[64], assert_file[256];
 
 static int soft_assert(const char *condition, const char *file, int line)
 {
-    (void)file;
-    assert_string_equal(condition, "1 == 2");
-    assert_int_equal(line, 42);
+    snprintf(assert_cond, sizeof assert_cond, "%s", condition);
+    snprintf(assert_file, sizeof assert_file, "%s", file);
+    assert_line = line;
     assert_calls++;
     return 0; // continue
 }
@@ -263,9 +412,21 @@ static void assert_hook_is_called(void **state)
 {
     (void)state;
     gf_set_assert_fn(soft_assert);
-    gf_assert_fail("1 == 2", __FILE__, 42);
-    gf_set_assert_fn(NULL);
+    gf_assert_fail("1 == 2", "here.c", 42);
     assert_int_equal(assert_calls, 1);
+    assert_string_equal(assert_cond, "1 == 2");
+    assert_string_equal(assert_file, "here.c");
+    assert_int_equal(assert_line, 42);
+    // The library's checks (GF_ASSERT) reach the hook in this Release
+    // (NDEBUG) build too, with the condition's text and place.
+    const int line = __LINE__ + 1;
+    GF_ASSERT(assert_calls == 0);
+    GF_ASSERT(assert_calls == 2); // holds: no call
+    gf_set_assert_fn(NULL);
+    assert_int_equal(assert_calls, 2);
+    assert_string_equal(assert_cond, "assert_calls == 0");
+    assert_non_null(strstr(assert_file, "test_embed.c"));
+    assert_int_equal(assert_line, line);
 }
 
 // A small silo through the flat-array API: the particles plus the exits are
@@ -320,7 +481,8 @@ static void sim_arrays_account_for_every_particle(void **state)
     gf_sim_destroy(sim);
 }
 
-// The by-value defaults are what a NULL options pointer means.
+// Every options struct of include/granflow has a by-value default; NULL
+// options pointers mean these.
 static void options_defaults(void **state)
 {
     (void)state;
@@ -334,6 +496,15 @@ static void options_defaults(void **state)
     assert_true(!l.dir && !l.force && !l.stop && !l.progress);
     gf_report_opts o = gf_report_opts_default();
     assert_true(!o.out && !o.compare && !o.title);
+    gf_dem_refine_opts ro = gf_dem_refine_opts_default();
+    assert_true(ro.max_iter == 0 && ro.flow_tol == 0 && ro.var_tol == 0 && !ro.progress && !ro.stop && !ro.start);
+    gf_run_hooks h = gf_run_hooks_default();
+    assert_true(!h.ctx && !h.snapshot && !h.checkpoint && !h.progress && h.progress_every == 0 && !h.stop);
+    // The analysis defaults, by value: the values docs/analysis.md gives.
+    gf_analysis_opts a = gf_analysis_opts_default();
+    assert_true(isnan(a.t0) && isnan(a.t1) && a.vel_bin == 1.0 && a.vel_nheights == 6 && a.vel_heights[5] == 60.0);
+    gf_render_opts ren = gf_render_opts_default();
+    assert_true(ren.px_per_d == 10.0 && ren.phi_lo == 0.55 && ren.phi_hi == 0.65 && isnan(ren.zmax) && ren.label);
 }
 
 static const struct CMUnitTest tests[] = {
@@ -344,6 +515,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(version_from_cmake),
     cmocka_unit_test(warnings_are_kept_and_passed_on),
     cmocka_unit_test(allocator_hook_sees_every_block),
+    cmocka_unit_test(allocator_counts_a_whole_session),
+    cmocka_unit_test(getline_on_the_core_allocator),
     cmocka_unit_test(assert_hook_is_called),
     cmocka_unit_test(sim_arrays_account_for_every_particle),
 };

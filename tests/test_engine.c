@@ -334,8 +334,9 @@ static void fresh_run_refuses_to_overwrite(void **state)
     c.run_duration = 0.2;
     run_into(&c, dir, 0, NULL, GF_OK);
     gf_run_opts o = {.dir = dir};
-    assert_int_equal(gf_run_dir(&c, &o, NULL), GF_ERR_PARAM);
+    assert_int_equal(gf_run_dir(&c, &o, NULL), GF_ERR_EXISTS); // the kind the CLI's hint keys on
     assert_non_null(strstr(gf_last_error(), "holds a run"));
+    assert_string_equal(gf_status_str(GF_ERR_EXISTS), "output exists");
 }
 
 static void corrupt_checkpoint_is_rejected(void **state)

@@ -96,8 +96,7 @@ static void outflow_from_exits(void **state)
     for (size_t k = 0; k < N; k++) e[k] = (gf_exit){.id = (int64_t)k + 1, .time = 1.0 + (double)k / R, .pass = 1};
     series_exits(&s, e, N);
     GF_DELETE(e, N);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "flow_rate"), R, 1e-9 * R);
@@ -135,8 +134,7 @@ static void outflow_from_counts(void **state)
     for (int k = 0; k < 6; k++)
         for (int i = 0; i < 600 - 50 * k; i++) push(&s.frames[k].pk, i + 1, 1, 0.0, 1.0 + i);
     s.n_initial = 600;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "flow_rate"), 25.0, 1e-12);
@@ -179,8 +177,7 @@ static void density_counts_the_slice(void **state)
         for (int i = 0; i < 6; i++) push(p, id++, 1, 1.0, outside[i]);
     }
     s.n_initial = s.frames[0].pk.n;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_density(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "density");
@@ -267,8 +264,7 @@ static void surface_angle_regression(void **state)
     push(&s.frames[0].pk, 99999, 1, 2.5, 1000.0);
     push(&s.frames[0].pk, 99998, 1, 0.0, 1000.0);
     s.n_initial = s.frames[0].pk.n;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_surface(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "surface");
@@ -313,8 +309,7 @@ static void rtd_per_layer(void **state)
     const gf_exit e[] = {{.id = 6, .time = 1.0}, {.id = 1, .time = 3.0}, {.id = 99, .time = 4.0}, {.id = 2, .time = 5.0},
                          {.id = 4, .time = 6.0}, {.id = 5, .time = 8.0}, {.id = 3, .time = 10.0}};
     series_exits(&s, e, sizeof e / sizeof e[0]);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
     const gf_table *t = gf_test_table(&out, "rtd");
@@ -358,8 +353,7 @@ static void rtd_needs_exits(void **state)
     gf_series s;
     series_init(&s, 1, times);
     push(&s.frames[0].pk, 1, 1, 0.0, 1.0);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "rtd: needs the exit time of every particle"));

@@ -363,7 +363,7 @@ static void run_dir_writes_everything(void **state)
     assert_int_equal(lines, 1 + 261);
     free(csv);
     // not again without force; with force yes
-    assert_int_equal(gf_lga_run_dir(&c, &o, NULL), GF_ERR_PARAM);
+    assert_int_equal(gf_lga_run_dir(&c, &o, NULL), GF_ERR_EXISTS);
     assert_non_null(strstr(gf_last_error(), "is not empty"));
     o.force = true;
     c.lga_iterations = 40;

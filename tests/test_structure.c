@@ -38,8 +38,7 @@ static void gr_random_points_tend_to_one(void **state)
             assert_int_equal(gf_packing_push(&s.frames[k].pk, (int64_t)i + 1, 1, W * (uniform(&seed) - 0.5),
                                              D * (uniform(&seed) - 0.5), H * uniform(&seed), 0.5),
                              GF_OK);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.t0 = 0;
     o.t1 = (double)F;
     o.gr_x0 = -7; // the whole width
@@ -114,8 +113,7 @@ static void gr_and_g3_of_fcc_lattice(void **state)
     const double W = 10, D = 7, H = 12, dr = 0.03, rcut = 1.2;
     gf_series s = gf_test_series(1, W, D);
     fcc_fill(&s.frames[0].pk, W, D, H);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.gr_x0 = -2;
     o.gr_x1 = 2;
     o.gr_z0 = 3;
@@ -201,14 +199,13 @@ static void gr_rejects_bad_options(void **state)
 {
     (void)state;
     gf_series s = gf_test_series(1, 10, 8);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.gr_x0 = 20; // entirely outside the 10 d wide container
     o.gr_x1 = 30;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_gr(&s, &o, &out), GF_ERR_PARAM);
     gf_measure_free(&out);
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.gr_dr = 0;
     assert_int_equal(gf_measure_gr(&s, &o, &out), GF_ERR_PARAM);
     gf_measure_free(&out);
@@ -252,8 +249,7 @@ static void badness_measure_averages_the_window(void **state)
     gf_series s = gf_test_series(3, 50, 8);
     const double shift[3] = {0.3, 0.0, 0.1}; // B's overlap with A: 0.4, 0.1, 0.2
     for (size_t k = 0; k < 3; k++) overlaps(&s.frames[k].pk, shift[k]);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o); // region -15 < x < 15, 15 < z < 45: all five
+    gf_analysis_opts o = gf_analysis_opts_default(); // region -15 < x < 15, 15 < z < 45: all five
     o.t0 = 0.5;                   // frames at t = 1 and 2
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_badness(&s, &o, &out), GF_OK);

@@ -265,8 +265,7 @@ static double surface_angle(const gf_config *c, double t)
     assert_int_equal(gf_sim_particles(sim, &s.frames[0].pk), GF_OK);
     gf_sim_destroy(sim);
     s.cfg = *c;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.surf_dx = 1.0;
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_surface(&s, &o, &out), GF_OK);

@@ -74,8 +74,7 @@ static void velocity_recovers_variance_line(void **state)
     gf_packing_free(&late);
     s.n_initial = s.frames[0].pk.n;
 
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_velocity(&s, &o, &out), GF_OK);
 
@@ -147,8 +146,7 @@ static void velocity_depth_profile(void **state)
             push(&s.frames[1], id, out_xz[k][0], y, out_xz[k][1] - 2.5);
         }
     }
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.t1 = 1.0;
     gf_measure_out out = {0};
@@ -325,8 +323,7 @@ static void diffusion_recovers_random_walk(void **state)
             if (!gone[i]) push(&s.frames[k], i + 1, x0[i] + dx[i], 0.3, z0[i] - 2.0 * j);
         }
     }
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
     gf_assert_near(gf_test_value(&out, "diffusion_particles"), N, 0.0);
@@ -408,8 +405,7 @@ static void correlation_case(double spread)
             push(&s.frames[k + 1], id, d ? 20.0 : -20.0, normal(&rng), 60.0 + normal(&rng));
         }
     }
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.corr_size = 32.0;
     o.vel_bin = 16.0;

@@ -123,8 +123,7 @@ static void measure_on_a_cubic_lattice(void **state)
     const double W = 8, D = 4;
     gf_series s = gf_test_series(4, W, D);
     for (size_t k = 0; k < 4; k++) cubic(&s.frames[k].pk, W, D, 0.5, 8, 4, 20);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o); // window: a quarter in, frames 1..3
+    gf_analysis_opts o = gf_analysis_opts_default(); // window: a quarter in, frames 1..3
     o.gr_x0 = -3;
     o.gr_x1 = 3;
     o.gr_z0 = 2;
@@ -192,8 +191,7 @@ static void measure_headline_equals_full_tessellation(void **state)
     c.container_depth = 6;
     c.packing_particles = 3000;
     assert_int_equal(gf_config_validate(&c), GF_OK);
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.t0 = 0;
     o.t1 = 1;
     o.gr_x0 = -4;
@@ -317,8 +315,7 @@ static void field_equals_the_measure_column(void **state)
     s.cfg = c;
     assert_int_equal(gf_packing_generate(&c, &s.frames[0].pk), GF_OK);
     const gf_packing *p = &s.frames[0].pk;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     o.vor_avg_radius = 1.7; // not the default, to see that the radius is passed on
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_voronoi(&s, &o, &out), GF_OK);

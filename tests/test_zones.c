@@ -38,8 +38,7 @@ static void zone_tables_from_exits(void **state)
     memcpy(s.exits, e, sizeof e);
     s.nexits = 4;
     s.has_exits = true;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=1,2"), GF_OK);
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_zones(&s, &o, &out), GF_OK);
@@ -102,8 +101,7 @@ static void velocity_and_streamlines_from_frames(void **state)
         double z5 = k < 2 ? 2.0 - 0.5 * (double)k : 12.0;
         assert_int_equal(gf_packing_push(pk, 5, 1, 0.6, 0.0, z5, 0.5), GF_OK);
     }
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=1,2"), GF_OK);
     assert_int_equal(gf_analysis_opts_set(&o, "window.t0=0"), GF_OK);
     gf_measure_out out = {0};
@@ -148,8 +146,7 @@ static void velocity_and_streamlines_from_frames(void **state)
 static void zone_radii_must_increase(void **state)
 {
     (void)state;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=2,1"), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "zones.radii"));
     assert_int_equal(gf_analysis_opts_set(&o, "zones.radii=1,2,3"), GF_OK);
@@ -174,8 +171,7 @@ static void cylinder_zones_end_at_the_wall(void **state)
     memcpy(s.exits, e, sizeof e);
     s.nexits = 1;
     s.has_exits = true;
-    gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_zones(&s, &o, &out), GF_OK);
     const gf_table *z = gf_test_table(&out, "zones");

@@ -157,7 +157,8 @@ typedef struct gf_analysis_opts {
     double zone_dz;           ///< height bin of the streamlines, d (2)
 } gf_analysis_opts;
 
-GF_API void gf_analysis_opts_default(gf_analysis_opts *o);
+/// The defaults (docs/analysis.md), by value.
+GF_API gf_analysis_opts gf_analysis_opts_default(void);
 /// Sets one option from "key=value" (keys in docs/analysis.md). Errors name the key.
 GF_API gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment);
 /// The value of option `key` as gf_analysis_opts_set reads it back (e.g. "10,20,30", "auto").

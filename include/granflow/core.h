@@ -27,6 +27,7 @@ typedef enum gf_status {
     GF_ERR_NOMEM,       ///< an allocation failed
     GF_ERR_STATE,       ///< the call does not fit the object's state (e.g. corrupt checkpoint)
     GF_ERR_INTERRUPTED, ///< a run stopped early on request (SIGINT/SIGTERM); state is saved
+    GF_ERR_EXISTS,      ///< the output directory already holds a run or results (resume, force, or another one)
 } gf_status;
 
 /// Short fixed name of a status ("ok", "invalid parameter", ...). Never NULL.
@@ -64,7 +65,7 @@ typedef void gf_free_fn(void *block, size_t size);
 GF_API void gf_set_allocator(gf_alloc_fn *alloc, gf_free_fn *free);
 
 /// Called when an internal consistency check fails (a bug in granflow or a
-/// misuse of its API, never bad input; checks are compiled in unless NDEBUG).
+/// misuse of its API, never bad input; compiled into every build).
 /// Return non-zero to abort (the default does: prints the condition, aborts),
 /// zero to continue.
 typedef int gf_assert_fn(const char *condition, const char *file, int line);

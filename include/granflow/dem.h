@@ -233,6 +233,8 @@ typedef struct gf_dem_refine_opts {
     volatile sig_atomic_t *stop;     ///< GF_ERR_INTERRUPTED when it becomes non-zero; may be NULL
     const gf_packing *start;         ///< the spot runs' initial packing (NULL: the DEM's first frame)
 } gf_dem_refine_opts;
+/// The defaults (what a NULL `ro` means): every member 0/NULL.
+GF_API gf_dem_refine_opts gf_dem_refine_opts_default(void);
 /// The result of gf_dem_refine.
 typedef struct gf_dem_refine_result {
     gf_dem_flowstats dem;            ///< the DEM's numbers

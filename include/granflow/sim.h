@@ -56,6 +56,8 @@ typedef struct gf_run_hooks {
     /// next event boundary (safe to set from a signal handler).
     volatile sig_atomic_t *stop;
 } gf_run_hooks;
+/// The defaults (what a NULL `hooks` means): every member NULL/0.
+GF_API gf_run_hooks gf_run_hooks_default(void);
 
 /// Creates a simulation of `packing` (copied) under `cfg` (validated). Spots
 /// and time start at zero.

@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fs.h"
@@ -185,7 +186,7 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
     if (st != GF_OK) return st;
     char path[4096];
     snprintf(path, sizeof path, "%s/summary.json", outdir);
-    gf_summary *sum = calloc(1, sizeof *sum);
+    gf_summary *sum = GF_NEW(gf_summary, 1);
     if (!sum) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     if (only) gf_summary_read(sum, path);
     double t0, t1;
@@ -231,6 +232,6 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
         snprintf(path, sizeof path, "%s/summary.json", outdir);
         first_err = gf_summary_write(sum, path);
     }
-    free(sum);
+    GF_DELETE(sum, 1);
     return first_err;
 }

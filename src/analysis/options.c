@@ -80,10 +80,12 @@ static const gf_key gf_analysis_key_list[] = {
 const gf_key_table gf_analysis_keys = {gf_analysis_key_list,
                                               sizeof gf_analysis_key_list / sizeof gf_analysis_key_list[0]};
 
-void gf_analysis_opts_default(gf_analysis_opts *o)
+gf_analysis_opts gf_analysis_opts_default(void)
 {
-    memset(o, 0, sizeof *o);
-    gf_keys_defaults(&gf_analysis_keys, o);
+    gf_analysis_opts o;
+    memset(&o, 0, sizeof o);
+    gf_keys_defaults(&gf_analysis_keys, &o);
+    return o;
 }
 
 gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)

@@ -90,7 +90,7 @@ gf_status gf_measure_gnuplot(gf_measure_out *o, const char *fmt, ...)
     va_end(ap);
     if (add < 0) return gf_error_set(GF_ERR_PARAM, "bad gnuplot format '%s'", fmt);
     size_t old = o->gnuplot ? strlen(o->gnuplot) : 0;
-    char *s = realloc(o->gnuplot, old + (size_t)add + 1);
+    char *s = gf_realloc(o->gnuplot, o->gnuplot ? old + 1 : 0, old + (size_t)add + 1);
     if (!s) return gf_error_set(GF_ERR_NOMEM, "out of memory for a gnuplot script");
     va_start(ap, fmt);
     vsnprintf(s + old, (size_t)add + 1, fmt, ap);
@@ -102,6 +102,6 @@ gf_status gf_measure_gnuplot(gf_measure_out *o, const char *fmt, ...)
 void gf_measure_free(gf_measure_out *o)
 {
     for (size_t k = 0; k < o->ntables; k++) gf_table_free(&o->tables[k]);
-    free(o->gnuplot);
+    if (o->gnuplot) gf_free(o->gnuplot, strlen(o->gnuplot) + 1);
     memset(o, 0, sizeof *o);
 }

@@ -59,7 +59,7 @@ typedef struct gf_config_loader {
     gf_config *cfg;
     FILE *f;
     const char *path;
-    char *buf;      // getline buffer (malloc'd by getline)
+    char *buf;      // gf_getline buffer
     size_t cap;     // its capacity
     int line;       // number of the line last handed to libinih
     int err_line;   // line of the first error found here (message already set), 0: none
@@ -127,7 +127,7 @@ static char *gf_config_read_line(char *str, int num, void *stream)
     gf_config_loader *ld = stream;
     if (ld->err_line) return NULL;
     errno = 0;
-    ssize_t got = getline(&ld->buf, &ld->cap, ld->f);
+    ssize_t got = gf_getline(&ld->buf, &ld->cap, ld->f);
     if (got < 0) {
         if (ferror(ld->f)) ld->read_errno = errno ? errno : EIO;
         return NULL;
@@ -188,7 +188,7 @@ gf_status gf_config_load(gf_config *cfg, const char *path)
         return gf_error_set(GF_ERR_IO, "cannot open config file '%s': %s", path, strerror(errno));
     gf_config_loader ld = {.cfg = cfg, .f = f, .path = path};
     int ret = ini_parse_stream(gf_config_read_line, &ld, gf_config_on_pair, &ld);
-    free(ld.buf);
+    gf_free(ld.buf, ld.cap);
     fclose(f);
     if (ld.err_line && (ret <= 0 || ret >= ld.err_line)) return ld.err;
     // libinih found an error our line checks did not anticipate.

@@ -5,6 +5,8 @@
 #define GF_CORE_ALLOC_H
 
 #include <stddef.h>
+#include <stdio.h>
+#include <sys/types.h>
 
 /// Zeroed, 64-byte aligned block of `size` bytes, or NULL (size 0 gives NULL).
 void *gf_alloc(size_t size);
@@ -19,6 +21,12 @@ void *gf_realloc(void *p, size_t old_size, size_t new_size);
 /// The allocator set by gf_set_allocator (default aligned_alloc/free), unzeroed, uncounted.
 void *gf_hook_alloc(size_t size, size_t alignment);
 void gf_hook_free(void *block, size_t size);
+
+/// getline(3) on this allocator: reads one line (with its '\n') of f into
+/// *line, growing it (*cap bytes; start from NULL, 0). Returns its length,
+/// -1 at the end of the file, on a read error or out of memory (errno
+/// ENOMEM). The caller frees the buffer with gf_free(*line, *cap).
+ssize_t gf_getline(char **line, size_t *cap, FILE *f);
 
 /// Typed helpers: n elements of type T.
 #define GF_NEW(T, n) ((T *)gf_alloc_array((size_t)(n), sizeof(T)))

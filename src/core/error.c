@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
+
 // Longest message kept. Longer ones lose their middle, never their end: the
 // reason comes last ("PATH: cannot write: No space left on device").
 #define GF_ERR_CAP 4096
@@ -62,14 +64,14 @@ gf_status gf_error_set(gf_status status, const char *fmt, ...)
     int len = vsnprintf(small, sizeof small, fmt, ap);
     va_end(ap);
     char *raw = small;
-    if (len >= (int)sizeof small && (raw = malloc((size_t)len + 1)) != NULL)
+    if (len >= (int)sizeof small && (raw = gf_alloc((size_t)len + 1)) != NULL)
         vsnprintf(raw, (size_t)len + 1, fmt, ap2);
     else if (!raw)
         raw = small; // out of memory: the head of the message, cut short
     va_end(ap2);
     if (len < 0) raw[0] = '\0';
     size_t need = gf_escape(raw, NULL, 0);
-    char *esc = need < GF_ERR_CAP ? NULL : malloc(need + 1);
+    char *esc = need < GF_ERR_CAP ? NULL : gf_alloc(need + 1);
     if (!esc) {
         gf_escape(raw, gf_errbuf, sizeof gf_errbuf);
     } else {
@@ -79,9 +81,9 @@ gf_status gf_error_set(gf_status status, const char *fmt, ...)
         while (head > 0 && ((unsigned char)esc[head] & 0xC0) == 0x80) head--;
         while (tail < need && ((unsigned char)esc[tail] & 0xC0) == 0x80) tail++;
         snprintf(gf_errbuf, sizeof gf_errbuf, "%.*s ... %s", (int)head, esc, esc + tail);
-        free(esc);
+        gf_free(esc, need + 1);
     }
-    if (raw != small) free(raw);
+    if (raw != small) gf_free(raw, (size_t)len + 1);
     return status;
 }
 
@@ -99,6 +101,7 @@ const char *gf_status_str(gf_status status)
     case GF_ERR_NOMEM: return "out of memory";
     case GF_ERR_STATE: return "invalid state";
     case GF_ERR_INTERRUPTED: return "interrupted";
+    case GF_ERR_EXISTS: return "output exists";
     }
     return "unknown status";
 }

@@ -27,11 +27,9 @@ void gf_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /// Calls the gf_set_assert_fn hook (default: print, abort).
 void gf_assert_fail(const char *condition, const char *file, int line);
 
-#ifndef NDEBUG
-/// Misuse of an internal API (a bug), never bad user input.
+/// Misuse of an internal API (a bug), never bad user input. Compiled into
+/// every build (Release defines NDEBUG, which would leave the hook unused),
+/// so keep it out of hot loops.
 #define GF_ASSERT(c) ((c) ? (void)0 : gf_assert_fail(#c, __FILE__, __LINE__))
-#else
-#define GF_ASSERT(c) ((void)0)
-#endif
 
 #endif

@@ -1,39 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The embedding hooks: user allocator, assertion handler, warning sink.
-#include "core/alloc.h"
+// The embedding hooks: assertion handler, warning sink (the allocator hook
+// is in alloc.c, the one file that calls the C library's allocator).
 #include "core/error.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-// ---- allocator ----------------------------------------------------------------
-
-static void *gf_default_alloc(size_t size, size_t alignment)
-{
-    size_t rounded = (size + alignment - 1) & ~(alignment - 1);
-    return aligned_alloc(alignment, rounded);
-}
-
-static void gf_default_free(void *block, size_t size)
-{
-    (void)size;
-    free(block);
-}
-
-static gf_alloc_fn *gf_alloc_hook = gf_default_alloc;
-static gf_free_fn *gf_free_hook = gf_default_free;
-
-void gf_set_allocator(gf_alloc_fn *alloc, gf_free_fn *free_fn)
-{
-    gf_alloc_hook = alloc ? alloc : gf_default_alloc;
-    gf_free_hook = alloc && free_fn ? free_fn : gf_default_free;
-}
-
-void *gf_hook_alloc(size_t size, size_t alignment) { return gf_alloc_hook(size, alignment); }
-
-void gf_hook_free(void *block, size_t size) { gf_free_hook(block, size); }
 
 // ---- assertions ---------------------------------------------------------------
 

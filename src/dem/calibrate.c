@@ -68,8 +68,7 @@ static double gf_cal_top(const gf_packing *p, double xhalf)
 
 void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, gf_analysis_opts *o)
 {
-    gf_analysis_opts d;
-    gf_analysis_opts_default(&d);
+    gf_analysis_opts d = gf_analysis_opts_default();
     gf_analysis_opts k = keep ? *keep : d;
     *o = k;
     if (s->nframes == 0) return;

@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/alloc.h"
 #include "core/clock.h"
 #include "core/error.h"
 #include "granflow/dem.h"
@@ -137,8 +138,8 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
     }
     char *line = NULL;
     size_t cap = 0;
-    while (getline(&line, &cap, in) >= 0) gf_dem_line(r, line);
-    free(line);
+    while (gf_getline(&line, &cap, in) >= 0) gf_dem_line(r, line);
+    gf_free(line, cap);
     fclose(in);
     int status = 0;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {

@@ -218,11 +218,13 @@ void gf_dem_refine_width(const gf_dem_flowstats *d, const gf_dem_flowstats *s, d
     *r_s = fmax(GF_REF_MIN_RS, r);
 }
 
+gf_dem_refine_opts gf_dem_refine_opts_default(void) { return (gf_dem_refine_opts){.max_iter = 0}; }
+
 gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_config *cfg, const gf_dem_refine_opts *ro,
                         gf_dem_refine_result *res)
 {
     memset(res, 0, sizeof *res);
-    gf_dem_refine_opts def = {0};
+    gf_dem_refine_opts def = gf_dem_refine_opts_default();
     if (!ro) ro = &def;
     int max_iter = ro->max_iter > 0 ? ro->max_iter : 6;
     double ftol = ro->flow_tol > 0 ? ro->flow_tol : GF_DEM_FLOW_TOL;

@@ -231,7 +231,7 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     if (snprintf(o.dir, sizeof o.dir, "%s", opts->dir) >= (int)sizeof o.dir)
         return gf_error_set(GF_ERR_PARAM, "output directory path too long");
     if (!opts->force && gf_lga_dir_busy(o.dir))
-        return gf_error_set(GF_ERR_PARAM, "%s is not empty: clear it or use another directory", o.dir);
+        return gf_error_set(GF_ERR_EXISTS, "%s is not empty: clear it or use another directory", o.dir);
     // Everything that can fail on bad input happens before the directory is touched.
     gf_lga *l = NULL;
     gf_status st = gf_lga_create(cfg, &l);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 
 void gf_html_text(FILE *out, const char *s)
@@ -79,7 +80,7 @@ bool gf_html_json_table(FILE *out, const char *path)
     fputs("<table class=\"kv\">\n", out);
     char *line = NULL;
     size_t cap = 0;
-    while (getline(&line, &cap, f) > 0) {
+    while (gf_getline(&line, &cap, f) > 0) {
         char *colon = strstr(line, "\":");
         if (!colon) continue; // the braces
         colon[1] = '\0';
@@ -90,7 +91,7 @@ bool gf_html_json_table(FILE *out, const char *path)
         gf_html_text(out, strcmp(value, "null") ? value : "—");
         fputs("</td></tr>\n", out);
     }
-    free(line);
+    gf_free(line, cap);
     fclose(f);
     fputs("</table>\n", out);
     return true;
@@ -103,7 +104,7 @@ bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
     fputs("<table class=\"csv\">\n", out);
     char *line = NULL;
     size_t cap = 0, row = 0;
-    while (getline(&line, &cap, f) > 0 && row <= max_rows) {
+    while (gf_getline(&line, &cap, f) > 0 && row <= max_rows) {
         const char *cell = row == 0 ? "th" : "td";
         fputs("<tr>", out);
         char *save = NULL;
@@ -115,7 +116,7 @@ bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
         fputs("</tr>\n", out);
         row++;
     }
-    free(line);
+    gf_free(line, cap);
     fclose(f);
     fputs("</table>\n", out);
     return true;
@@ -128,8 +129,8 @@ bool gf_html_pre_file(FILE *out, const char *path)
     fputs("<pre>", out);
     char *line = NULL;
     size_t cap = 0;
-    while (getline(&line, &cap, f) > 0) gf_html_text(out, line);
-    free(line);
+    while (gf_getline(&line, &cap, f) > 0) gf_html_text(out, line);
+    gf_free(line, cap);
     fclose(f);
     fputs("</pre>\n", out);
     return true;

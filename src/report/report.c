@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "granflow/analysis.h"
@@ -64,32 +65,49 @@ static void gf_report_figure(gf_report *r, const char *path, const char *caption
     r->info.images++;
 }
 
-static int gf_report_is_picture(const struct dirent *e)
+static bool gf_report_is_picture(const char *name)
 {
-    size_t n = strlen(e->d_name);
-    return n > 4 && (!strcmp(e->d_name + n - 4, ".png") || !strcmp(e->d_name + n - 4, ".svg"));
+    size_t n = strlen(name);
+    return n > 4 && (!strcmp(name + n - 4, ".png") || !strcmp(name + n - 4, ".svg"));
 }
+
+typedef char gf_report_name[256];
+
+static int gf_report_name_cmp(const void *a, const void *b) { return strcmp(a, b); }
 
 // Every picture of `sub` except those already shown (`skip`, by stem), sorted.
 static void gf_report_pictures(gf_report *r, const char *sub, const char *const *skip, size_t nskip)
 {
-    struct dirent **list;
-    int n = scandir(sub, &list, gf_report_is_picture, alphasort);
-    if (n < 0) return;
-    for (int i = 0; i < n; i++) {
+    DIR *d = opendir(sub);
+    if (!d) return;
+    gf_report_name *list = NULL;
+    size_t n = 0, cap = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        if (!gf_report_is_picture(e->d_name) || strlen(e->d_name) >= sizeof *list) continue;
+        if (n == cap) {
+            size_t grown = cap ? 2 * cap : 32;
+            gf_report_name *q = gf_realloc(list, cap * sizeof *list, grown * sizeof *list);
+            if (!q) break; // out of memory: the pictures found so far
+            list = q;
+            cap = grown;
+        }
+        snprintf(list[n++], sizeof *list, "%s", e->d_name);
+    }
+    closedir(d);
+    if (n) qsort(list, n, sizeof *list, gf_report_name_cmp);
+    for (size_t i = 0; i < n; i++) {
         bool shown = false;
         for (size_t k = 0; k < nskip; k++) {
             size_t len = strlen(skip[k]);
-            if (!strncmp(list[i]->d_name, skip[k], len) && list[i]->d_name[len] == '.') shown = true;
+            if (!strncmp(list[i], skip[k], len) && list[i][len] == '.') shown = true;
         }
         if (!shown) {
             char path[GF_REPORT_FILE];
-            gf_report_join(path, sizeof path, sub, list[i]->d_name);
-            gf_report_figure(r, path, list[i]->d_name);
+            gf_report_join(path, sizeof path, sub, list[i]);
+            gf_report_figure(r, path, list[i]);
         }
-        free(list[i]);
     }
-    free(list);
+    gf_free(list, cap * sizeof *list);
 }
 
 // analysis/: the headline numbers, then the plots in the order of the measurements.

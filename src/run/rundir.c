@@ -319,7 +319,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
-        return gf_error_set(GF_ERR_PARAM,
+        return gf_error_set(GF_ERR_EXISTS,
                             "%s already holds a run (%s exists): resume it, clear it, or use another directory",
                             rd.dir, ckpt);
     // Everything that can fail on bad input happens before the directory is touched.

@@ -76,7 +76,9 @@ static uint32_t gf_crc32(const unsigned char *data, size_t len)
 }
 
 // Physics part of a config as text: the keys that must not change on resume.
-static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
+// Written into a block of the core allocator (*cap bytes, *len used), grown
+// until the text fits.
+static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len, size_t *cap)
 {
     gf_config c = *cfg;
     gf_config d = gf_config_default();
@@ -84,11 +86,29 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len)
     c.run_checkpoint_interval = d.run_checkpoint_interval;
     c.run_stall_time = d.run_stall_time;
     c.run_threads = d.run_threads; // results do not depend on it
-    FILE *f = open_memstream(text, len);
-    if (!f) return gf_error_set(GF_ERR_NOMEM, "out of memory");
-    gf_status st = gf_config_write(&c, f);
-    fclose(f);
-    return st;
+    for (size_t size = (size_t)1 << 16; size <= (size_t)1 << 26; size *= 2) {
+        char *buf = gf_alloc(size);
+        FILE *f = buf ? fmemopen(buf, size, "w") : NULL;
+        if (!f) {
+            gf_free(buf, size);
+            return gf_error_set(GF_ERR_NOMEM, "out of memory");
+        }
+        gf_status st = gf_config_write(&c, f);
+        bool flushed = fflush(f) == 0 && !ferror(f);
+        long at = ftell(f);
+        fclose(f);
+        // fmemopen keeps a NUL after the text: a text of size - 1 bytes may have been cut.
+        bool full = !flushed || at < 0 || (size_t)at >= size - 1;
+        if (st == GF_OK && !full) {
+            *text = buf;
+            *len = (size_t)at;
+            *cap = size;
+            return GF_OK;
+        }
+        gf_free(buf, size);
+        if (st != GF_OK && st != GF_ERR_IO) return st;
+    }
+    return gf_error_set(GF_ERR_NOMEM, "configuration text too long for a checkpoint");
 }
 
 gf_status gf_sim_save(const gf_sim *sim, const char *path)
@@ -97,13 +117,13 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     if (sim->nreins != 0) return gf_error_set(GF_ERR_STATE, "checkpoint while re-insertions are pending");
     gf_buf b = {0};
     char *phys = NULL;
-    size_t plen = 0;
-    gf_status st = gf_ckpt_physics(&sim->cfg, &phys, &plen);
+    size_t plen = 0, pcap = 0;
+    gf_status st = gf_ckpt_physics(&sim->cfg, &phys, &plen, &pcap);
     if (st != GF_OK) return st;
     uint64_t n64 = plen;
     GF_PUT(&b, n64);
     gf_put(&b, phys, plen);
-    free(phys);
+    gf_free(phys, pcap);
 
     GF_PUT(&b, sim->t);
     GF_PUT(&b, sim->t_reached);
@@ -168,34 +188,36 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len)
+// The whole file in a block of the core allocator (*cap bytes, *len read).
+static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len, size_t *cap)
 {
     FILE *f = fopen(path, "rb");
     if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open checkpoint: %s", path, strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    unsigned char *buf = malloc(cap);
+    size_t size = 1 << 16, n = 0;
+    unsigned char *buf = gf_alloc(size);
     while (buf) {
-        size_t got = fread(buf + n, 1, cap - n, f);
+        size_t got = fread(buf + n, 1, size - n, f);
         n += got;
-        if (n < cap) break;
-        unsigned char *q = realloc(buf, cap * 2);
+        if (n < size) break;
+        unsigned char *q = size <= SIZE_MAX / 2 ? gf_realloc(buf, size, size * 2) : NULL;
         if (!q) {
-            free(buf);
+            gf_free(buf, size);
             buf = NULL;
             break;
         }
         buf = q;
-        cap *= 2;
+        size *= 2;
     }
     bool err = ferror(f);
     fclose(f);
     if (!buf) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory reading checkpoint", path);
     if (err) {
-        free(buf);
+        gf_free(buf, size);
         return gf_error_set(GF_ERR_IO, "%s: read error", path);
     }
     *data = buf;
     *len = n;
+    *cap = size;
     return GF_OK;
 }
 
@@ -216,9 +238,9 @@ static const char *gf_ckpt_setting(const char *p, const char *end, size_t *len)
     return NULL;
 }
 
-static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, gf_status st)
+static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, size_t cap, gf_status st)
 {
-    free(data);
+    gf_free(data, cap);
     gf_sim_destroy(sim);
     return st;
 }
@@ -255,14 +277,14 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
 {
     *out = NULL;
     unsigned char *data = NULL;
-    size_t len = 0;
-    gf_status st = gf_read_all(path, &data, &len);
+    size_t len = 0, cap = 0;
+    gf_status st = gf_read_all(path, &data, &len, &cap);
     if (st != GF_OK) return st;
     const size_t head = 8 + 4 + 4 + 8 + 4;
     uint32_t version, bom, crc;
     uint64_t size;
     if (len < head || memcmp(data, GF_CKPT_MAGIC, 8) != 0) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_FORMAT, "%s: not a granflow checkpoint", path);
     }
     memcpy(&version, data + 8, 4);
@@ -270,39 +292,39 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     memcpy(&size, data + 16, 8);
     memcpy(&crc, data + 24, 4);
     if (bom != GF_CKPT_BOM) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint written on a machine of other byte order", path);
     }
     if (version != GF_CKPT_VERSION) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint version %u, this granflow reads version %u",
                             path, version, GF_CKPT_VERSION);
     }
     if (size != len - head) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint %s (%zu payload bytes, header says %llu)", path,
                             len - head < size ? "truncated" : "has trailing bytes", len - head,
                             (unsigned long long)size);
     }
     uint32_t got = gf_crc32(data + head, size);
     if (got != crc) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint checksum mismatch (file corrupted)", path);
     }
     gf_rd r = {data + head, size, 0, false};
 
     gf_sim *sim = gf_alloc(sizeof *sim);
     if (!sim) {
-        free(data);
+        gf_free(data, cap);
         return gf_error_set(GF_ERR_NOMEM, "out of memory");
     }
     sim->cfg = *cfg;
-    if ((st = gf_config_validate(&sim->cfg)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    if ((st = gf_config_validate(&sim->cfg)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
     uint64_t plen = 0;
     GF_GET(&r, plen);
     char *mine = NULL;
-    size_t mlen = 0;
-    if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    size_t mlen = 0, mcap = 0;
+    if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen, &mcap)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
     bool ok = !r.bad && plen <= r.len - r.pos;
     // The two INI texts are compared setting by setting: comments and blank
     // lines are skipped, so a key's documentation may change between
@@ -331,14 +353,14 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     }
     if (!ok || key[0]) {
         if (!key[0]) snprintf(key, sizeof key, "%s", "the configuration");
-        free(mine);
-        return gf_ckpt_fail(sim, data,
+        gf_free(mine, mcap);
+        return gf_ckpt_fail(sim, data, cap,
                             gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
                                                        "was made with (on resume only run.duration, "
                                                        "run.checkpoint_interval, run.stall_time and run.threads may change)",
                                          path, key));
     }
-    free(mine);
+    gf_free(mine, mcap);
     r.pos += plen;
     gf_sim_derive(sim);
 
@@ -361,30 +383,30 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     uint32_t shift = 0;
     GF_GET(&r, shift);
     if (shift < 4 || (1u << (shift < 31 ? shift : 31)) > GF_NL_CAP_MAX)
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
     sim->nl_shift = shift;
     sim->pending = pending;
     uint64_t n = counts[0];
     if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
         (!sim->cfg.run_recirculate && counts[4] > counts[2]))
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
     // The arrays the counts announce must be in the payload: a few bytes
     // claiming 10^9 spots must not allocate gigabytes first.
     double need = (double)n * (double)(sizeof(gf_pos) + sizeof(gf_ref) + sizeof(int64_t) + sizeof(int32_t) + 1) +
                   (double)counts[3] * (double)(4 * sizeof(double) + sizeof(uint32_t)) +
                   (double)counts[4] * (double)sizeof(gf_exit);
     if (counts[2] > GF_MAX_PARTICLES || need > (double)(r.len - r.pos))
-        return gf_ckpt_fail(sim, data,
+        return gf_ckpt_fail(sim, data, cap,
                             gf_error_set(GF_ERR_FORMAT, "%s: checkpoint header announces more than its payload holds",
                                          path));
-    if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, st);
+    if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
     sim->n = n;
     sim->n_alive = counts[1];
     sim->n_initial = counts[2];
     sim->ns = sim->ns_cap = counts[3];
     sim->nexit = 0;
     if (!gf_sim_exits_reserve(sim, counts[4]))
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     sim->nexit = counts[4];
     sim->sx = GF_NEW(double, sim->ns_cap);
     sim->sy = GF_NEW(double, sim->ns_cap);
@@ -392,7 +414,7 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
     sim->scount = GF_NEW(uint32_t, sim->ns_cap);
     if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount))
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     gf_get(&r, sim->p, sizeof(gf_pos) * n);
     gf_get(&r, sim->p0, sizeof(gf_ref) * n);
     gf_get(&r, sim->id, sizeof(int64_t) * n);
@@ -408,19 +430,19 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     size_t live = 0;
     for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;
     if (r.bad || live != sim->n_alive)
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path));
-    if ((st = gf_ckpt_check_values(sim, path)) != GF_OK) return gf_ckpt_fail(sim, data, st);
-    if ((st = gf_sim_make_grid(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
-    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return gf_ckpt_fail(sim, data, st);
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path));
+    if ((st = gf_ckpt_check_values(sim, path)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
+    if ((st = gf_sim_make_grid(sim)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
+    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
     uint64_t ncell = 0;
     GF_GET(&r, ncell);
     if (r.bad || ncell != sim->grid.ncell)
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_FORMAT, "%s: grid does not match the container", path));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: grid does not match the container", path));
     uint32_t *slot = GF_NEW(uint32_t, ncell * GF_CELL_CAP), *cnt = GF_NEW(uint32_t, ncell);
     if (!slot || !cnt) {
         GF_DELETE(slot, ncell * GF_CELL_CAP);
         GF_DELETE(cnt, ncell);
-        return gf_ckpt_fail(sim, data, gf_error_set(GF_ERR_NOMEM, "out of memory"));
+        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     }
     gf_get(&r, cnt, sizeof(uint32_t) * ncell);
     for (size_t c = 0; !r.bad && c < ncell; c++) {
@@ -431,17 +453,17 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
                                  : gf_grid_restore(&sim->grid, cnt, slot, n);
     GF_DELETE(slot, ncell * GF_CELL_CAP);
     GF_DELETE(cnt, ncell);
-    if (st != GF_OK) return gf_ckpt_fail(sim, data, st);
-    free(data);
+    if (st != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
+    gf_free(data, cap);
     data = NULL;
     for (size_t i = 0; i < n; i++)
         if (sim->alive[i] && sim->grid.cell_of[i] == GF_NO_CELL)
-            return gf_ckpt_fail(sim, NULL, gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path));
+            return gf_ckpt_fail(sim, NULL, 0, gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path));
     // Lists are rebuilt without re-sorting from the saved p0 (they are a
     // function of it, see sim_internal.h): the very lists the run had, so
     // the same order, the same sums, the same bits.
     uint64_t builds = sim->st.nlist_builds;
-    if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, st);
+    if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, 0, st);
     sim->st.nlist_builds = builds;
     *out = sim;
     return GF_OK;

@@ -144,6 +144,8 @@ static bool gf_sim_stopping(const gf_run_hooks *hooks)
 #endif
 }
 
+gf_run_hooks gf_run_hooks_default(void) { return (gf_run_hooks){.ctx = NULL}; }
+
 gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
 {
     static const gf_run_hooks none = {0};

@@ -55,6 +55,8 @@ static struct {
     uint64_t applied_p, applied_c; ///< particle and cell records among them
     int rank, size;
     bool stats_on, check;
+    bool report;            ///< GF_MPI_STATS is set: gf_mpi_release passes the counters to gf_warn
+    int ncounts;            ///< entries of counts, displs, tcounts, tdispls (the ranks)
     double wait;
 } gf_mpi_st;
 
@@ -83,19 +85,56 @@ bool gf_mpi_stop(volatile sig_atomic_t *stop)
     return any;
 }
 
-// GF_MPI_STATS=1: at exit, rank 0 prints the exchange's counters to stderr
-// (docs/performance.md quotes them).
-static void gf_mpi_print_stats(void)
+// GF_MPI_STATS=1: when the exchange ends (gf_mpi_release), rank 0 passes
+// its counters to gf_warn (the library never prints; docs/performance.md
+// quotes them), then counts afresh.
+static void gf_mpi_report_stats(void)
 {
-    if (gf_mpi_st.rank != 0) return;
-    fprintf(stderr, "granflow mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
-                    " bytes of changed records (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
-                    " words from the others (%" PRIu64 " particle and %" PRIu64 " cell records)\n",
-            gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes,
-            gf_mpi_st.phases ? (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases : 0.0, gf_mpi_st.exit_bytes,
-            gf_mpi_st.applied / 8, gf_mpi_st.applied_p, gf_mpi_st.applied_c);
-    fprintf(stderr, "granflow mpi: rank 0 spent %.3f s in the exchange's collectives (waiting included)\n",
-            gf_mpi_st.wait);
+    if (gf_mpi_st.report && gf_mpi_st.rank == 0 && gf_mpi_st.phases > 0) {
+        gf_warn("mpi: %d ranks, %" PRIu64 " colour phases exchanged, %" PRIu64
+                " bytes of changed records (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
+                " words from the others (%" PRIu64 " particle and %" PRIu64 " cell records)",
+                gf_mpi_st.size, gf_mpi_st.phases, gf_mpi_st.bytes, (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases,
+                gf_mpi_st.exit_bytes, gf_mpi_st.applied / 8, gf_mpi_st.applied_p, gf_mpi_st.applied_c);
+        gf_warn("mpi: rank 0 spent %.3f s in the exchange's collectives (waiting included)", gf_mpi_st.wait);
+    }
+    gf_mpi_st.bytes = gf_mpi_st.phases = gf_mpi_st.exit_bytes = gf_mpi_st.applied = 0;
+    gf_mpi_st.applied_p = gf_mpi_st.applied_c = 0;
+    gf_mpi_st.wait = 0.0;
+}
+
+// The per-rank count arrays, made once (by the first phase or exit merge).
+static bool gf_mpi_counts(int R)
+{
+    if (gf_mpi_st.counts) return true;
+    gf_mpi_st.ncounts = R;
+    gf_mpi_st.counts = GF_NEW(int, R);
+    gf_mpi_st.displs = GF_NEW(int, R);
+    gf_mpi_st.tcounts = GF_NEW(int, R);
+    gf_mpi_st.tdispls = GF_NEW(int, R);
+    gf_mpi_st.chunk = 16384;
+    return gf_mpi_st.counts && gf_mpi_st.displs && gf_mpi_st.tcounts && gf_mpi_st.tdispls;
+}
+
+void gf_mpi_release(void)
+{
+    gf_mpi_report_stats();
+    gf_free(gf_mpi_st.out, gf_mpi_st.out_cap);
+    gf_free(gf_mpi_st.whole, gf_mpi_st.whole_cap);
+    gf_free(gf_mpi_st.in, gf_mpi_st.in_cap);
+    gf_free(gf_mpi_st.flag, gf_mpi_st.flag_cap);
+    gf_free(gf_mpi_st.list, gf_mpi_st.list_cap * sizeof(uint32_t));
+    const size_t n = (size_t)gf_mpi_st.ncounts;
+    if (gf_mpi_st.counts) GF_DELETE(gf_mpi_st.counts, n);
+    if (gf_mpi_st.displs) GF_DELETE(gf_mpi_st.displs, n);
+    if (gf_mpi_st.tcounts) GF_DELETE(gf_mpi_st.tcounts, n);
+    if (gf_mpi_st.tdispls) GF_DELETE(gf_mpi_st.tdispls, n);
+    gf_mpi_st.out = gf_mpi_st.whole = gf_mpi_st.in = NULL;
+    gf_mpi_st.flag = NULL;
+    gf_mpi_st.list = NULL;
+    gf_mpi_st.out_cap = gf_mpi_st.whole_cap = gf_mpi_st.in_cap = gf_mpi_st.flag_cap = gf_mpi_st.list_cap = 0;
+    gf_mpi_st.counts = gf_mpi_st.displs = gf_mpi_st.tcounts = gf_mpi_st.tdispls = NULL;
+    gf_mpi_st.ncounts = 0;
 }
 
 // Room for `need` bytes (or entries of `size` bytes) in *a; false when out of memory.
@@ -103,9 +142,8 @@ static bool gf_mpi_room(void **a, size_t *cap, size_t need, size_t size)
 {
     if (need <= *cap) return true;
     size_t c = need + need / 2 + 1024;
-    void *p = realloc(*a, c * size);
+    void *p = gf_realloc(*a, *cap * size, c * size); // zeroes the new part: flags start clear
     if (!p) return false;
-    if (size == 1) memset((unsigned char *)p + *cap, 0, c - *cap); // flags start clear
     *a = p;
     *cap = c;
     return true;
@@ -120,7 +158,7 @@ gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads)
         gf_mpi_st.rank = gf_mpi_rank();
         gf_mpi_st.size = gf_mpi_size();
         const char *e = getenv("GF_MPI_STATS");
-        if (e && *e && *e != '0') atexit(gf_mpi_print_stats);
+        gf_mpi_st.report = e && *e && *e != '0';
         e = getenv("GF_MPI_CHECK");
         gf_mpi_st.check = e && *e && *e != '0';
     }
@@ -393,17 +431,8 @@ gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dea
     bool failed = false;
     for (int t = 0; t < threads; t++) failed = failed || work[t].log_failed;
     if (failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange's logs");
-    if (!gf_mpi_st.counts) { // (or made by gf_mpi_merge_exits, in a step with no phase to exchange)
-        gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
-        gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
-        if (!gf_mpi_st.counts || !gf_mpi_st.displs) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
-    }
-    if (!gf_mpi_st.tcounts) {
-        gf_mpi_st.tcounts = calloc((size_t)R, sizeof(int));
-        gf_mpi_st.tdispls = calloc((size_t)R, sizeof(int));
-        if (!gf_mpi_st.tcounts || !gf_mpi_st.tdispls) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
-        gf_mpi_st.chunk = 16384;
-    }
+    // (or made by gf_mpi_merge_exits, in a step with no phase to exchange)
+    if (!gf_mpi_counts(R)) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
     size_t mine = 0;
     gf_status st = gf_mpi_pack(sim, work, threads, dead, blocks, nblock, block_size, &mine);
     if (st != GF_OK) return st;
@@ -430,7 +459,7 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
         gf_exit e;
         uint32_t slot, pad_;
     } rec;
-    rec *out = calloc(mine + 1, sizeof *out);
+    rec *out = GF_NEW(rec, mine + 1);
     if (!out) return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exits");
     size_t k = 0;
     for (int t = 0; t < threads; t++) {
@@ -441,28 +470,25 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
         work[t].nexit = 0;
     }
     int bytes = (int)(mine * sizeof(rec));
-    int *counts = gf_mpi_st.counts, *displs = gf_mpi_st.displs;
-    if (!counts) {
-        counts = gf_mpi_st.counts = calloc((size_t)R, sizeof(int));
-        displs = gf_mpi_st.displs = calloc((size_t)R, sizeof(int));
-        if (!counts || !displs) {
-            free(out);
-            return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
-        }
+    if (!gf_mpi_counts(R)) {
+        GF_DELETE(out, mine + 1);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
     }
+    int *counts = gf_mpi_st.counts, *displs = gf_mpi_st.displs;
     MPI_Allgather(&bytes, 1, MPI_INT, counts, 1, MPI_INT, MPI_COMM_WORLD);
     size_t total = 0;
     for (int r = 0; r < R; r++) {
         displs[r] = (int)total;
         total += (size_t)counts[r];
     }
-    rec *all = malloc(total + sizeof(rec));
+    const size_t all_bytes = total + sizeof(rec);
+    rec *all = gf_alloc(all_bytes);
     if (!all) {
-        free(out);
+        GF_DELETE(out, mine + 1);
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exits");
     }
     MPI_Allgatherv(out, bytes, MPI_BYTE, all, counts, displs, MPI_BYTE, MPI_COMM_WORLD);
-    free(out);
+    GF_DELETE(out, mine + 1);
     gf_mpi_st.exit_bytes += total;
     size_t n = total / sizeof(rec);
     gf_status st = GF_OK;
@@ -475,6 +501,6 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads)
     }
     // The owner's gf_sim_exit_slow changed the particle's cell and lists:
     // the phase exchange carried those. The caller sorts the step's exits.
-    free(all);
+    gf_free(all, all_bytes);
     return st;
 }

@@ -31,9 +31,14 @@ bool gf_mpi_stop(volatile sig_atomic_t *stop);
 /// After the phases: the exits every rank's workers found, appended to the
 /// sim (sorted by id, re-insertions queued) as gf_par_merge_exits does.
 gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads);
+/// Frees the exchange's buffers (they are kept from phase to phase and
+/// regrow on the next run) and, with GF_MPI_STATS=1, passes rank 0's
+/// counters to gf_warn; gf_par_free calls it.
+void gf_mpi_release(void);
 #define GF_MPI_OWNS(r) ((int)((r) % (size_t)gf_mpi_size()) == gf_mpi_rank())
 #else
 #define GF_MPI_OWNS(r) true
+#define gf_mpi_release() ((void)0)
 #endif
 
 #endif

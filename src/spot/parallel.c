@@ -110,6 +110,7 @@ static double gf_par_reach(const gf_sim *sim)
 void gf_par_free(gf_sim *sim)
 {
     gf_par *q = sim->par;
+    gf_mpi_release();
     if (!q) return;
     for (int t = 0; t < q->threads; t++) gf_work_free(&q->work[t]);
     GF_DELETE(q->work, q->threads);

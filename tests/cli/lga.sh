@@ -92,7 +92,7 @@ ok "bad keys, values, scenarios and geometries exit 2 naming the key"
 
 gf lga -q --set lga.scenario=channel --set lga.width=8 --set lga.height=20 --set lga.iterations=5 -o pile
 expect_rc 2 "lga into a non-empty directory"
-expect_err "--force" "lga into a non-empty directory"
+expect_err "(choose another -o, or overwrite it with --force)" "lga into a non-empty directory"
 gf lga -q --force --set lga.scenario=channel --set lga.width=8 --set lga.height=20 --set lga.iterations=5 -o pile
 expect_rc 0 "lga --force"
 [ ! -e pile/maps/map_000050.png ] || fail "--force left the old run's maps behind"

@@ -121,6 +121,12 @@ expect_rc 0 "run -o F"
 gf analyze F --no-plots
 expect_rc 0 "analyze F"
 [ -d F/analysis ] || fail "analyze F wrote no F/analysis"
+# A fresh run into F without --force is refused (GF_ERR_EXISTS), and the
+# CLI adds the flags that answer it on that status, not on the wording.
+gf run -q "${TINY[@]}" --set run.duration=0.2 -o F
+expect_rc 2 "a fresh run into F, which holds a run"
+expect_err "F already holds a run" "a fresh run into F"
+expect_err "(resume it with --resume F, overwrite it with --force, or choose another -o)" "a fresh run into F"
 start run -q "${TINY[@]}" --set run.stall_time=0 --set run.checkpoint_interval=0 --set run.duration=5000 --force -o F
 wait_for F/snapshots/snap_000002.dump 20 || fail "run --force -o F: no snapshot 2 after 20 s"
 sleep 0.3
