@@ -97,8 +97,8 @@ static void analysis_get_set_round_trip_every_key(void **state)
 {
     (void)state;
     gf_analysis_opts o, copy;
-    gf_analysis_opts_default(&o);
-    gf_analysis_opts_default(&copy);
+    o = gf_analysis_opts_default();
+    copy = gf_analysis_opts_default();
     const size_t nkeys = gf_analysis_opts_key_count();
     assert_int_equal(nkeys, gf_analysis_keys.count);
     assert_true(nkeys >= 28);

@@ -197,7 +197,7 @@ static gf_series cylinder_series(double r0, double inner, double bump)
 static gf_measure_out measure_velocity_01(const gf_series *s)
 {
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.t1 = 1.0;
     gf_measure_out out = {0};
