@@ -312,7 +312,7 @@ static void diffusion_recovers_random_walk(void **state)
 // 2000 decoys start at |x| < 5 but r > 5 with a walk 10x wider: outside the
 // region. The old estimator (dx about a regression on x0 and x0 (z0 - zbar),
 // particles with |x| < 5) took the decoys and the drift's non-linear part:
-// b_p 33x. Tolerance as diffusion_recovers_random_walk (5 sd, 5.6%).
+// b_p 0.058, 19x. Tolerance as diffusion_recovers_random_walk (5 sd, 5.6%).
 static void diffusion_tangential_in_a_cylinder(void **state)
 {
     (void)state;
@@ -479,8 +479,8 @@ static void correlation_ignores_bursts(void **state)
 // v_r = -0.05, v_z = -0.3, 50 and 300 times the fluctuations. The (r, z)
 // field holds it exactly (constant in every annulus), so the same length
 // comes back. An (x, z) field averaged over y (the box's, before) leaves
-// v_r y / r and most of v_r x / r in du, smooth along each line: C(r) ~ 1 at
-// every r (beta 10^3 d). Tolerance as correlation_case.
+// part of v_r y / r and v_r x / r in du, smooth along each line: beta 3.4 d.
+// Tolerance as correlation_case.
 static void correlation_about_radial_mean_in_a_cylinder(void **state)
 {
     (void)state;
