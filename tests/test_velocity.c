@@ -348,6 +348,72 @@ static void diffusion_recovers_random_walk(void **state)
     free(gone);
 }
 
+// A cylinder: particles start in r < 5 (uniform disc), drop 2 d per frame,
+// with a radial drift that grows faster than r (-c r0 (1 + r0^2 / 4) per d
+// dropped, along the start's radius: the mean flow of a silo converges in
+// the plane through the axis) and an isotropic walk of variance 2 b per d
+// dropped along x and along y. The tangential displacement holds the walk
+// only: Var = 2 b |dz|, b recovered (thesis Sec. 3.3's per-axis b_p).
+// 2000 decoys start at |x| < 5 but r > 5 with a walk 10x wider: outside the
+// region. The old estimator (dx about a regression on x0 and x0 (z0 - zbar),
+// particles with |x| < 5) took the decoys and the drift's non-linear part:
+// b_p 0.058, 19x. Tolerance as diffusion_recovers_random_walk (5 sd, 5.6%).
+static void diffusion_tangential_in_a_cylinder(void **state)
+{
+    (void)state;
+    enum { NF = 13, N = 16000, NOUT = 2000 };
+    const double b = 3e-3, c = 0.004;
+    double times[NF];
+    for (int k = 0; k < NF; k++) times[k] = 2.0 * k;
+    gf_series s = make_series(NF, times);
+    s.cfg.container_shape = GF_SHAPE_CYLINDER;
+    s.cfg.container_radius = 12.0;
+    gf_rng rng;
+    gf_rng_seed(&rng, 2025, 5);
+    double *p0 = malloc(sizeof(double) * 3 * (N + NOUT)), *d = calloc(2 * (N + NOUT), sizeof(double));
+    assert_true(p0 && d);
+    for (int i = 0; i < N + NOUT; i++) {
+        double *q = p0 + 3 * i;
+        if (i < N) {
+            double r = 5.0 * sqrt(gf_rng_uniform(&rng)), a = 6.283185307179586 * gf_rng_uniform(&rng);
+            q[0] = r * cos(a);
+            q[1] = r * sin(a);
+        } else {
+            q[0] = -5.0 + 10.0 * gf_rng_uniform(&rng);
+            q[1] = (i % 2 ? 1.0 : -1.0) * (5.5 + 4.0 * gf_rng_uniform(&rng));
+        }
+        q[2] = 60.0 + 40.0 * gf_rng_uniform(&rng) + 1e-9;
+    }
+    for (int k = 0; k < NF; k++) {
+        int j = k - 3; // frames after the start frame (k = 3, t = 6)
+        for (int i = 0; i < N + NOUT; i++) {
+            const double *q = p0 + 3 * i;
+            if (j < 0) {
+                push(&s.frames[k], i + 1, 20.0 * gf_rng_uniform(&rng) - 10.0, 0.0, 200.0 * gf_rng_uniform(&rng));
+                continue;
+            }
+            if (j > 0) {
+                double r2 = q[0] * q[0] + q[1] * q[1], wide = i < N ? 1.0 : 10.0;
+                for (int a = 0; a < 2; a++)
+                    d[2 * i + a] += -c * q[a] * (1.0 + r2 / 4.0) * 2.0 + wide * sqrt(2.0 * b * 2.0) * normal(&rng);
+            }
+            push(&s.frames[k], i + 1, q[0] + d[2 * i], q[1] + d[2 * i + 1], q[2] - 2.0 * j);
+        }
+    }
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
+    print_message("cylinder: b_p %.4g (walk %.4g), %g particles\n", gf_test_value(&out, "diffusion_length"), b,
+                  gf_test_value(&out, "diffusion_particles"));
+    gf_assert_near(gf_test_value(&out, "diffusion_particles"), N, 0.0);
+    gf_assert_near(gf_test_value(&out, "diffusion_length"), b, 5.0 * sqrt(2.0 / N) * b);
+    gf_measure_free(&out);
+    gf_series_free(&s);
+    free(p0);
+    free(d);
+}
+
 // ---------------------------------------------------------------------------
 // Correlation: fluctuations along lines of particles as an AR(1) process.
 
@@ -452,6 +518,53 @@ static void correlation_ignores_bursts(void **state)
     correlation_case(0.5);
 }
 
+// A cylinder: the four AR(1) lines of correlation_case (here at y = +-1.1,
+// +-3.6) in an axisymmetric converging flow, v = (v_r x / r, v_r y / r, v_z),
+// v_r = -0.05, v_z = -0.3, 50 and 300 times the fluctuations. The (r, z)
+// field holds it exactly (constant in every annulus), so the same length
+// comes back. An (x, z) field averaged over y (the box's, before) leaves
+// part of v_r y / r and v_r x / r in du, smooth along each line: beta 3.4 d.
+// Tolerance as correlation_case.
+static void correlation_about_radial_mean_in_a_cylinder(void **state)
+{
+    (void)state;
+    enum { K = 1000, NL = 4, NP = 124 };
+    const double beta = 2.0, sp = 0.25807, sigma = 0.001, rho = exp(-sp / beta), vr = -0.05, vz = -0.3;
+    double times[K + 1];
+    for (int k = 0; k <= K; k++) times[k] = (double)k;
+    gf_series s = make_series(K + 1, times);
+    s.cfg.container_shape = GF_SHAPE_CYLINDER;
+    s.cfg.container_radius = 20.0;
+    gf_rng rng;
+    gf_rng_seed(&rng, 98, 4);
+    const double zl[NL] = {49.0, 58.0, 65.0, 74.0}, yl[NL] = {1.1, 3.6, -3.6, -1.1};
+    for (int k = 0; k < K; k++)
+        for (int l = 0; l < NL; l++) {
+            double u = sigma * normal(&rng);
+            for (int i = 0; i < NP; i++) {
+                if (i > 0) u = rho * u + sqrt(1.0 - rho * rho) * sigma * normal(&rng);
+                int64_t id = 1 + (int64_t)k * 1000 + l * NP + i;
+                double x = -16.0 + sp * (i + 0.5), y = yl[l], r = hypot(x, y);
+                double v[3] = {vr * x / r, vr * y / r, vz};
+                push(&s.frames[k], id, x - 0.5 * v[0], y - 0.5 * v[1], zl[l] - 0.5 * v[2]);
+                push(&s.frames[k + 1], id, x + 0.5 * v[0], y + 0.5 * v[1] + u, zl[l] + 0.5 * v[2]);
+            }
+        }
+    gf_analysis_opts o;
+    gf_analysis_opts_default(&o);
+    o.t0 = 0.0;
+    o.corr_size = 32.0;
+    o.vel_bin = 16.0;
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_correlation(&s, &o, &out), GF_OK);
+    print_message("cylinder: beta %.4g (lines %.4g), amplitude %.4g\n", gf_test_value(&out, "correlation_length"),
+                  beta, gf_test_value(&out, "correlation_amplitude"));
+    gf_assert_near(gf_test_value(&out, "correlation_length"), beta, 0.105 * beta);
+    gf_assert_near(gf_test_value(&out, "correlation_amplitude"), 1.0, 0.075);
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_recovers_variance_line),
     cmocka_unit_test(velocity_depth_profile),
@@ -459,6 +572,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(diffusion_recovers_random_walk),
     cmocka_unit_test(correlation_recovers_length),
     cmocka_unit_test(correlation_ignores_bursts),
+    cmocka_unit_test(diffusion_tangential_in_a_cylinder),
+    cmocka_unit_test(correlation_about_radial_mean_in_a_cylinder),
 };
 
 GF_TEST_MAIN("velocity", tests)

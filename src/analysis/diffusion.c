@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Particle diffusion length b_p = Var(dx_p) / (2 dz_p) of particles starting
 // high in the centre, tracked as they drop (thesis Sec. 3.3: DEM 2.86e-3 d,
-// spot 2.73e-3 d).
+// spot 2.73e-3 d). In a cylinder dx_p is the tangential displacement
+// (gf_diff_frame), which the axisymmetric mean flow does not produce.
 #include <math.h>
 #include <string.h>
 
@@ -87,13 +88,14 @@ static double gf_diff_resid_var(double *dx, double *c1, double *c2, size_t n)
     return ss / (double)(n - p);
 }
 
-/// Selects the particles of frame `f` with |x| < xhalf and z > z0.
-static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, gf_diff_work *w)
+/// Selects the particles of frame `f` with |x| < xhalf (r < xhalf in a
+/// cylinder) and z > z0.
+static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bool radial, gf_diff_work *w)
 {
     const gf_packing *pk = &f->pk;
     gf_status st = GF_OK;
     for (size_t i = 0; st == GF_OK && i < pk->n; i++)
-        if (fabs(pk->x[i]) < o->diff_xhalf && pk->z[i] > o->diff_z0)
+        if ((radial ? hypot(pk->x[i], pk->y[i]) : fabs(pk->x[i])) < o->diff_xhalf && pk->z[i] > o->diff_z0)
             st = gf_packing_push(&w->start, pk->id[i], pk->layer ? pk->layer[i] : 0, pk->x[i], pk->y[i], pk->z[i],
                                  pk->r ? pk->r[i] : 0.5);
     if (st == GF_OK) st = gf_idmap_build(&w->start, &w->map);
@@ -111,7 +113,15 @@ static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, gf
 
 /// One table row for frame `f`: time, mean |dz|, Var(dx) about the mean flow,
 /// particles, raw Var(dx). Returns false when fewer than 4 particles remain.
-static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, double row[5])
+/// In a cylinder (radial) dx is the displacement along the start position's
+/// tangent, dt = (x0 dy - y0 dx) / r0: the mean flow is axisymmetric and
+/// carries a particle in the plane through the axis and its start (thesis
+/// Sec. 3.3's b_p is per lateral axis), so dt has no drift and no regression:
+/// Var(dt) = 2 b_p |dz|, as Var(dx) in the box, with the same small
+/// compression by the converging flow. (dx itself would keep the radial
+/// convergence, a drift ~ r0 that varies with the azimuth: b_p ~4x.) The raw
+/// column is then the same dt.
+static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, bool radial, double row[5])
 {
     const gf_packing *pk = &f->pk, *s0 = &w->start;
     double zbar = 0.0;
@@ -126,6 +136,11 @@ static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, double row[5])
         w->dz[n] = pk->z[j] - s0->z[i];
         w->c1[n] = s0->x[i];
         w->c2[n] = s0->x[i] * (s0->z[i] - zbar);
+        if (radial) {
+            double r0 = hypot(s0->x[i], s0->y[i]), dy = pk->y[j] - s0->y[i];
+            w->dx[n] = r0 > 0.0 ? (s0->x[i] * dy - s0->y[i] * w->dx[n]) / r0 : dy;
+            w->c1[n] = w->c2[n] = 0.0; // no regressor: gf_diff_resid_var is then the variance about the mean
+        }
         adz += fabs(w->dz[n]);
         mx += w->dx[n];
         n++;
@@ -151,8 +166,9 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     // Particles start at the first frame of the window, not of the run: b_p is
     // a property of steady flow (thesis Sec. 3.3 fits it "during steady flow"),
     // and before the window the flow is still spreading up from the orifice.
+    bool radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
     gf_diff_work w = {0};
-    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, &w) : GF_OK;
+    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, radial, &w) : GF_OK;
     gf_table *t = &out->tables[out->ntables];
     if (st == GF_OK && (st = gf_table_init(t, "diffusion", "time_tau,mean_dz_d,var_dx_d2,particles,var_dx_raw_d2")) == GF_OK)
         out->ntables++;
@@ -161,7 +177,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     double smv = 0.0, smm = 0.0;
     for (size_t k = k0 + 1; st == GF_OK && w.start.n && k < k1; k++) {
         double row[5];
-        if (!gf_diff_frame(&s->frames[k], &w, row)) continue;
+        if (!gf_diff_frame(&s->frames[k], &w, radial, row)) continue;
         st = gf_table_add(t, row);
         smv += row[1] * row[2];
         smm += row[1] * row[1];
@@ -174,12 +190,13 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     if (st != GF_OK) return st;
     st = gf_measure_gnuplot(out,
                             "set datafile separator ','\n"
-                            "set title 'Particle diffusion: %zu particles from |x| < %g, z > %g at t = %g tau'\n"
+                            "set title 'Particle diffusion: %zu particles from %s < %g, z > %g at t = %g tau'\n"
                             "set xlabel 'mean distance dropped |dz| (d)'\n"
-                            "set ylabel 'Var(dx) (d^2)'\n"
+                            "set ylabel '%s (d^2)'\n"
                             "set key top left\n"
                             "plot 2*%.10g*x with lines dt 2 lc 'black' title 'DEM: b_p = 2.86e-3 d'",
-                            nstart, o->diff_xhalf, o->diff_z0, k1 > k0 ? s->frames[k0].time : t0, GF_DIFF_DEM);
+                            nstart, radial ? "r" : "|x|", o->diff_xhalf, o->diff_z0, k1 > k0 ? s->frames[k0].time : t0,
+                            radial ? "Var(tangential dx)" : "Var(dx)", GF_DIFF_DEM);
     if (st == GF_OK && isfinite(bp))
         st = gf_measure_gnuplot(out, ", \\\n  2*%.10g*x with lines lc 2 title 'fit: b_p = %.3g d'", bp, bp);
     if (st == GF_OK && t->nrow)

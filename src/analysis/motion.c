@@ -122,7 +122,7 @@ void gf_steps_free(gf_steps *st)
     memset(st, 0, sizeof *st);
 }
 
-gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1, double bin)
+gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1, double bin, bool radial)
 {
     memset(f, 0, sizeof *f);
     if (!(bin > 0.0)) return gf_error_set(GF_ERR_PARAM, "velocity bin must be positive, got %g", bin);
@@ -130,13 +130,15 @@ gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1,
     for (size_t k = k0; k < k1; k++) {
         const gf_packing *pk = &s->frames[k].pk;
         for (size_t i = 0; i < pk->n; i++) {
-            xlo = fmin(xlo, pk->x[i]);
-            xhi = fmax(xhi, pk->x[i]);
+            double x = radial ? hypot(pk->x[i], pk->y[i]) : pk->x[i];
+            xlo = fmin(xlo, x);
+            xhi = fmax(xhi, x);
             zlo = fmin(zlo, pk->z[i]);
             zhi = fmax(zhi, pk->z[i]);
         }
     }
     f->bin = bin;
+    f->radial = radial;
     if (!(xlo <= xhi) || !(zlo <= zhi)) return GF_OK; // no particles: an empty field
     double nx = floor(xhi / bin) - floor(xlo / bin) + 1.0, nz = floor(zhi / bin) - floor(zlo / bin) + 1.0;
     if (!(nx * nz <= 1e8))
@@ -161,6 +163,19 @@ static size_t gf_vfield_cell(const gf_vfield *f, double x, double z)
 void gf_vfield_add(gf_vfield *f, const gf_steps *st)
 {
     for (size_t j = 0; j < st->n; j++) {
+        if (f->radial) {
+            // (v_r, v_theta) at the step's midpoint azimuth; on the axis any azimuth.
+            double r = hypot(st->x[j], st->y[j]);
+            double c = r > 0.0 ? st->x[j] / r : 1.0, sn = r > 0.0 ? st->y[j] / r : 0.0;
+            size_t cr = gf_vfield_cell(f, r, st->z[j]);
+            if (cr == SIZE_MAX) continue;
+            double *b = f->sum + 4 * cr;
+            b[0] += c * st->vx[j] + sn * st->vy[j];
+            b[1] += c * st->vy[j] - sn * st->vx[j];
+            b[2] += st->vz[j];
+            b[3] += 1.0;
+            continue;
+        }
         size_t c = gf_vfield_cell(f, st->x[j], st->z[j]);
         if (c == SIZE_MAX) continue;
         double *b = f->sum + 4 * c;
@@ -181,18 +196,32 @@ double gf_vfield_at(const gf_vfield *f, double x, double z, double v[3])
     return b[3];
 }
 
+double gf_vfield_mean(const gf_vfield *f, double x, double y, double z, double v[3])
+{
+    if (!f->radial) return gf_vfield_at(f, x, z, v);
+    double r = hypot(x, y), m[3];
+    double n = gf_vfield_at(f, r, z, m);
+    if (!(n > 0.0)) return n;
+    double c = r > 0.0 ? x / r : 1.0, sn = r > 0.0 ? y / r : 0.0;
+    v[0] = c * m[0] - sn * m[1];
+    v[1] = sn * m[0] + c * m[1];
+    v[2] = m[2];
+    return n;
+}
+
 void gf_vfield_free(gf_vfield *f)
 {
     if (f->sum) GF_DELETE(f->sum, 4 * f->nx * f->nz);
     memset(f, 0, sizeof *f);
 }
 
-gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, gf_vfield *f, size_t *pairs)
+gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, bool radial, gf_vfield *f,
+                           size_t *pairs)
 {
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
     *pairs = 0;
-    gf_status rc = gf_vfield_init(f, s, k0, k1, bin);
+    gf_status rc = gf_vfield_init(f, s, k0, k1, bin, radial);
     gf_steps st = {0};
     for (size_t k = k0; rc == GF_OK && k + 1 < k1; k++) {
         rc = gf_steps_between(&s->frames[k], &s->frames[k + 1], &st);

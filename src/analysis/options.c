@@ -38,7 +38,7 @@ static const gf_key gf_analysis_key_list[] = {
     {"velocity", "y_z1", GF_KEY_DOUBLE, GF_AOFF(vely_z1), GF_Z, .def = "70", .unit = "d",
      .doc = "v_z(y) region: z below this"},
     {"diffusion", "xhalf", GF_KEY_DOUBLE, GF_AOFF(diff_xhalf), GF_IN(0.1, 1e6), .def = "5", .unit = "d",
-     .doc = "tracked particles start with |x| < this"},
+     .doc = "tracked particles start with |x| < this (r < this in a cylinder)"},
     {"diffusion", "z0", GF_KEY_DOUBLE, GF_AOFF(diff_z0), GF_Z, .def = "60", .unit = "d",
      .doc = "... and with z above this"},
     {"correlation", "size", GF_KEY_DOUBLE, GF_AOFF(corr_size), GF_IN(1, 1e6), .def = "16", .unit = "d",

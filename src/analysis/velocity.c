@@ -243,7 +243,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     gf_window_frames(s, t0, t1, &k0, &k1);
 
     gf_vel_acc a = {0};
-    st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin);
+    st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin, false);
     a.nh = o->vel_nheights;
     a.np = a.field.nx;
     if (s->cfg.container_shape == GF_SHAPE_CYLINDER && s->cfg.container_radius > 0.0) {
