@@ -401,7 +401,7 @@ static void diffusion_tangential_in_a_cylinder(void **state)
         }
     }
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
     print_message("cylinder: b_p %.4g (walk %.4g), %g particles\n", gf_test_value(&out, "diffusion_length"), b,
@@ -551,7 +551,7 @@ static void correlation_about_radial_mean_in_a_cylinder(void **state)
             }
         }
     gf_analysis_opts o;
-    gf_analysis_opts_default(&o);
+    o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.corr_size = 32.0;
     o.vel_bin = 16.0;
