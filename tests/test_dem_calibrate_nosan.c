@@ -13,19 +13,16 @@
 #include "granflow/dem.h"
 #include "granflow/run.h"
 
-static void recovers_chosen_parameters(void **state)
+// The chosen model: none of the five is at its default (2.6, 0.676, 399,
+// 375, 28). relax.method = none: the thesis' relations (beta = 0.72 r_s,
+// b_p = b_s / w, Q = lambda p / w, dN = Q h / (mu dz)) are those of the
+// basic spot model; the elastic relaxation widens the velocity
+// correlation (beta ~1.4x) and adds particle diffusion (b_p ~2x) in a silo
+// this small, which docs/dem.md reports. 30 tau, a snapshot a tau.
+static gf_config chosen_model(void)
 {
-    (void)state;
-    // The chosen model: none of the five is at its default (2.6, 0.676, 399,
-    // 375, 28). relax.method = none: the thesis' relations (beta = 0.72 r_s,
-    // b_p = b_s / w, Q = lambda p / w, dN = Q h / (mu dz)) are those of the
-    // basic spot model; the elastic relaxation widens the velocity
-    // correlation (beta ~1.4x) and adds particle diffusion (b_p ~2x) in a silo
-    // this small, which docs/dem.md reports.
     gf_config c = gf_config_default();
-    c.container_width = 24;
     c.orifice_diameter = 6;
-    c.packing_particles = 9000;
     c.spot_radius = 2.2;
     c.spot_step_xy = 0.55;
     c.spot_w = 300;
@@ -35,6 +32,15 @@ static void recovers_chosen_parameters(void **state)
     c.run_duration = 30;
     c.run_seed = 11;
     c.output_snapshot_interval = 1;
+    return c;
+}
+
+static void recovers_chosen_parameters(void **state)
+{
+    (void)state;
+    gf_config c = chosen_model();
+    c.container_width = 24;
+    c.packing_particles = 9000;
     char dir[1024];
     snprintf(dir, sizeof dir, "%s/run", gf_test_tmpdir());
     gf_run_opts ro = {.dir = dir};
@@ -100,20 +106,10 @@ static void recovers_chosen_parameters(void **state)
 static void calibration_measures_a_cylinder(void **state)
 {
     (void)state;
-    gf_config c = gf_config_default();
+    gf_config c = chosen_model();
     c.container_shape = GF_SHAPE_CYLINDER;
     c.container_radius = 12;
-    c.orifice_diameter = 6;
     c.packing_particles = 12500;
-    c.spot_radius = 2.2;
-    c.spot_step_xy = 0.55;
-    c.spot_w = 300;
-    c.spot_insertion_rate = 300;
-    c.spot_move_rate = 40;
-    c.relax_method = GF_RELAX_NONE;
-    c.run_duration = 30;
-    c.run_seed = 11;
-    c.output_snapshot_interval = 1;
     char dir[1024];
     snprintf(dir, sizeof dir, "%s/cylinder", gf_test_tmpdir());
     gf_run_opts ro = {.dir = dir};
