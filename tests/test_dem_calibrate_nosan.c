@@ -35,30 +35,42 @@ static gf_config chosen_model(void)
     return c;
 }
 
+// Runs c into the test's directory NAME and reads it back as a DEM run.
+static void run_and_load(const gf_config *c, const char *name, gf_series *s, gf_dem_load_report *rep)
+{
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/%s", gf_test_tmpdir(), name);
+    gf_run_opts ro = {.dir = dir};
+    assert_int_equal(gf_run_dir(c, &ro, NULL), GF_OK);
+    assert_int_equal(gf_dem_series_load(dir, NULL, s, rep), GF_OK);
+}
+
+// The calibration of s over the regions calibrate would choose, printed.
+static gf_dem_calibration calibrate_series(const gf_series *s)
+{
+    gf_analysis_opts o;
+    gf_dem_calibration_opts(s, NULL, &o);
+    gf_dem_calibration cal;
+    if (gf_dem_calibrate(s, &o, &s->cfg, &cal) != GF_OK) fail_msg("%s", gf_last_error());
+    gf_dem_calibration_print(&cal, stdout);
+    return cal;
+}
+
 static void recovers_chosen_parameters(void **state)
 {
     (void)state;
     gf_config c = chosen_model();
     c.container_width = 24;
     c.packing_particles = 9000;
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/run", gf_test_tmpdir());
-    gf_run_opts ro = {.dir = dir};
-    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
-
     gf_series s;
     gf_dem_load_report rep;
-    assert_int_equal(gf_dem_series_load(dir, NULL, &s, &rep), GF_OK);
+    run_and_load(&c, "run", &s, &rep);
     assert_int_equal(s.nframes, 31);
     // Without relaxation nothing holds particles above the base away from
     // the orifice, so a few sink below z = 0 there: counted as exited (~1% of
     // the outflow), as a DEM run's particles below the base are.
     assert_true(rep.below_base < 0.02 * 31 * 9000);
-    gf_analysis_opts o;
-    gf_dem_calibration_opts(&s, NULL, &o);
-    gf_dem_calibration cal;
-    if (gf_dem_calibrate(&s, &o, &s.cfg, &cal) != GF_OK) fail_msg("%s", gf_last_error());
-    gf_dem_calibration_print(&cal, stdout);
+    gf_dem_calibration cal = calibrate_series(&s);
 
     // Tolerances. Statistical: the sub-window scatter gives 2-5% (printed
     // above). Systematic (this silo, seed 11: -2%, +5%, +6%, +9%, +3%; see
@@ -110,18 +122,10 @@ static void calibration_measures_a_cylinder(void **state)
     c.container_shape = GF_SHAPE_CYLINDER;
     c.container_radius = 12;
     c.packing_particles = 12500;
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/cylinder", gf_test_tmpdir());
-    gf_run_opts ro = {.dir = dir};
-    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
     gf_series s;
     gf_dem_load_report rep;
-    assert_int_equal(gf_dem_series_load(dir, NULL, &s, &rep), GF_OK);
-    gf_analysis_opts o;
-    gf_dem_calibration_opts(&s, NULL, &o);
-    gf_dem_calibration cal;
-    if (gf_dem_calibrate(&s, &o, &s.cfg, &cal) != GF_OK) fail_msg("%s", gf_last_error());
-    gf_dem_calibration_print(&cal, stdout);
+    run_and_load(&c, "cylinder", &s, &rep);
+    gf_dem_calibration cal = calibrate_series(&s);
     print_message("cylinder: %zu heights, step_xy %.4g (chosen 0.55), p %.4g, bulk %.4g\n", cal.var_heights,
                   cal.step_xy.value, cal.ball_count.value, cal.ball_count_bulk);
     assert_true(cal.var_heights >= 5);

@@ -200,8 +200,7 @@ static double gf_cal_balls(const gf_series *s, const gf_analysis_opts *o, const 
     gf_rng_seed(&rng, 20090701u, 3);
     double hw = 0.5 * s->cfg.container_width - dw, hd = 0.5 * s->cfg.container_depth - dw;
     const bool cyl = s->cfg.container_shape == GF_SHAPE_CYLINDER;
-    gf_container box = gf_container_make(&s->cfg);
-    if (cyl) hw = 0.5 * gf_cal_width(&s->cfg) - dw;
+    gf_container ctr = gf_container_make(&s->cfg);
     double sum = 0.0, n = 0.0, r2 = rs * rs;
     for (size_t k = k0; k < k1; k++) {
         const gf_packing *p = &s->frames[k].pk;
@@ -215,7 +214,7 @@ static double gf_cal_balls(const gf_series *s, const gf_analysis_opts *o, const 
                     double u = gf_rng_uniform_pos(&rng), v = gf_rng_uniform(&rng), g = sd * sqrt(-2.0 * log(u));
                     x = g * cos(2.0 * GF_CAL_PI * v);
                     y = g * sin(2.0 * GF_CAL_PI * v);
-                } while (!box.ops->inside_xy(&box, x, y, dw) && ++tries < 1000);
+                } while (!ctr.ops->inside_xy(&ctr, x, y, dw) && ++tries < 1000);
                 if (tries >= 1000) x = y = 0.0; // a spread far wider than the container: the axis
             } else {
                 do { // Box-Muller, redrawn outside the walk's room
