@@ -211,6 +211,12 @@ GF_API gf_status gf_measure_badness(const gf_series *s, const gf_analysis_opts *
 GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 GF_API gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 
+/// Whether the velocity profiles of a run in `cfg`'s container are radial,
+/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width.
+GF_API bool gf_velocity_radial(const gf_config *cfg);
+/// The name of those profiles in labels, tables and notes: "v_z(r)" or "v_z(x)".
+GF_API const char *gf_velocity_profile_name(const gf_config *cfg);
+
 /// A measurement by name ("outflow", "velocity", ...), in the order above.
 typedef struct gf_measure_def {
     const char *name;

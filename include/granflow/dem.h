@@ -126,7 +126,7 @@ typedef struct gf_dem_calibration {
     // measured
     gf_dem_value flow_rate;     ///< Q, particles per tau
     gf_dem_value corr_length;   ///< beta of C(r) = a exp(-r / beta), d
-    gf_dem_value var_slope;     ///< d Var / dz of the Gaussian v_z(x) profiles, d
+    gf_dem_value var_slope;     ///< d Var / dz of the Gaussian v_z(x) profiles (v_z(r) in a cylinder), d
     size_t var_heights;         ///< heights used in that regression
     gf_dem_value diff_length;   ///< b_p, d
     gf_dem_value ball_count;    ///< p: particles in a spot ball placed where spots go (walls cut it)
@@ -195,7 +195,8 @@ typedef struct gf_dem_flowstats {
     gf_dem_value flow;                 ///< flow rate Q, particles per tau
     size_t nz;                         ///< velocity heights
     double z[GF_DEM_FS_MAXZ];          ///< their heights, d
-    gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of v_z(x) there, d^2
+    gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of the profile there, d^2
+    const char *profile;               ///< that profile's name, gf_velocity_profile_name: v_z(x) or v_z(r)
     gf_dem_value bp;                   ///< particle diffusion length b_p, d
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
     gf_dem_value drop;                 ///< particles fewer in the slice in flow than at rest
