@@ -46,8 +46,9 @@ class Keyed:
     """Base of a struct of the library behind a handle, by key name.
 
     A subclass sets PREFIX ("gf_config", "gf_analysis_opts"), whose C
-    functions _create, _destroy, _copy, _set_key-or-_set, _get_key-or-_get,
-    _key_count, _key_name and _key_default are declared in _lib.
+    functions PREFIX_create, _destroy, _copy, _key_count, _key_name and
+    _key_default are declared in _lib, and defines _get and _set over its
+    getter and setter (their signatures differ).
     """
 
     PREFIX = None
