@@ -78,7 +78,7 @@ expect_rc 0 "compare tiny tiny"
 grep -q 'Var of v_z(x) at z = ' out || fail "compare of a box: no 'Var of v_z(x)' row: $(cat out)"
 grep -q 'v_z(r)' out cmp_box/summary.md cmp_box/compare.gp && fail "compare of a box says v_z(r)"
 grep -q 'Gaussian fits of v_z(x)' cmp_box/summary.md || fail "summary.md of a box does not name v_z(x)"
-gf run -q --set container.shape=cylinder --set container.radius=5 --set container.orifice_diameter=4 \
+gf run -q --set container.shape=cylinder --set container.radius=5 \
     --set packing.particles=600 --set run.duration=5 --set output.snapshot_interval=0.5 -o cyl
 expect_rc 0 "run cyl"
 gf compare cyl cyl --no-plots -o cmp_cyl
