@@ -3,7 +3,6 @@
 // as CSV files, plots and headline numbers in DIR/analysis/.
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "granflow/analysis.h"
@@ -95,41 +94,19 @@ int gf_cmd_analyze(int argc, char **argv)
             return GF_EXIT_USAGE;
         }
     }
-    char outbuf[4096];
-    if (!outdir) {
-        // A run directory gets DIR/analysis; a single dump, analysis/ beside it.
-        struct stat sb;
-        if (stat(dir, &sb) == 0 && !S_ISDIR(sb.st_mode)) {
-            const char *slash = strrchr(dir, '/');
-            if (slash) snprintf(outbuf, sizeof outbuf, "%.*s/analysis", (int)(slash - dir), dir);
-            else snprintf(outbuf, sizeof outbuf, "analysis");
-        } else {
-            snprintf(outbuf, sizeof outbuf, "%s/analysis", dir);
-        }
-        outdir = outbuf;
-    }
-    gf_series s = {0};
     if (!quiet) fprintf(stderr, "granflow analyze: reading %s...\n", dir);
     // Like gf_series_load, plus the container from --config/--set, packing.types,
-    // and DEM particles below the base counted as exited (granflow dem, docs/dem.md).
-    gf_dem_source src = {.dump_dt = opts.dump_dt, .config = config, .sets = sets, .nsets = nsets};
-    gf_status st = gf_dem_series_load(dir, &src, &s, NULL);
-    if (st != GF_OK) return gf_cli_fail("analyze", st);
-    // The window: the steady flow of the outflow unless given (window.t0/t1).
-    gf_steady win;
-    st = gf_dem_window(&s, &opts, &win);
-    if (st != GF_OK) {
-        gf_series_free(&s);
-        return gf_cli_fail("analyze", st);
-    }
-    if (!quiet)
+    // and DEM particles below the base counted as exited (granflow dem, docs/dem.md);
+    // the window: the steady flow of the outflow unless given (window.t0/t1).
+    gf_dem_source src = {.config = config, .sets = sets, .nsets = nsets};
+    gf_dem_analysis info;
+    gf_status st = gf_dem_analyze(dir, &src, &opts, name, outdir, plots, &info);
+    if (st != GF_OK) return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
+    if (!quiet) {
         fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits; window %g..%g tau: %s\n",
-                s.nframes, s.nframes ? s.frames[0].time : 0.0, s.nframes ? s.frames[s.nframes - 1].time : 0.0,
-                s.nexits, opts.t0, opts.t1, win.reason);
-    st = gf_analyze(&s, &opts, name, outdir, plots);
-    gf_series_free(&s);
-    if (st != GF_OK)
-        return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
-    if (!quiet) fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", outdir);
+                info.nframes, info.t_first, info.t_last, info.nexits, info.window.t0, info.window.t1,
+                info.window.reason);
+        fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", info.outdir);
+    }
     return GF_EXIT_OK;
 }

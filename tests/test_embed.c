@@ -145,6 +145,15 @@ static void analysis_get_set_round_trip_every_key(void **state)
     assert_int_equal(gf_analysis_opts_get(&o, "gr.nosuch", got, sizeof got), GF_ERR_PARAM);
     assert_int_equal(gf_analysis_opts_key_name(nkeys, name, sizeof name), GF_ERR_PARAM);
     assert_null(gf_analysis_opts_key_default(nkeys));
+    // On the heap, for bindings (the Python package): the defaults, copied whole.
+    gf_analysis_opts *h = gf_analysis_opts_create();
+    assert_non_null(h);
+    gf_analysis_opts def = gf_analysis_opts_default();
+    assert_memory_equal(h, &def, sizeof def);
+    assert_int_equal(gf_analysis_opts_copy(h, &o), GF_OK);
+    assert_memory_equal(h, &o, sizeof o);
+    assert_int_equal(gf_analysis_opts_copy(NULL, &o), GF_ERR_PARAM);
+    gf_analysis_opts_destroy(h);
 }
 
 static void config_by_name_errors(void **state)

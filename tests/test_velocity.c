@@ -229,7 +229,9 @@ static void velocity_radial_in_cylinder(void **state)
         gf_assert_near(cell(tv, r, 3), 0.0, 1e-6);
     }
     gf_assert_near(gf_test_value(&out, "velocity_variance_slope"), 2.0, 1e-6);
-    assert_non_null(strstr(out.gnuplot, "v_z(r)"));
+    assert_non_null(strstr(out.gnuplot, "Gaussian variance of v_z(r)"));
+    assert_null(strstr(out.gnuplot, "v_z(x)"));
+    assert_string_equal(gf_velocity_profile_name(&s.cfg), "v_z(r)");
     gf_measure_free(&out);
 
     // The same particles read as a box: Cartesian v_z(x), each x bin the
@@ -245,6 +247,9 @@ static void velocity_radial_in_cylinder(void **state)
     }
     print_message("Cartesian profiles of the cylinder's flow: worst Var %.1f%% off\n", 100.0 * worst);
     assert_true(worst > 0.10);
+    assert_non_null(strstr(out.gnuplot, "Gaussian variance of v_z(x)"));
+    assert_null(strstr(out.gnuplot, "v_z(r)"));
+    assert_string_equal(gf_velocity_profile_name(&s.cfg), "v_z(x)");
     gf_measure_free(&out);
     gf_series_free(&s);
 

@@ -159,6 +159,12 @@ typedef struct gf_analysis_opts {
 
 /// The defaults (docs/analysis.md), by value.
 GF_API gf_analysis_opts gf_analysis_opts_default(void);
+/// The defaults on the heap, for callers that do not lay out the struct (the
+/// Python package); NULL when out of memory. Free with gf_analysis_opts_destroy.
+GF_API gf_analysis_opts *gf_analysis_opts_create(void);
+GF_API void gf_analysis_opts_destroy(gf_analysis_opts *o);
+/// *dst = *src.
+GF_API gf_status gf_analysis_opts_copy(gf_analysis_opts *dst, const gf_analysis_opts *src);
 /// Sets one option from "key=value" (keys in docs/analysis.md). Errors name the key.
 GF_API gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment);
 /// The value of option `key` as gf_analysis_opts_set reads it back (e.g. "10,20,30", "auto").
@@ -210,6 +216,12 @@ GF_API gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *
 GF_API gf_status gf_measure_badness(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 GF_API gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
+
+/// Whether the velocity profiles of a run in `cfg`'s container are radial,
+/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width.
+GF_API bool gf_velocity_radial(const gf_config *cfg);
+/// The name of those profiles in labels, tables and notes: "v_z(r)" or "v_z(x)".
+GF_API const char *gf_velocity_profile_name(const gf_config *cfg);
 
 /// A measurement by name ("outflow", "velocity", ...), in the order above.
 typedef struct gf_measure_def {

@@ -111,6 +111,27 @@ typedef struct gf_dem_load_report {
 GF_API gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_series *out,
                                     gf_dem_load_report *rep);
 
+/// What gf_dem_analyze read and did.
+typedef struct gf_dem_analysis {
+    size_t nframes, nexits;  ///< snapshots and exits read
+    double t_first, t_last;  ///< times of the first and last snapshot, tau
+    gf_steady window;        ///< the window measured over (t0, t1) and why
+    char outdir[GF_PATH_MAX + 16]; ///< where the results went
+} gf_dem_analysis;
+
+/// `granflow analyze` (SPEC 1.6): loads `path` (a run directory, a directory
+/// of LAMMPS dumps or one dump) with gf_dem_series_load (`src` may be NULL:
+/// the defaults; the dumps' time step is o->dump_dt either way), measures
+/// over the window of `o` or, where that is auto, the steady flow
+/// (gf_dem_window), and runs measurement `name` (NULL: all) into `outdir`
+/// (NULL: PATH/analysis, or analysis/ beside a dump) with gf_analyze. `o` is
+/// not changed; `info` may be NULL.
+/// Where gf_dem_analyze writes by default: PATH/analysis for a directory,
+/// analysis/ beside a single dump. GF_ERR_PARAM when it does not fit in n.
+GF_API gf_status gf_dem_analyze_outdir(const char *path, char *out, size_t n);
+GF_API gf_status gf_dem_analyze(const char *path, const gf_dem_source *src, const gf_analysis_opts *o,
+                                const char *name, const char *outdir, bool plots, gf_dem_analysis *info);
+
 // ---------------------------------------------------------------------------
 // Calibration (thesis Sec. 3.3).
 
@@ -126,7 +147,7 @@ typedef struct gf_dem_calibration {
     // measured
     gf_dem_value flow_rate;     ///< Q, particles per tau
     gf_dem_value corr_length;   ///< beta of C(r) = a exp(-r / beta), d
-    gf_dem_value var_slope;     ///< d Var / dz of the Gaussian v_z(x) profiles, d
+    gf_dem_value var_slope;     ///< d Var / dz of the Gaussian v_z(x) profiles (v_z(r) in a cylinder), d
     size_t var_heights;         ///< heights used in that regression
     gf_dem_value diff_length;   ///< b_p, d
     gf_dem_value ball_count;    ///< p: particles in a spot ball placed where spots go (walls cut it)
@@ -195,7 +216,8 @@ typedef struct gf_dem_flowstats {
     gf_dem_value flow;                 ///< flow rate Q, particles per tau
     size_t nz;                         ///< velocity heights
     double z[GF_DEM_FS_MAXZ];          ///< their heights, d
-    gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of v_z(x) there, d^2
+    gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of the profile there, d^2
+    const char *profile;               ///< that profile's name, gf_velocity_profile_name: v_z(x) or v_z(r)
     gf_dem_value bp;                   ///< particle diffusion length b_p, d
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
     gf_dem_value drop;                 ///< particles fewer in the slice in flow than at rest

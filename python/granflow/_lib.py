@@ -81,6 +81,18 @@ _SIGNATURES = {
     "gf_config_load": (c_int, [c_void_p, c_char_p]),
     "gf_config_save": (c_int, [c_void_p, c_char_p]),
     "gf_config_validate": (c_int, [c_void_p]),
+    # analysis options by name, and `granflow analyze`
+    "gf_analysis_opts_create": (c_void_p, []),
+    "gf_analysis_opts_destroy": (None, [c_void_p]),
+    "gf_analysis_opts_copy": (c_int, [c_void_p, c_void_p]),
+    "gf_analysis_opts_set": (c_int, [c_void_p, c_char_p]),
+    "gf_analysis_opts_get": (c_int, [c_void_p, c_char_p, c_char_p, c_size_t]),
+    "gf_analysis_opts_key_count": (c_size_t, []),
+    "gf_analysis_opts_key_name": (c_int, [c_size_t, c_char_p, c_size_t]),
+    "gf_analysis_opts_key_doc": (c_char_p, [c_size_t]),
+    "gf_analysis_opts_key_default": (c_char_p, [c_size_t]),
+    "gf_dem_analyze_outdir": (c_int, [c_char_p, c_char_p, c_size_t]),
+    "gf_dem_analyze": (c_int, [c_char_p, c_void_p, c_void_p, c_char_p, c_char_p, ctypes.c_bool, c_void_p]),
     # simulation
     "gf_sim_create_from_config": (c_int, [c_void_p, ctypes.POINTER(c_void_p)]),
     "gf_sim_destroy": (None, [c_void_p]),

@@ -102,6 +102,12 @@ class RunDir:
         p = self.path / "analysis" / "summary.json"
         return read_json(p) if p.exists() else {}
 
+    def analyze(self, options=None, name=None, plots=False):
+        """Runs `granflow analyze` on this run with `options` (an AnalysisOptions
+        or a dict, e.g. {"window.t0": 2}) into analysis/; returns self.analysis."""
+        from .analysis import analyze  # analysis imports this module
+        return analyze(self.path, options, name=name, outdir=self.path / "analysis", plots=plots)
+
     def tables(self):
         """Names of the analysis CSV tables (outflow, velocity_field, ...)."""
         return sorted(p.stem for p in (self.path / "analysis").glob("*.csv"))

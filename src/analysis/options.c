@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/analysis.h"
 
@@ -86,6 +87,26 @@ gf_analysis_opts gf_analysis_opts_default(void)
     memset(&o, 0, sizeof o);
     gf_keys_defaults(&gf_analysis_keys, &o);
     return o;
+}
+
+gf_analysis_opts *gf_analysis_opts_create(void)
+{
+    gf_analysis_opts *o = GF_NEW(gf_analysis_opts, 1);
+    if (!o) {
+        gf_error_set(GF_ERR_NOMEM, "gf_analysis_opts_create: out of memory");
+        return NULL;
+    }
+    *o = gf_analysis_opts_default();
+    return o;
+}
+
+void gf_analysis_opts_destroy(gf_analysis_opts *o) { GF_DELETE(o, 1); }
+
+gf_status gf_analysis_opts_copy(gf_analysis_opts *dst, const gf_analysis_opts *src)
+{
+    if (!dst || !src) return gf_error_set(GF_ERR_PARAM, "gf_analysis_opts_copy: NULL options");
+    *dst = *src;
+    return GF_OK;
 }
 
 gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)

@@ -5,6 +5,7 @@
 // across the depth v_z(y) (2009 paper Fig. 8).
 #include <math.h>
 #include <stdbool.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "analysis/motion.h"
@@ -174,18 +175,20 @@ static gf_status gf_vel_nodata(gf_measure_out *out, const char *title)
 }
 
 static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts *o, double slope, double icpt,
-                             bool radial, gf_measure_out *out)
+                             const gf_config *cfg, gf_measure_out *out)
 {
     const gf_table *tp = &tabs->tables[1], *tv = &tabs->tables[2], *td = &tabs->tables[3], *tf = &tabs->tables[0];
     gf_status st = gf_measure_gnuplot(out, "set datafile separator ','\nset multiplot layout 2,2\n");
     // Profiles with their fits.
-    const char *c = radial ? "r" : "x";
-    if (st == GF_OK && tp->nrow == 0) st = gf_vel_nodata(out, radial ? "v_z(r) profiles" : "v_z(x) profiles");
+    const char *name = gf_velocity_profile_name(cfg), *c = gf_velocity_radial(cfg) ? "r" : "x";
+    char nodata[32];
+    snprintf(nodata, sizeof nodata, "%s profiles", name);
+    if (st == GF_OK && tp->nrow == 0) st = gf_vel_nodata(out, nodata);
     else if (st == GF_OK) {
         st = gf_measure_gnuplot(out,
-                                "set title 'v_z(%s) at heights z, Gaussian fits'\n"
+                                "set title '%s at heights z, Gaussian fits'\n"
                                 "set xlabel '%s (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right font ',7'\nplot ",
-                                c, c);
+                                name, c);
         for (size_t h = 0; st == GF_OK && h < o->vel_nheights; h++) {
             double z = o->vel_heights[h];
             st = gf_measure_gnuplot(out,
@@ -200,10 +203,10 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
     // Var vs z with the regression and the paper's DEM line.
     if (st == GF_OK) {
         st = gf_measure_gnuplot(out,
-                                "set title 'Gaussian variance of v_z(%s)'\n"
+                                "set title 'Gaussian variance of %s'\n"
                                 "set xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left font ',8'\n"
                                 "plot 2.28*x+1.60 with lines dt 2 lc 'black' title 'DEM: 2.28 z + 1.60'",
-                                c);
+                                name);
         if (st == GF_OK && isfinite(slope))
             st = gf_measure_gnuplot(out, ", \\\n  (%.10g)*x+(%.10g) with lines lc 2 title 'fit: %.3g z %c %.3g'", slope,
                                     icpt, slope, icpt < 0.0 ? '-' : '+', fabs(icpt));
@@ -233,6 +236,13 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
     return st;
 }
 
+bool gf_velocity_radial(const gf_config *cfg)
+{
+    return cfg->container_shape == GF_SHAPE_CYLINDER && cfg->container_radius > 0.0;
+}
+
+const char *gf_velocity_profile_name(const gf_config *cfg) { return gf_velocity_radial(cfg) ? "v_z(r)" : "v_z(x)"; }
+
 gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out)
 {
     gf_status st = gf_vel_check(o);
@@ -246,7 +256,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin, false);
     a.nh = o->vel_nheights;
     a.np = a.field.nx;
-    if (s->cfg.container_shape == GF_SHAPE_CYLINDER && s->cfg.container_radius > 0.0) {
+    if (gf_velocity_radial(&s->cfg)) {
         a.radial = true; // bins of r out to the wall
         a.mirror = !(s->cfg.inner_radius > 0.0);
         a.np = (size_t)ceil(s->cfg.container_radius / o->vel_bin);
@@ -274,10 +284,9 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     double slope = NAN, icpt = NAN;
     size_t nfit = 0;
     if (st == GF_OK) st = gf_vel_tables(&a, o, out, &slope, &icpt, &nfit);
-    bool radial = a.radial;
     gf_vel_acc_free(&a);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_slope", slope);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_intercept", icpt);
-    if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, radial, out);
+    if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, &s->cfg, out);
     return st;
 }

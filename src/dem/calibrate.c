@@ -361,9 +361,9 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     c->b_s = (gf_dem_value){0.5 * c->var_slope.value, 0.5 * c->var_slope.err};
     if (!isfinite(c->b_s.value) || !(c->b_s.value > 0)) {
         double bs = cfg->spot_step_xy * cfg->spot_step_xy / (4.0 * dz);
-        gf_cal_note(c, "the v_z(x) profile variance does not grow with height (slope %.3g over %zu heights): b_s = %.3g "
-                       "from the configured spot.step_xy = %.3g", c->var_slope.value, c->var_heights, bs,
-                    cfg->spot_step_xy);
+        gf_cal_note(c, "the %s profile variance does not grow with height (slope %.3g over %zu heights): b_s = %.3g "
+                       "from the configured spot.step_xy = %.3g", gf_velocity_profile_name(&s->cfg), c->var_slope.value,
+                    c->var_heights, bs, cfg->spot_step_xy);
         c->b_s = (gf_dem_value){bs, NAN};
     }
     // BCC walk: dx_s = +-dx with probability 1/2, so Var(dx_s) = dx^2 / 2 = 2 b_s dz.

@@ -25,19 +25,22 @@ static const struct {
 };
 #define GF_CMP_N (sizeof gf_cmp_measures / sizeof gf_cmp_measures[0])
 
-/// Headline values compared in summary.md: key, what, unit, the papers' DEM value.
+/// Headline values compared in summary.md: key, what (followed by the
+/// profile's name, gf_velocity_profile_name, when `of_profile`), unit, the
+/// papers' DEM value.
 static const struct {
     const char *key, *what, *unit, *papers;
+    bool of_profile;
 } gf_cmp_keys[] = {
-    {"flow_rate", "flow rate Q", "1/tau", "131.1 (2009 paper)"},
-    {"velocity_variance_slope", "spreading d Var / dz of v_z(x)", "d", "2.28 (thesis)"},
-    {"velocity_variance_intercept", "its intercept", "d^2", "1.60 (thesis)"},
-    {"diffusion_length", "particle diffusion length b_p", "d", "2.86e-3 (thesis)"},
-    {"correlation_length", "velocity correlation length beta", "d", "1.87 (thesis)"},
-    {"gr_first_peak_r", "first peak of g(r)", "d", "1"},
-    {"coordination", "neighbours closer than the g3 bond", "", "-"},
-    {"density_initial", "particles in the slice at rest", "", "9400 (thesis)"},
-    {"density_steady", "particles in the slice in flow", "", "8850 (thesis)"},
+    {"flow_rate", "flow rate Q", "1/tau", "131.1 (2009 paper)", false},
+    {"velocity_variance_slope", "spreading d Var / dz of", "d", "2.28 (thesis)", true},
+    {"velocity_variance_intercept", "its intercept", "d^2", "1.60 (thesis)", false},
+    {"diffusion_length", "particle diffusion length b_p", "d", "2.86e-3 (thesis)", false},
+    {"correlation_length", "velocity correlation length beta", "d", "1.87 (thesis)", false},
+    {"gr_first_peak_r", "first peak of g(r)", "d", "1", false},
+    {"coordination", "neighbours closer than the g3 bond", "", "-", false},
+    {"density_initial", "particles in the slice at rest", "", "9400 (thesis)", false},
+    {"density_steady", "particles in the slice in flow", "", "8850 (thesis)", false},
 };
 #define GF_CMP_K (sizeof gf_cmp_keys / sizeof gf_cmp_keys[0])
 
@@ -69,8 +72,9 @@ static double gf_cmp_l2(const gf_table *a, const gf_table *b)
     return sqrt(s);
 }
 
-static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bool plots)
+static gf_status gf_cmp_figure(const char *outdir, const gf_config *cfg, const gf_analysis_opts *o, bool plots)
 {
+    const char *profile = gf_velocity_profile_name(cfg);
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 48];
     snprintf(path, sizeof path, "%s/compare.gp", outdir);
     FILE *f;
@@ -87,10 +91,10 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bo
             "set title 'particles exited'\nset xlabel 't (tau)'\nset ylabel 'exited'\nset key top left\n"
             "plot 'dem_outflow.csv' skip 1 u 1:2 w steps lw 2 @D t 'DEM', "
             "'spot_outflow.csv' skip 1 u 1:2 w steps lw 2 @S t 'spot'\n"
-            "set title 'v_z(x), or v_z(r) in a cylinder, at z = %g .. %g'\nset xlabel 'x or r (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right\n"
+            "set title '%s at z = %g .. %g'\nset xlabel '%s (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right\n"
             "plot 'dem_velocity_profiles.csv' skip 1 u 2:3 w p pt 7 ps 0.3 @D t 'DEM', "
             "'spot_velocity_profiles.csv' skip 1 u 2:3 w p pt 6 ps 0.3 @S t 'spot'\n"
-            "set title 'Gaussian variance of v_z(x)'\nset xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left\n"
+            "set title 'Gaussian variance of %s'\nset xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left\n"
             "plot 'dem_velocity_variance.csv' skip 1 u 1:2 w lp pt 7 @D t 'DEM', "
             "'spot_velocity_variance.csv' skip 1 u 1:2 w lp pt 6 @S t 'spot'\n"
             "set title 'diffusion'\nset xlabel 'mean drop |dz| (d)'\nset ylabel 'Var(dx) (d^2)'\n"
@@ -107,7 +111,8 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_analysis_opts *o, bo
             "plot 'dem_density.csv' skip 1 u 1:2 w lp pt 7 @D t 'DEM', "
             "'spot_density.csv' skip 1 u 1:2 w lp pt 6 @S t 'spot'\n"
             "unset multiplot\nunset output\n",
-            o->vel_heights[0], o->vel_heights[o->vel_nheights ? o->vel_nheights - 1 : 0], o->dens_z0, o->dens_z1);
+            profile, o->vel_heights[0], o->vel_heights[o->vel_nheights ? o->vel_nheights - 1 : 0],
+            gf_velocity_radial(cfg) ? "r" : "x", profile, o->dens_z0, o->dens_z1);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
     if (!plots) return GF_OK;
     char why[512];
@@ -176,6 +181,7 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
 
     snprintf(path, sizeof path, "%s/summary.md", outdir);
     if ((st = gf_atomic_open(path, tmp, sizeof tmp, &f)) != GF_OK) return st;
+    const char *profile = gf_velocity_profile_name(&dem->cfg);
     double t0d, t1d, t0s, t1s;
     gf_analysis_window(o, dem, &t0d, &t1d);
     gf_analysis_window(o, spot, &t0s, &t1s);
@@ -195,7 +201,8 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
             o->corr_zc, o->gr_x0, o->gr_x1, o->gr_z0, o->gr_z1, o->dens_z0, o->dens_z1);
     for (size_t k = 0; k < GF_CMP_K; k++) {
         double a = gf_cmp_value(md, GF_CMP_N, gf_cmp_keys[k].key), b = gf_cmp_value(ms, GF_CMP_N, gf_cmp_keys[k].key);
-        fprintf(f, "| %s (`%s`) | %s |", gf_cmp_keys[k].what, gf_cmp_keys[k].key,
+        fprintf(f, "| %s%s%s (`%s`) | %s |", gf_cmp_keys[k].what, gf_cmp_keys[k].of_profile ? " " : "",
+                gf_cmp_keys[k].of_profile ? profile : "", gf_cmp_keys[k].key,
                 *gf_cmp_keys[k].unit ? gf_cmp_keys[k].unit : "-");
         gf_cmp_num(f, a);
         gf_cmp_num(f, b);
@@ -222,8 +229,9 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
         gf_cmp_num(f, l2);
         fputc('\n', f);
     }
-    fprintf(f, "\nVelocity profiles (Gaussian fits of v_z(x)):\n\n"
-               "| z (d) | DEM variance | spot variance | DEM peak v_z | spot peak v_z |\n|---|---|---|---|---|\n");
+    fprintf(f, "\nVelocity profiles (Gaussian fits of %s):\n\n"
+               "| z (d) | DEM variance | spot variance | DEM peak v_z | spot peak v_z |\n|---|---|---|---|---|\n",
+            profile);
     const gf_table *vd = gf_cmp_table(md, GF_CMP_N, "velocity_variance"),
                    *vs = gf_cmp_table(ms, GF_CMP_N, "velocity_variance");
     for (size_t r = 0; vd && vs && r < vd->nrow && r < vs->nrow; r++) {
@@ -271,7 +279,7 @@ gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_a
     double times[4] = {0, 0, 0, 0};
     if (st == GF_OK) st = gf_cmp_slices(dem, spot, outdir, times);
     if (st == GF_OK) st = gf_cmp_summary(outdir, dem, spot, md, ms, o, times);
-    if (st == GF_OK) st = gf_cmp_figure(outdir, o, plots);
+    if (st == GF_OK) st = gf_cmp_figure(outdir, &dem->cfg, o, plots);
     for (size_t k = 0; k < GF_CMP_N; k++) {
         gf_measure_free(&md[k]);
         gf_measure_free(&ms[k]);

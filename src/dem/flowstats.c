@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The numbers a spot run must match a DEM run on (thesis Sec. 3.5): flow
-// rate, variance of the Gaussian v_z(x) profiles at each height, particle
-// diffusion length b_p, velocity correlation length beta and packing
-// fraction in the flowing slice, each over the window with an uncertainty
-// from the scatter over sub-windows; and the table of DEM vs spot with a
-// within-tolerance verdict for each.
+// rate, variance of the Gaussian v_z(x) profiles (v_z(r) in a cylinder) at
+// each height, particle diffusion length b_p, velocity correlation length
+// beta and packing fraction in the flowing slice, each over the window with
+// an uncertainty from the scatter over sub-windows; and the table of DEM vs
+// spot with a within-tolerance verdict for each.
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -125,6 +125,7 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     }
     fs->t0 = t0;
     fs->t1 = t1;
+    fs->profile = gf_velocity_profile_name(&s->cfg);
     return GF_OK;
 }
 
@@ -185,9 +186,10 @@ void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats 
 {
     fprintf(f, "  %-30s %-20s %-20s %-20s %s\n", "quantity", "DEM", "spot", "spot - DEM", "verdict");
     gf_fs_row(f, "flow rate Q (1/tau)", dem->flow, spot->flow, flow_tol, false);
+    const char *profile = dem->profile ? dem->profile : spot->profile ? spot->profile : "the profile";
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {
         char name[64];
-        snprintf(name, sizeof name, "Var of v_z(x) at z = %.3g (d^2)", dem->z[z]);
+        snprintf(name, sizeof name, "Var of %s at z = %.3g (d^2)", profile, dem->z[z]);
         gf_fs_row(f, name, dem->var[z], spot->var[z], var_tol, true);
     }
     gf_fs_row(f, "diffusion length b_p (d)", dem->bp, spot->bp, 0.0, false);

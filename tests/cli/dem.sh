@@ -69,4 +69,27 @@ for k in radius step_xy w insertion_rate move_rate; do
 done
 grep -q 'refine' err && fail "--no-refine still refined"
 ok "calibrate of a tiny silo: notes, fallbacks, five positive numbers ($(grep -c '^note: ' out) notes)"
+# The velocity profiles are named for the container (gf_velocity_profile_name):
+# v_z(x) across a box, v_z(r) about a cylinder's axis, in compare's table,
+# summary.md and figure script and in calibrate's notes (the tiny cylinder's
+# profiles are too short to fit, so the note on their variance is printed).
+gf compare tiny tiny --no-plots -o cmp_box
+expect_rc 0 "compare tiny tiny"
+grep -q 'Var of v_z(x) at z = ' out || fail "compare of a box: no 'Var of v_z(x)' row: $(cat out)"
+grep -q 'v_z(r)' out cmp_box/summary.md cmp_box/compare.gp && fail "compare of a box says v_z(r)"
+grep -q 'Gaussian fits of v_z(x)' cmp_box/summary.md || fail "summary.md of a box does not name v_z(x)"
+gf run -q --set container.shape=cylinder --set container.radius=5 \
+    --set packing.particles=600 --set run.duration=5 --set output.snapshot_interval=0.5 -o cyl
+expect_rc 0 "run cyl"
+gf compare cyl cyl --no-plots -o cmp_cyl
+expect_rc 0 "compare cyl cyl"
+grep -q 'Var of v_z(r) at z = ' out || fail "compare of a cylinder: no 'Var of v_z(r)' row: $(cat out)"
+grep -q 'Gaussian fits of v_z(r)' cmp_cyl/summary.md || fail "summary.md of a cylinder does not name v_z(r)"
+grep -q "set title 'v_z(r) at z = " cmp_cyl/compare.gp || fail "compare.gp of a cylinder does not title v_z(r)"
+grep -q 'v_z(x)' out cmp_cyl/summary.md cmp_cyl/compare.gp && fail "compare of a cylinder says v_z(x): $(grep -h 'v_z(x)' out cmp_cyl/*)"
+gf calibrate cyl --no-refine -o cyl.ini
+expect_rc 0 "calibrate cyl --no-refine"
+grep -q '^note: the v_z(r) profile variance' out || fail "calibrate of a cylinder: no note naming v_z(r): $(cat out)"
+grep -q 'v_z(x)' out && fail "calibrate of a cylinder says v_z(x): $(grep 'v_z(x)' out)"
+ok "profiles named for the container: v_z(x) in a box, v_z(r) in a cylinder (compare table, summary.md, compare.gp, calibrate note)"
 echo "cli $NAME: $PASS passed, 0 failed"
