@@ -11,7 +11,8 @@ shift
 SECONDS_EACH=${FUZZ_SECONDS:-60}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(config_ini config_set packing_dump packing_xyz packing_csv checkpoint exits lga_config)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(config_ini config_set packing_dump packing_xyz packing_csv checkpoint exits lga_config
+    analysis_set summary_json report lammps_output packing_import series_load)
 # The harnesses hand each input to the parsers as a file: in memory if possible.
 if [ -w /dev/shm ]; then export TMPDIR=/dev/shm/gf-fuzz-$$; else export TMPDIR="$BUILD/fuzz-tmp-$$"; fi
 mkdir -p "$TMPDIR"
