@@ -390,6 +390,24 @@ static void truncated_dump_is_an_error(void **state)
     assert_non_null(strstr(gf_last_error(), "cut.dump"));
 }
 
+// The dumps' `type` column read, the layers are tagged again by height and
+// carried by id; a particle not in the first frame gets its own height's tag,
+// clamped (1e300 overflowed an int32 cast; found by fuzz_series_load.c).
+static void dem_far_new_particle_layer(void **state)
+{
+    (void)state;
+    const char *f = wdump("far.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\n" BOX "ITEM: ATOMS id type x y z\n"
+                                      "1 1 0 0 10\nITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\n" BOX
+                                      "ITEM: ATOMS id type x y z\n2 1 0 0 1e300\n");
+    gf_series s;
+    gf_dem_source src = {.dump_dt = 0.5};
+    assert_int_equal(gf_dem_series_load(f, &src, &s, NULL), GF_OK);
+    assert_int_equal(s.nframes, 2);
+    assert_int_equal(s.frames[1].pk.n, 1);
+    assert_int_equal(s.frames[1].pk.layer[0], 1 + 1000000000);
+    gf_series_free(&s);
+}
+
 static void lammps_output_progress(void *ctx, const gf_dem_progress *p) { *(gf_dem_progress *)ctx = *p; }
 
 // LAMMPS' output as gf_dem_run reads it: phases, thermo lines, and counts far
@@ -431,6 +449,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(series_scaled_steps_types),
     cmocka_unit_test(truncated_dump_is_an_error),
     cmocka_unit_test(lammps_output_lines),
+    cmocka_unit_test(dem_far_new_particle_layer),
 };
 
 GF_TEST_MAIN("dem", tests)
