@@ -11,7 +11,10 @@ shift
 SECONDS_EACH=${FUZZ_SECONDS:-60}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(config_ini config_set packing_dump packing_xyz packing_csv checkpoint exits lga_config)
+# Default: every target, as tests/fuzz/CMakeLists.txt lists them (GF_FUZZ_TARGETS).
+[ ${#TARGETS[@]} -gt 0 ] || mapfile -t TARGETS < <(sed -n '/^set(GF_FUZZ_TARGETS/,/)/p' "$ROOT/tests/fuzz/CMakeLists.txt" |
+    sed 's/^set(GF_FUZZ_TARGETS//; s/).*//' | tr -s ' \n' '\n' | grep -v '^$')
+[ ${#TARGETS[@]} -gt 0 ] || { echo "fuzz: no targets in tests/fuzz/CMakeLists.txt"; exit 1; }
 # The harnesses hand each input to the parsers as a file: in memory if possible.
 if [ -w /dev/shm ]; then export TMPDIR=/dev/shm/gf-fuzz-$$; else export TMPDIR="$BUILD/fuzz-tmp-$$"; fi
 mkdir -p "$TMPDIR"

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "dem/lammps_output.h"
 #include "geom/container.h"
 #include "granflow/dem.h"
 #include "granflow/granflow.h"
@@ -389,6 +390,56 @@ static void truncated_dump_is_an_error(void **state)
     assert_non_null(strstr(gf_last_error(), "cut.dump"));
 }
 
+// The dumps' `type` column read, the layers are tagged again by height and
+// carried by id; a particle not in the first frame gets its own height's tag,
+// clamped (1e300 overflowed an int32 cast; found by fuzz_series_load.c).
+static void dem_far_new_particle_layer(void **state)
+{
+    (void)state;
+    const char *f = wdump("far.dump", "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\n" BOX "ITEM: ATOMS id type x y z\n"
+                                      "1 1 0 0 10\nITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\n" BOX
+                                      "ITEM: ATOMS id type x y z\n2 1 0 0 1e300\n");
+    gf_series s;
+    gf_dem_source src = {.dump_dt = 0.5};
+    assert_int_equal(gf_dem_series_load(f, &src, &s, NULL), GF_OK);
+    assert_int_equal(s.nframes, 2);
+    assert_int_equal(s.frames[1].pk.n, 1);
+    assert_int_equal(s.frames[1].pk.layer[0], 1 + 1000000000);
+    gf_series_free(&s);
+}
+
+static void lammps_output_progress(void *ctx, const gf_dem_progress *p) { *(gf_dem_progress *)ctx = *p; }
+
+// LAMMPS' output as gf_dem_run reads it: phases, thermo lines, and counts far
+// beyond int64 (or not numbers) clamped rather than converted (undefined;
+// found by tests/fuzz/fuzz_lammps_output.c).
+static void lammps_output_lines(void **state)
+{
+    (void)state;
+    gf_dem_progress last = {0};
+    gf_dem_run_opts o = {.ranks = 1, .progress = lammps_output_progress, .ctx = &last};
+    gf_dem_reader r = {.o = &o, .t_phase = NAN};
+    char l1[] = "granflow-phase fill 4000 20\n", l2[] = "0 10 0 0", l3[] = "1000 11.5 1200 0.25\r\n";
+    gf_dem_line(&r, l1);
+    assert_string_equal(last.phase, "fill");
+    assert_int_equal(last.target, 4000);
+    gf_dem_line(&r, l2);
+    gf_dem_line(&r, l3);
+    gf_assert_near(last.time, 1.5, 1e-12); // from the phase's first thermo line
+    assert_int_equal(last.particles, 1200);
+    char l4[] = "2000 12 1e300 0", l5[] = "granflow-phase drain 1e30 100", l6[] = "3000 13 nan 0";
+    gf_dem_line(&r, l4);
+    assert_int_equal(last.particles, INT64_C(1) << 62);
+    gf_dem_line(&r, l5);
+    assert_string_equal(last.phase, "drain");
+    assert_int_equal(last.target, INT64_C(1) << 62);
+    gf_dem_line(&r, l6);
+    assert_int_equal(last.particles, 0);
+    char l7[] = "ERROR: Lost atoms (src/thermo.cpp:488)\n";
+    gf_dem_line(&r, l7);
+    assert_string_equal(r.error, "ERROR: Lost atoms (src/thermo.cpp:488)");
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(lammps_run_gives_readable_dumps),
     cmocka_unit_test(lammps_hopper_walls_hold),
@@ -397,6 +448,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(types_parse),
     cmocka_unit_test(series_scaled_steps_types),
     cmocka_unit_test(truncated_dump_is_an_error),
+    cmocka_unit_test(lammps_output_lines),
+    cmocka_unit_test(dem_far_new_particle_layer),
 };
 
 GF_TEST_MAIN("dem", tests)

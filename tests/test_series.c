@@ -294,6 +294,26 @@ static void frame_reader_errors(void **state)
     gf_packing_free(&p);
 }
 
+// A particle that is not in the first frame is tagged by its own height,
+// clamped like gf_packing_tag_layers: 1e300 is far beyond int32 (the cast
+// was undefined; found by tests/fuzz/fuzz_series_load.c).
+static void far_new_particle_layer(void **state)
+{
+    (void)state;
+    const char *dir = subdir("far");
+    gf_test_write_file(dir, "a.dump",
+                       "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n-5 5\n-3 3\n0 20\n"
+                       "ITEM: ATOMS id x y z\n1 0 0 10\n"
+                       "ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n-5 5\n-3 3\n0 20\n"
+                       "ITEM: ATOMS id x y z\n2 0 0 1e300\n");
+    gf_series s;
+    assert_int_equal(gf_series_load(dir, 0.5, &s), GF_OK);
+    assert_int_equal(s.nframes, 2);
+    assert_int_equal(s.frames[0].pk.layer[0], 2); // 1 + floor(10 / 10)
+    assert_int_equal(s.frames[1].pk.layer[0], 1 + 1000000000);
+    gf_series_free(&s);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(run_directory),
     cmocka_unit_test(dump_directory_needs_dt),
@@ -303,6 +323,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(bad_exits_line),
     cmocka_unit_test(missing_inputs),
     cmocka_unit_test(frame_reader_errors),
+    cmocka_unit_test(far_new_particle_layer),
 };
 
 GF_TEST_MAIN("series", tests)

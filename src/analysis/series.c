@@ -31,6 +31,7 @@
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
 #include "io/textscan.h"
+#include "packing/layer.h"
 
 enum { GF_SERIES_PATH = GF_PATH_MAX + 512 };
 
@@ -212,7 +213,7 @@ static gf_status gf_series_fill_layers(gf_series *s, const gf_load_frame *src)
         for (size_t i = 0; i < p->n; i++) {
             gf_id_layer key = {p->id[i], 0};
             const gf_id_layer *hit = bsearch(&key, map, p0->n, sizeof *map, gf_id_layer_cmp);
-            p->layer[i] = hit ? hit->layer : (int32_t)(1 + floor(p->z[i] / thick));
+            p->layer[i] = hit ? hit->layer : gf_packing_layer_of(p->z[i], thick);
         }
     }
     GF_DELETE(map, p0->n);

@@ -18,6 +18,7 @@
 #include "core/alloc.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "dem/lammps_output.h"
 #include "granflow/dem.h"
 
 /// Finds `name` on PATH (or takes it as a path when it holds a '/').
@@ -37,47 +38,6 @@ static int gf_dem_which(const char *name, char *out, size_t n)
         path += len + (end ? 1 : 0);
     }
     return 0;
-}
-
-typedef struct gf_dem_reader {
-    gf_dem_progress p;
-    double t_phase;        ///< LAMMPS time when the phase began (NaN: not yet seen)
-    char error[512];       ///< LAMMPS' last ERROR line
-    const gf_dem_run_opts *o;
-    double wall0;
-} gf_dem_reader;
-
-static void gf_dem_line(gf_dem_reader *r, char *line)
-{
-    size_t len = strlen(line);
-    while (len && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = '\0';
-    if (!strncmp(line, "ERROR", 5)) {
-        snprintf(r->error, sizeof r->error, "%s", line);
-        return;
-    }
-    char name[32];
-    double a, b;
-    if (sscanf(line, "granflow-phase %31s %lf %lf", name, &a, &b) == 3) {
-        static const char *const names[] = {"fill", "settle", "settled", "drain", "done"};
-        for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
-            if (!strcmp(name, names[k])) r->p.phase = names[k];
-        if (!strcmp(name, "settled")) r->p.phase = "settle";
-        if (!strcmp(name, "fill") || !strcmp(name, "drain")) r->p.target = (int64_t)a;
-        if (strcmp(name, "settled") && strcmp(name, "done")) r->p.until = b;
-        r->t_phase = NAN;
-        if (!strcmp(name, "done")) r->p.time = r->p.until;
-    } else {
-        long long step;
-        double t, n, ke;
-        char extra;
-        if (sscanf(line, " %lld %lf %lf %lf %c", &step, &t, &n, &ke, &extra) != 4 || !r->p.phase) return;
-        if (isnan(r->t_phase)) r->t_phase = t; // first thermo line of the phase
-        r->p.time = t - r->t_phase;
-        r->p.particles = (int64_t)n;
-        r->p.ke = ke;
-    }
-    r->p.wall_seconds = gf_clock_now() - r->wall0;
-    if (r->o->progress && r->p.phase) r->o->progress(r->o->ctx, &r->p);
 }
 
 /// Runs one input file; returns GF_OK when LAMMPS exits 0.

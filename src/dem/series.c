@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "granflow/dem.h"
 #include "io/textscan.h"
+#include "packing/layer.h"
 
 static int gf_dem_is_dump(const char *name)
 {
@@ -94,7 +95,7 @@ static gf_status gf_dem_retag(gf_series *s)
         gf_packing *p = &s->frames[k].pk;
         for (size_t i = 0; i < p->n; i++) {
             size_t j = gf_idmap_find(&m, p->id[i]);
-            p->layer[i] = j == SIZE_MAX ? 1 + (int32_t)floor(p->z[i] / thick) : p0->layer[j];
+            p->layer[i] = j == SIZE_MAX ? gf_packing_layer_of(p->z[i], thick) : p0->layer[j];
         }
     }
     gf_idmap_free(&m);

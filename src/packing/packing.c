@@ -9,16 +9,20 @@
 #include "core/error.h"
 #include "geom/celllist.h"
 #include "geom/container.h"
+#include "packing/layer.h"
 
-void gf_packing_tag_layers(gf_packing *p, double thickness)
+int32_t gf_packing_layer_of(double z, double thickness)
 {
     // Clamped: a band index beyond int32 (a hair-thin band, a far particle)
     // would be undefined; config ranges keep real runs far from it.
-    for (size_t i = 0; i < p->n; i++) {
-        double b = floor(p->z[i] / thickness);
-        b = b > 1e9 ? 1e9 : (b < -1e9 ? -1e9 : b);
-        p->layer[i] = 1 + (int32_t)(isnan(b) ? 0.0 : b);
-    }
+    double b = floor(z / thickness);
+    b = b > 1e9 ? 1e9 : (b < -1e9 ? -1e9 : b);
+    return 1 + (int32_t)(isnan(b) ? 0.0 : b);
+}
+
+void gf_packing_tag_layers(gf_packing *p, double thickness)
+{
+    for (size_t i = 0; i < p->n; i++) p->layer[i] = gf_packing_layer_of(p->z[i], thickness);
 }
 
 double gf_packing_fraction(const gf_packing *p, double x0, double x1, double y0, double y1, double z0,

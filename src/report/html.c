@@ -60,13 +60,14 @@ gf_status gf_html_image(FILE *out, const char *path, const char *alt)
     return st;
 }
 
-// Strips white space and one trailing comma; removes surrounding quotes.
-static char *gf_html_trim(char *s, bool unquote)
+// Strips white space; for a JSON key or value (json) also the commas after
+// it and its surrounding quotes (a CSV line keeps its trailing empty fields).
+static char *gf_html_trim(char *s, bool json)
 {
     while (*s == ' ' || *s == '\t') s++;
     size_t n = strlen(s);
-    while (n && (s[n - 1] == '\n' || s[n - 1] == '\r' || s[n - 1] == ' ' || s[n - 1] == ',')) s[--n] = '\0';
-    if (unquote && n >= 2 && s[0] == '"' && s[n - 1] == '"') {
+    while (n && (s[n - 1] == '\n' || s[n - 1] == '\r' || s[n - 1] == ' ' || (json && s[n - 1] == ','))) s[--n] = '\0';
+    if (json && n >= 2 && s[0] == '"' && s[n - 1] == '"') {
         s[n - 1] = '\0';
         s++;
     }
@@ -106,9 +107,13 @@ bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
     size_t cap = 0, row = 0;
     while (gf_getline(&line, &cap, f) > 0 && row <= max_rows) {
         const char *cell = row == 0 ? "th" : "td";
+        char *text = gf_html_trim(line, false);
+        if (!*text) continue; // a blank line
         fputs("<tr>", out);
-        char *save = NULL;
-        for (char *tok = strtok_r(gf_html_trim(line, false), ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        // Every field, empty ones too (strtok would drop them and shift the columns).
+        for (char *tok = text, *comma; tok; tok = comma ? comma + 1 : NULL) {
+            comma = strchr(tok, ',');
+            if (comma) *comma = '\0';
             fprintf(out, "<%s>", cell);
             gf_html_text(out, tok);
             fprintf(out, "</%s>", cell);

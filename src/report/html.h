@@ -22,7 +22,8 @@ gf_status gf_html_image(FILE *out, const char *path, const char *alt);
 /// line (summary.json). Returns false (writes nothing) when the file is absent.
 bool gf_html_json_table(FILE *out, const char *path);
 
-/// A table of a CSV file (header row, then rows), at most `max_rows` rows.
+/// A table of a CSV file (header row, then rows), at most `max_rows` rows;
+/// every field is a cell, empty ones too; blank lines are skipped.
 /// Returns false (writes nothing) when the file is absent.
 bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows);
 

@@ -16,6 +16,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /// path, or NULL. The parsers read files, so the harnesses hand them one.
 const char *gf_fuzz_file(const char *suffix, const uint8_t *data, size_t size);
 
+/// A per-process scratch directory, emptied (its files and those of its
+/// subdirectories; harnesses make no deeper ones), or NULL.
+const char *gf_fuzz_dir(void);
+
+/// Writes data to the file `name` of directory `dir`, making a subdirectory
+/// named by a '/' in `name` (one level); 0 on success.
+int gf_fuzz_dir_file(const char *dir, const char *name, const uint8_t *data, size_t size);
+
 /// data as a NUL-terminated string (malloc'ed; free it).
 char *gf_fuzz_string(const uint8_t *data, size_t size);
 
