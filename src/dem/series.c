@@ -107,7 +107,7 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if (!src) src = &none;
     gf_dem_load_report r = {0};
     if (rep) *rep = r;
-    gf_status st = gf_series_load(path, src->dump_dt, out);
+    gf_status st = gf_series_load_stoppable(path, src->dump_dt, src->stop, out);
     if (st != GF_OK) return st;
     gf_config cfg = out->cfg;
     if (src->config) {
