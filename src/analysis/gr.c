@@ -195,6 +195,7 @@ static gf_status gf_gr_frame(const gf_packing *pk, const gf_analysis_opts *o, co
         const double c[3] = {pk->x[i], pk->y[i], pk->z[i]};
         if (!(c[0] > o->gr_x0 && c[0] < o->gr_x1 && c[2] > o->gr_z0 && c[2] < o->gr_z1)) continue;
         if (!isfinite(c[1])) continue;
+        if ((st = gf_stop_check(o->stop, "g(r)")) != GF_OK) break; // a large gr.rmax: minutes per frame
         ncentre++;
         gf_shell_volumes(w, c, a->dr, a->nbin, a->vin);
         size_t nbond = 0;
