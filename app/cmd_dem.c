@@ -103,7 +103,7 @@ int gf_cmd_dem(int argc, char **argv)
                 ranks < 1 ? gf_cpu_count() : ranks);
     gf_status st = gf_dem_run(cli.out, &o);
     if (show.tty && show.last_phase) fputs("\n", stderr);
-    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", "LAMMPS was stopped");
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL); // the message names interrupted.txt
     if (st != GF_OK) return gf_cli_fail("dem", st);
     if (!cli.quiet)
         fprintf(stderr, "granflow dem: done: %s/packing.dump (settled packing), %s/snapshots/ (the drainage)\n", cli.out,
