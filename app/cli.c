@@ -115,6 +115,13 @@ int gf_cli_fail_hint(const char *cmd, gf_status st, const char *hint)
     }
 }
 
+int gf_cli_interrupted(const char *cmd, const char *left)
+{
+    fprintf(stderr, "granflow %s: stopped by a signal (%s)%s%s\n", cmd,
+            *gf_last_error() ? gf_last_error() : "interrupted", left ? "; " : "", left ? left : "");
+    return GF_EXIT_INTERRUPTED;
+}
+
 static volatile sig_atomic_t gf_cli_stop;
 
 static void gf_cli_on_signal(int sig)

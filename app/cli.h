@@ -41,6 +41,11 @@ bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg);
 /// returned flag is what a run polls to stop cleanly (writing a checkpoint).
 volatile sig_atomic_t *gf_cli_catch_stop(void);
 
+/// After GF_ERR_INTERRUPTED (the flag of gf_cli_catch_stop): prints one line,
+/// `granflow CMD: stopped by a signal (WHAT STOPPED); LEFT`, and returns
+/// GF_EXIT_INTERRUPTED. `left` says what is (not) on disk; may be NULL.
+int gf_cli_interrupted(const char *cmd, const char *left);
+
 /// Maps a status to the exit code and prints `granflow CMD: error: ...`.
 int gf_cli_fail(const char *cmd, gf_status st);
 /// gf_cli_fail with `hint` (the flags that answer the situation; NULL: none)

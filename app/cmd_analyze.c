@@ -37,6 +37,7 @@ int gf_cmd_analyze(int argc, char **argv)
     size_t nsets = 0;
     const char *config = NULL;
     gf_analysis_opts opts = gf_analysis_opts_default();
+    opts.stop = gf_cli_catch_stop(); // polled while reading and measuring
     const char *pos[2] = {NULL, NULL};
     int npos = 0;
     const char *outdir = NULL;
@@ -101,6 +102,9 @@ int gf_cmd_analyze(int argc, char **argv)
     gf_dem_source src = {.config = config, .sets = sets, .nsets = nsets};
     gf_dem_analysis info;
     gf_status st = gf_dem_analyze(dir, &src, &opts, name, outdir, plots, &info);
+    if (st == GF_ERR_INTERRUPTED)
+        return gf_cli_interrupted("analyze", info.outdir[0] ? "summary.json not written (each CSV file there is whole)"
+                                                            : "nothing written");
     if (st != GF_OK) return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
     if (!quiet) {
         fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits; window %g..%g tau: %s\n",

@@ -39,7 +39,9 @@ int gf_cmd_bench(int argc, char **argv)
     if (cli.bench_window > 0) o.window = cli.bench_window;
     if (!cli.json) o.packed = gf_bench_on_packed;
     gf_bench_report r;
+    o.stop = gf_cli_catch_stop();
     gf_status st = gf_bench(&cfg, &o, &r);
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("bench", "no figures");
     if (st != GF_OK) return gf_cli_fail("bench", st);
     gf_bench_write(stdout, &r, cli.json);
     return GF_EXIT_OK;

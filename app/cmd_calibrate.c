@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "granflow/dem.h"
@@ -74,7 +75,7 @@ int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
 gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path, bool dem, gf_series *s)
 {
     gf_dem_source src = {.dump_dt = a->opts.dump_dt, .config = dem ? a->config : NULL,
-                         .sets = dem ? a->sets : NULL, .nsets = dem ? a->nsets : 0};
+                         .sets = dem ? a->sets : NULL, .nsets = dem ? a->nsets : 0, .stop = a->opts.stop};
     gf_dem_load_report rep;
     if (!a->quiet) fprintf(stderr, "granflow %s: reading %s...\n", cmd, path);
     gf_status st = gf_dem_series_load(path, &src, s, &rep);
@@ -123,8 +124,10 @@ int gf_cmd_calibrate(int argc, char **argv)
                         "[--no-refine] -o PARAMS.ini\n");
         return GF_EXIT_USAGE;
     }
+    a.opts.stop = gf_cli_catch_stop(); // reading, measuring, packing, the spot runs of the refinement
     gf_series s;
     gf_status st = gf_demargs_load("calibrate", &a, a.pos[0], true, &s);
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("calibrate", "nothing written");
     if (st != GF_OK) return gf_cli_fail("calibrate", st);
     gf_steady win;
     st = gf_dem_window(&s, &a.opts, &win);
@@ -143,7 +146,7 @@ int gf_cmd_calibrate(int argc, char **argv)
     }
     gf_dem_calibration c;
     st = gf_dem_calibrate(&s, &o, &s.cfg, &c);
-    if (st == GF_OK || isfinite(c.flow_rate.value)) gf_dem_calibration_print(&c, stdout);
+    if (st == GF_OK || (st != GF_ERR_INTERRUPTED && isfinite(c.flow_rate.value))) gf_dem_calibration_print(&c, stdout);
     gf_config cfg = s.cfg;
     // The spot runs start from the DEM's first snapshot, snapshots as often.
     double span = s.frames[s.nframes - 1].time - s.frames[0].time;
@@ -165,7 +168,7 @@ int gf_cmd_calibrate(int argc, char **argv)
         if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
     }
     gf_packing start = {0};
-    if (st == GF_OK && refine) st = gf_packing_for_config(&cfg, &start, NULL);
+    if (st == GF_OK && refine) st = gf_packing_for_config_stoppable(&cfg, a.opts.stop, &start, NULL);
     if (st == GF_OK && refine) {
         if (!a.quiet)
             fprintf(stderr,
@@ -173,7 +176,7 @@ int gf_cmd_calibrate(int argc, char **argv)
                     "tau, until the flow rate is within %.0f%% and Var(z) within %.0f%% at every height\n",
                     win.t1, 100.0 * GF_DEM_FLOW_TOL, 100.0 * GF_DEM_VAR_TOL);
         gf_dem_refine_result res;
-        gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = gf_cli_catch_stop(),
+        gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = a.opts.stop,
                                  .start = &start};
         st = gf_dem_refine(&s, &o, &cfg, &ro, &res);
         if (st == GF_OK) {
@@ -190,6 +193,10 @@ int gf_cmd_calibrate(int argc, char **argv)
     gf_packing_free(&start);
     if (st == GF_OK) st = gf_config_save(&cfg, a.out);
     gf_series_free(&s);
+    if (st == GF_ERR_INTERRUPTED) {
+        unlink(pk); // no params.ini: its initial packing goes too
+        return gf_cli_interrupted("calibrate", "nothing written");
+    }
     if (st != GF_OK) return gf_cli_fail("calibrate", st);
     if (!a.quiet)
         fprintf(stderr, "granflow calibrate: wrote %s (and its initial packing %s); run it with granflow run %s -o DIR\n",

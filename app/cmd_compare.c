@@ -19,14 +19,15 @@ int gf_cmd_compare(int argc, char **argv)
                         "[-o OUTDIR] [--no-plots]\n");
         return GF_EXIT_USAGE;
     }
+    a.opts.stop = gf_cli_catch_stop(); // reading and measuring both runs
     gf_series dem, spot;
     gf_status st = gf_demargs_load("compare", &a, a.pos[0], true, &dem);
-    if (st != GF_OK) return gf_cli_fail("compare", st);
-    st = gf_demargs_load("compare", &a, a.pos[1], false, &spot);
-    if (st != GF_OK) {
-        gf_series_free(&dem);
-        return gf_cli_fail("compare", st);
+    if (st == GF_OK) {
+        st = gf_demargs_load("compare", &a, a.pos[1], false, &spot);
+        if (st != GF_OK) gf_series_free(&dem);
     }
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("compare", "nothing written");
+    if (st != GF_OK) return gf_cli_fail("compare", st);
     char outbuf[4096];
     const char *out = a.out;
     if (!out) {
@@ -59,6 +60,8 @@ int gf_cmd_compare(int argc, char **argv)
     }
     gf_series_free(&dem);
     gf_series_free(&spot);
+    if (st == GF_ERR_INTERRUPTED)
+        return gf_cli_interrupted("compare", "summary.md not written (each CSV file written is whole)");
     if (st != GF_OK) return gf_cli_fail("compare", st);
     if (!a.quiet) fprintf(stderr, "granflow compare: results in %s (summary.md, summary.csv, dem_*.csv, spot_*.csv, compare.png, slices_*.png)\n", out);
     return GF_EXIT_OK;

@@ -64,6 +64,7 @@ int gf_cmd_dem(int argc, char **argv)
     }
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
+    volatile sig_atomic_t *stop = gf_cli_catch_stop(); // the packing (fill_method generate), LAMMPS
     if (!drain_only) {
         char snap[4096];
         snprintf(snap, sizeof snap, "%s/settled.restart", cli.out);
@@ -75,7 +76,8 @@ int gf_cmd_dem(int argc, char **argv)
             return GF_EXIT_USAGE;
         }
         gf_dem_plan plan;
-        gf_status st = gf_dem_write_inputs(&cfg, cli.out, &plan);
+        gf_status st = gf_dem_write_inputs_stoppable(&cfg, cli.out, stop, &plan);
+        if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", "nothing written");
         if (st != GF_OK) return gf_cli_fail("dem", st);
         if (!cli.quiet)
             fprintf(stderr,
@@ -95,12 +97,13 @@ int gf_cmd_dem(int argc, char **argv)
     gf_dem_show show = {.tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
     int ranks = (int)cfg.dem_mpi_ranks;
     gf_dem_run_opts o = {.ranks = ranks, .drain_only = drain_only,
-                         .progress = cli.quiet ? NULL : gf_dem_show_progress, .ctx = &show};
+                         .progress = cli.quiet ? NULL : gf_dem_show_progress, .ctx = &show, .stop = stop};
     if (!cli.quiet)
         fprintf(stderr, "granflow dem: running LAMMPS in %s with %d MPI rank(s) (logs: log.fill, log.drain)\n", cli.out,
                 ranks < 1 ? gf_cpu_count() : ranks);
     gf_status st = gf_dem_run(cli.out, &o);
     if (show.tty && show.last_phase) fputs("\n", stderr);
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL); // the message names interrupted.txt
     if (st != GF_OK) return gf_cli_fail("dem", st);
     if (!cli.quiet)
         fprintf(stderr, "granflow dem: done: %s/packing.dump (settled packing), %s/snapshots/ (the drainage)\n", cli.out,

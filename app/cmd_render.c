@@ -147,6 +147,8 @@ int gf_cmd_render(int argc, char **argv)
     int rc = gf_render_parse(argc, argv, &c);
     if (rc >= 0) return rc;
     if (!c.quiet) c.o.written = gf_render_print;
+    c.o.stop = gf_cli_catch_stop();
     gf_status st = gf_render_dir(c.dir, &c.o);
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("render", "each picture written is whole; the rest not drawn");
     return st == GF_OK ? GF_EXIT_OK : gf_cli_fail("render", st);
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "core/alloc.h"
@@ -109,6 +110,57 @@ static void snapshot_burst_stops_on_the_flag(void **state)
     gf_sim_destroy(sim);
 }
 
+// The library calls behind analyze, render, bench, dem and calibrate return
+// GF_ERR_INTERRUPTED on the flag and write nothing that looks complete.
+static void long_calls_stop_on_the_flag(void **state)
+{
+    (void)state;
+    volatile sig_atomic_t stop = 1;
+    gf_config c = gf_test_silo_config(12, 200, 1);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create_from_config_stoppable(&c, &stop, &sim), GF_ERR_INTERRUPTED);
+    assert_null(sim);
+    char dir[4096], path[4200];
+    snprintf(dir, sizeof dir, "%s/dem", gf_test_tmpdir());
+    c.dem_fill_method = GF_DEM_GENERATE;
+    assert_int_equal(gf_dem_write_inputs_stoppable(&c, dir, &stop, NULL), GF_ERR_INTERRUPTED);
+    assert_int_equal(access(dir, F_OK), -1); // the packing comes before any file
+    gf_bench_opts bo = gf_bench_opts_default();
+    bo.large = false;
+    bo.stop = &stop;
+    gf_bench_report br;
+    assert_int_equal(gf_bench(&c, &bo, &br), GF_ERR_INTERRUPTED);
+
+    // A run directory of a few snapshots: reading, analysing, drawing it stop.
+    c = gf_test_silo_config(12, 200, 1);
+    c.run_duration = 1;
+    c.output_snapshot_interval = 0.25;
+    snprintf(dir, sizeof dir, "%s/run", gf_test_tmpdir());
+    gf_run_opts ro = gf_run_opts_default();
+    ro.dir = dir;
+    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
+    gf_series s;
+    assert_int_equal(gf_series_load_stoppable(dir, 0.0, &stop, &s), GF_ERR_INTERRUPTED);
+    assert_int_equal(s.nframes, 0);
+    assert_int_equal(gf_series_load(dir, 0.0, &s), GF_OK);
+    gf_analysis_opts o = gf_analysis_opts_default();
+    o.stop = &stop;
+    snprintf(path, sizeof path, "%s/analysis", dir);
+    assert_int_equal(gf_analyze(&s, &o, NULL, path, false), GF_ERR_INTERRUPTED);
+    snprintf(path, sizeof path, "%s/analysis/summary.json", dir);
+    assert_int_equal(access(path, F_OK), -1);
+    for (size_t k = 0; k < 2; k++) { // in a measurement's frame loop, not only between them
+        gf_measure_out m = {0};
+        gf_status st = (k ? gf_measure_velocity : gf_measure_voronoi)(&s, &o, &m);
+        gf_measure_free(&m);
+        assert_int_equal(st, GF_ERR_INTERRUPTED);
+    }
+    gf_series_free(&s);
+    gf_render_options rd = gf_render_options_default();
+    rd.stop = &stop;
+    assert_int_equal(gf_render_dir(dir, &rd), GF_ERR_INTERRUPTED);
+}
+
 // Control bytes and invalid UTF-8 are written \xNN; valid UTF-8 stays.
 static void messages_escape_binary_bytes(void **state)
 {
@@ -198,6 +250,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(layer_tags_are_clamped),
     cmocka_unit_test(generator_checks_sizes_and_stops),
     cmocka_unit_test(snapshot_burst_stops_on_the_flag),
+    cmocka_unit_test(long_calls_stop_on_the_flag),
     cmocka_unit_test(messages_escape_binary_bytes),
     cmocka_unit_test(long_messages_keep_their_end),
 };

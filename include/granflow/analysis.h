@@ -5,6 +5,7 @@
 #ifndef GRANFLOW_ANALYSIS_H
 #define GRANFLOW_ANALYSIS_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -46,6 +47,10 @@ typedef struct gf_series {
 /// time order; `dump_dt` converts TIMESTEP to tau when a dump has no ITEM: TIME
 /// (0: frames without it are an error).
 GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out);
+/// gf_series_load polling *stop (may be NULL) at every frame: once it is
+/// non-zero, GF_ERR_INTERRUPTED with nothing loaded.
+GF_API gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop,
+                                          gf_series *out);
 GF_API void gf_series_free(gf_series *s);
 
 // Particles matched by id across frames, and the frames of a time window
@@ -155,6 +160,11 @@ typedef struct gf_analysis_opts {
     size_t zone_nradii;       ///< how many radii were given (0: automatic)
     double zone_dr;           ///< radial bin of v_z(r), d (0.5)
     double zone_dz;           ///< height bin of the streamlines, d (2)
+    /// Not an option key: polled in the frame loops of every measurement, of
+    /// gf_analyze, gf_dem_analyze, gf_dem_calibrate, gf_dem_flowstats_measure
+    /// and gf_dem_compare; once non-zero (a signal handler may set it) they
+    /// return GF_ERR_INTERRUPTED. NULL (the default): never.
+    volatile sig_atomic_t *stop;
 } gf_analysis_opts;
 
 /// The defaults (docs/analysis.md), by value.

@@ -9,6 +9,7 @@
 #ifndef GRANFLOW_BENCH_H
 #define GRANFLOW_BENCH_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -57,6 +58,9 @@ typedef struct gf_bench_opts {
     /// b->pack_s and b->threads are set; `sim` holds the packing.
     void (*packed)(void *ctx, const gf_bench_spot *b, const gf_sim *sim, double warmup);
     void *ctx;          ///< passed to packed
+    /// Polled while packing, warming up, in every timed window and LGA run:
+    /// once non-zero, gf_bench returns GF_ERR_INTERRUPTED (no figures). NULL: never.
+    volatile sig_atomic_t *stop;
 } gf_bench_opts;
 
 /// The defaults listed in gf_bench_opts.

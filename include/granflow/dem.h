@@ -49,6 +49,11 @@ typedef struct gf_dem_plan {
 /// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
 /// law on the flat side walls and the base. `plan` may be NULL.
 GF_API gf_status gf_dem_write_inputs(const gf_config *cfg, const char *dir, gf_dem_plan *plan);
+/// gf_dem_write_inputs building the packing (dem.fill_method = generate) with
+/// gf_packing_for_config_stoppable: once *stop (may be NULL) is non-zero,
+/// GF_ERR_INTERRUPTED and nothing written (the packing comes before any file).
+GF_API gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg, const char *dir, volatile sig_atomic_t *stop,
+                                               gf_dem_plan *plan);
 
 /// One progress report of a LAMMPS run.
 typedef struct gf_dem_progress {
@@ -68,7 +73,18 @@ typedef struct gf_dem_run_opts {
     bool drain_only;     ///< skip in.fill (settled.restart must exist)
     void (*progress)(void *ctx, const gf_dem_progress *p); ///< may be NULL
     void *ctx;
+    /// Polled at least every 0.2 s while LAMMPS runs (may be NULL): once
+    /// non-zero, LAMMPS' process group gets SIGTERM (SIGKILL after 10 s), is
+    /// reaped, and gf_dem_run returns GF_ERR_INTERRUPTED having marked the
+    /// directory (GF_DEM_INTERRUPTED).
+    volatile sig_atomic_t *stop;
 } gf_dem_run_opts;
+
+/// The file gf_dem_run writes into a run directory whose LAMMPS run was
+/// stopped (and removes when a run completes): the phase, and what it removed
+/// as possibly half-written (an interrupted fill: settled.restart and
+/// packing.dump; an interrupted drain: the newest snapshot).
+#define GF_DEM_INTERRUPTED "interrupted.txt"
 
 /// The defaults (what a NULL opts means): one rank, `lmp` from $GF_LMP or PATH,
 /// fill and drain, no progress callback.
@@ -77,7 +93,8 @@ GF_API gf_dem_run_opts gf_dem_run_opts_default(void);
 /// Runs `in.fill` then `in.drain` of `dir` with LAMMPS (working directory
 /// `dir`, logs in log.fill and log.drain), reporting the thermo output as
 /// progress. GF_ERR_IO when lmp cannot be found or started, GF_ERR_PARAM
-/// with LAMMPS' own ERROR line when it fails.
+/// with LAMMPS' own ERROR line when it fails, GF_ERR_INTERRUPTED when
+/// opts->stop stopped it or a signal killed LAMMPS (the directory marked).
 GF_API gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *opts);
 
 // ---------------------------------------------------------------------------
@@ -89,6 +106,7 @@ typedef struct gf_dem_source {
     const char *config;       ///< INI file with the container (NULL: DIR/config.ini, else the dump's box)
     const char *const *sets;  ///< `section.key=value` overrides of that config (e.g. container.width=50)
     size_t nsets;
+    volatile sig_atomic_t *stop; ///< polled at every frame read: GF_ERR_INTERRUPTED once non-zero (NULL: never)
 } gf_dem_source;
 
 /// The defaults: dumps must carry ITEM: TIME, the container from DIR/config.ini

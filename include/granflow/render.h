@@ -5,6 +5,7 @@
 #ifndef GRANFLOW_RENDER_H
 #define GRANFLOW_RENDER_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -94,6 +95,8 @@ typedef struct gf_render_options {
     const char *outdir;      ///< where the pictures go; NULL (default): DIR/render, or render/ beside a dump file
     void (*written)(void *ctx, const char *path); ///< called with each file written; may be NULL
     void *ctx;               ///< passed to written
+    volatile sig_atomic_t *stop; ///< polled at every snapshot read and picture drawn: once non-zero,
+                                 ///< GF_ERR_INTERRUPTED (each picture is whole: written atomically); NULL: never
 } gf_render_options;
 
 /// The defaults listed in gf_render_options.

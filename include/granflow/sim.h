@@ -99,6 +99,10 @@ GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 /// else generated; see gf_packing_for_config). `cfg` is validated on a copy.
 /// Dropped particles of an import are reported through gf_warning().
 GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out);
+/// gf_sim_create_from_config with the packing built by
+/// gf_packing_for_config_stoppable: once *stop (may be NULL) is non-zero,
+/// GF_ERR_INTERRUPTED and no simulation.
+GF_API gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_sim **out);
 
 /// Particles still in the container.
 GF_API size_t gf_sim_particle_count(const gf_sim *sim);

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "core/gnuplot.h"
+#include "core/stop.h"
 #include "analysis/summary.h"
 #include "granflow/analysis.h"
 
@@ -116,7 +117,8 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
         gf_measure_out out = {0};
         char note[GF_TABLE_NAME + 16];
         snprintf(note, sizeof note, "skipped_%s", d->name);
-        st = d->run(s, o, &out);
+        st = gf_stop_check(o->stop, "analysis");
+        if (st == GF_OK) st = d->run(s, o, &out);
         for (size_t t = 0; st == GF_OK && t < out.ntables; t++) {
             snprintf(path, sizeof path, "%s/%s.csv", outdir, out.tables[t].name);
             st = gf_table_write_csv(&out.tables[t], path);
@@ -126,8 +128,8 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
             for (size_t v = 0; v < out.nvalues; v++) gf_summary_num(sum, out.values[v].key, out.values[v].value);
             gf_summary_item *it = gf_summary_slot(sum, note);
             if (it) it->key[0] = '\0'; // a previous skip no longer holds
-        } else if (only) {
-            first_err = st;
+        } else if (only || st == GF_ERR_INTERRUPTED) {
+            first_err = st; // interrupted: summary.json is not written (the CSVs so far are whole files)
         } else {
             // One measurement that cannot be made (no exits, too few frames)
             // does not stop the others; the reason goes into summary.json.

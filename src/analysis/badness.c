@@ -5,6 +5,7 @@
 
 #include "analysis/structure.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "geom/celllist.h"
 #include "granflow/analysis.h"
 
@@ -80,7 +81,8 @@ gf_status gf_measure_badness(const gf_series *s, const gf_analysis_opts *o, gf_m
     for (size_t k = k0; k < k1; k++) {
         double sum;
         size_t p;
-        st = gf_badness_sum(&s->frames[k].pk, lo, hi, &sum, &p);
+        st = gf_stop_check(o->stop, "badness");
+        if (st == GF_OK) st = gf_badness_sum(&s->frames[k].pk, lo, hi, &sum, &p);
         if (st != GF_OK) return st;
         double b = p ? sum / (double)p : NAN;
         const double row[3] = {s->frames[k].time, b, (double)p};

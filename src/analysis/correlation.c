@@ -254,7 +254,7 @@ gf_status gf_measure_correlation(const gf_series *s, const gf_analysis_opts *o, 
     bool radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
     gf_vfield f;
     size_t npairs;
-    gf_status st = gf_vfield_window(s, t0, t1, o->vel_bin, radial, &f, &npairs);
+    gf_status st = gf_vfield_window(s, t0, t1, o->vel_bin, radial, o->stop, &f, &npairs);
     if (st != GF_OK) return st;
     gf_corr_acc a = {0};
     a.rmax = fmin(GF_CORR_RMAX, 0.5 * o->corr_size);

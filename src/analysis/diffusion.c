@@ -9,6 +9,7 @@
 #include "analysis/motion.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/analysis.h"
 
 #define GF_DIFF_DEM 2.86e-3 // thesis Sec. 3.3, d
@@ -176,6 +177,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     // the origin (thesis Sec. 3.3: Var grows in proportion to the distance dropped).
     double smv = 0.0, smm = 0.0;
     for (size_t k = k0 + 1; st == GF_OK && w.start.n && k < k1; k++) {
+        if ((st = gf_stop_check(o->stop, "diffusion")) != GF_OK) break;
         double row[5];
         if (!gf_diff_frame(&s->frames[k], &w, radial, row)) continue;
         st = gf_table_add(t, row);

@@ -7,6 +7,7 @@
 #include "analysis/structure.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "geom/celllist.h"
 #include "granflow/analysis.h"
 
@@ -194,6 +195,7 @@ static gf_status gf_gr_frame(const gf_packing *pk, const gf_analysis_opts *o, co
         const double c[3] = {pk->x[i], pk->y[i], pk->z[i]};
         if (!(c[0] > o->gr_x0 && c[0] < o->gr_x1 && c[2] > o->gr_z0 && c[2] < o->gr_z1)) continue;
         if (!isfinite(c[1])) continue;
+        if ((st = gf_stop_check(o->stop, "g(r)")) != GF_OK) break; // a large gr.rmax: minutes per frame
         ncentre++;
         gf_shell_volumes(w, c, a->dr, a->nbin, a->vin);
         size_t nbond = 0;
@@ -301,7 +303,8 @@ gf_status gf_measure_gr(const gf_series *s, const gf_analysis_opts *o, gf_measur
     size_t k0, k1;
     gf_structure_window(s, o, &k0, &k1);
     gf_status st = GF_OK;
-    for (size_t k = k0; k < k1 && st == GF_OK; k++) st = gf_gr_frame(&s->frames[k].pk, o, &w, vregion, &a);
+    for (size_t k = k0; k < k1 && st == GF_OK; k++)
+        if ((st = gf_stop_check(o->stop, "g(r)")) == GF_OK) st = gf_gr_frame(&s->frames[k].pk, o, &w, vregion, &a);
     double peak_r = NAN;
     if (st == GF_OK) st = gf_gr_tables(&a, out, &peak_r);
     double coord = a.centres > 0.0 ? a.bonds / a.centres : NAN;

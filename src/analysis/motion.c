@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 
 static int gf_idmap_cmp(const void *pa, const void *pb)
 {
@@ -215,8 +216,8 @@ void gf_vfield_free(gf_vfield *f)
     memset(f, 0, sizeof *f);
 }
 
-gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, bool radial, gf_vfield *f,
-                           size_t *pairs)
+gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, bool radial,
+                           volatile sig_atomic_t *stop, gf_vfield *f, size_t *pairs)
 {
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
@@ -224,6 +225,7 @@ gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin,
     gf_status rc = gf_vfield_init(f, s, k0, k1, bin, radial);
     gf_steps st = {0};
     for (size_t k = k0; rc == GF_OK && k + 1 < k1; k++) {
+        if ((rc = gf_stop_check(stop, "velocity field")) != GF_OK) break;
         rc = gf_steps_between(&s->frames[k], &s->frames[k + 1], &st);
         if (rc != GF_OK) break;
         gf_vfield_add(f, &st);

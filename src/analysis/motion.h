@@ -6,6 +6,7 @@
 #ifndef GF_ANALYSIS_MOTION_H
 #define GF_ANALYSIS_MOTION_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -61,8 +62,9 @@ void gf_vfield_free(gf_vfield *f);
 
 /// The field over the consecutive frame pairs of [t0, t1]: every frame pair
 /// inside the window, as the velocity measurement averages it. `pairs` gets
-/// the number of pairs used.
-gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, bool radial, gf_vfield *f,
-                           size_t *pairs);
+/// the number of pairs used. Polls *stop (may be NULL) at every pair:
+/// GF_ERR_INTERRUPTED once it is non-zero.
+gf_status gf_vfield_window(const gf_series *s, double t0, double t1, double bin, bool radial,
+                           volatile sig_atomic_t *stop, gf_vfield *f, size_t *pairs);
 
 #endif

@@ -27,6 +27,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/analysis.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
@@ -60,6 +61,7 @@ typedef struct gf_loader {
     size_t nfr, cap_fr;
     size_t cur; ///< file being read
     double dump_dt;
+    volatile sig_atomic_t *stop; ///< polled at every frame (may be NULL)
 } gf_loader;
 
 static void gf_loader_free(gf_loader *L)
@@ -90,6 +92,8 @@ static gf_status gf_loader_on_frame(void *ctx, const gf_packing_frame *f, gf_pac
 {
     gf_loader *L = ctx;
     const char *path = L->files[L->cur];
+    gf_status stop = gf_stop_check(L->stop, "reading the snapshots");
+    if (stop != GF_OK) return stop;
     double t = f->time;
     if (!f->have_time) {
         if (!(L->dump_dt > 0))
@@ -312,11 +316,16 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
 
 gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)
 {
+    return gf_series_load_stoppable(path, dump_dt, NULL, out);
+}
+
+gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop, gf_series *out)
+{
     memset(out, 0, sizeof *out);
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_series_load: no path");
     if (!(dump_dt >= 0) || !isfinite(dump_dt))
         return gf_error_set(GF_ERR_PARAM, "dump.dt = %g must be a finite number >= 0", dump_dt);
-    gf_loader L = {.dump_dt = dump_dt};
+    gf_loader L = {.dump_dt = dump_dt, .stop = stop};
     gf_status st = GF_OK;
     const char *dir = NULL;
     struct stat sb;

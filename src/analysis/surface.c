@@ -11,6 +11,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/analysis.h"
 
 static const double gf_deg_per_rad = 57.295779513082320876798154814105;
@@ -60,6 +61,7 @@ gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *o, gf_m
     double sum = 0.0;
     size_t nwin = 0;
     for (size_t k = 0; st == GF_OK && k < s->nframes; k++) {
+        if ((st = gf_stop_check(o->stop, "surface")) != GF_OK) break;
         double slope = gf_surface_slope(&s->frames[k].pk, o->surf_dx, o->surf_ncols, zmax, xj);
         double row[3] = {s->frames[k].time, slope, atan(slope) * gf_deg_per_rad};
         st = gf_table_add(tb, row);

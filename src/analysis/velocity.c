@@ -11,6 +11,7 @@
 #include "analysis/motion.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/analysis.h"
 
 /// Bin of the depth profile, d. Centres lie within |y| <= D/2 - 0.5 = 3.5 of an
@@ -276,6 +277,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     // frames in the window and each particle present in both.
     gf_steps steps = {0};
     for (size_t k = k0; st == GF_OK && k + 1 < k1; k++) {
+        if ((st = gf_stop_check(o->stop, "velocity")) != GF_OK) break;
         st = gf_steps_between(&s->frames[k], &s->frames[k + 1], &steps);
         if (st == GF_OK) gf_vel_acc_add(&a, &steps, o);
     }

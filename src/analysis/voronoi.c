@@ -7,6 +7,7 @@
 #include "analysis/voronoi_cells.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "geom/celllist.h"
 #include "granflow/analysis.h"
 
@@ -315,6 +316,7 @@ gf_status gf_measure_voronoi(const gf_series *s, const gf_analysis_opts *o, gf_m
     }
     // The headline: every frame of the window, from the region's sub-box.
     for (size_t k = k0; k + 1 < k1 && st == GF_OK; k++) {
+        if ((st = gf_stop_check(o->stop, "voronoi")) != GF_OK) break;
         const gf_packing *pk = &s->frames[k].pk;
         bool exact;
         double fs = 0.0, fc = 0.0;

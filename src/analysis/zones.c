@@ -26,6 +26,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "analysis/motion.h"
 #include "granflow/analysis.h"
 
@@ -194,6 +195,7 @@ static gf_status gf_zones_frames(const gf_series *s, const gf_analysis_opts *o, 
     gf_analysis_window(o, s, &t0, &t1);
     for (size_t i = 0; st == GF_OK && i < nid; i++) prev[i] = cur[i] = entry[i] = -1;
     for (size_t f = 0; st == GF_OK && f < s->nframes; f++) {
+        if ((st = gf_stop_check(o->stop, "zones")) != GF_OK) break;
         const gf_packing *p = &s->frames[f].pk;
         for (size_t i = 0; i < p->n; i++) cur[p->id[i]] = (int32_t)i;
         double ztop = -INFINITY;

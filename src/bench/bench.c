@@ -10,6 +10,7 @@
 
 #include "core/clock.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/lga.h"
 
 gf_bench_opts gf_bench_opts_default(void)
@@ -19,19 +20,21 @@ gf_bench_opts gf_bench_opts_default(void)
 
 // The paper's channel in its density-wave regime, timed over `iterations`
 // after a warm-up of 200.
-static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, gf_bench_lga *out)
+static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, volatile sig_atomic_t *stop,
+                                  gf_bench_lga *out)
 {
     gf_config cfg = *cfg_in;
     cfg.lga_scenario = GF_LGA_CHANNEL;
     gf_lga *l = NULL;
     gf_status st = gf_lga_create(&cfg, &l);
     if (st != GF_OK) return st;
-    gf_lga_run(l, 200, NULL);
+    gf_lga_run(l, 200, stop);
     double t0 = gf_clock_now();
-    gf_lga_run(l, iterations, NULL);
+    gf_lga_run(l, iterations, stop);
     double dt = gf_clock_now() - t0;
     gf_lga_stats s = gf_lga_get_stats(l);
     gf_lga_destroy(l);
+    if ((st = gf_stop_check(stop, "bench")) != GF_OK) return st;
     out->sites = s.fluid_sites;
     out->iterations = iterations;
     out->particles = s.particles;
@@ -41,13 +44,13 @@ static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, g
 }
 
 // Runs `window` tau more and returns the steps per second of it.
-static gf_status gf_bench_window(gf_sim *sim, double *until, double window, double *sps, gf_sim_stats *a,
-                                 gf_sim_stats *b)
+static gf_status gf_bench_window(gf_sim *sim, double *until, double window, const gf_run_hooks *hooks, double *sps,
+                                 gf_sim_stats *a, gf_sim_stats *b)
 {
     *a = gf_sim_get_stats(sim);
     double t0 = gf_clock_now();
     *until += window;
-    gf_status st = gf_sim_run(sim, *until, NULL);
+    gf_status st = gf_sim_run(sim, *until, hooks);
     double wall = gf_clock_now() - t0;
     *b = gf_sim_get_stats(sim);
     *sps = wall > 0 ? (double)(b->spot_moves - a->spot_moves) / wall : 0;
@@ -71,7 +74,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     *out = (gf_bench_spot){0};
     double t0 = gf_clock_now();
     gf_sim *sim = NULL;
-    gf_status st = gf_sim_create_from_config(cfg, &sim); // gf_packing_for_config, as a run
+    gf_status st = gf_sim_create_from_config_stoppable(cfg, o->stop, &sim); // gf_packing_for_config, as a run
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
     out->pack_s = gf_clock_now() - t0;
@@ -80,21 +83,24 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     if (o->packed) o->packed(o->ctx, out, sim, o->warmup);
     t0 = gf_clock_now();
     double until = o->warmup;
-    st = gf_sim_run(sim, until, NULL);
+    gf_run_hooks hooks = gf_run_hooks_default();
+    hooks.stop = o->stop;
+    st = gf_sim_run(sim, until, &hooks);
     out->warm_s = gf_clock_now() - t0;
     gf_sim_stats a, b, c, d;
-    if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &out->sps_all, &a, &b);
+    if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &out->sps_all, &a, &b);
     out->bytes_per_particle = out->particles ? (double)gf_bytes_allocated() / (double)out->particles : 0;
     gf_sim_set_threads(sim, 1);
     double sps_one = out->sps_all;
-    if (st == GF_OK && out->threads > 1) st = gf_bench_window(sim, &until, o->window, &sps_one, &c, &d);
+    if (st == GF_OK && out->threads > 1) st = gf_bench_window(sim, &until, o->window, &hooks, &sps_one, &c, &d);
     out->sps_one = sps_one;
     gf_sim_set_timing(sim, 1);
     if (spatial) gf_sim_set_par_profiling(sim, 1);
     double dummy;
-    if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &dummy, &c, &d);
+    if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &dummy, &c, &d);
     out->prof = gf_sim_par_profile(sim);
     gf_sim_destroy(sim);
+    if (st == GF_ERR_INTERRUPTED) return gf_error_set(st, "bench: interrupted");
     if (st != GF_OK) return st;
     out->spot_us = d.spot_moves > c.spot_moves ? 1e6 * (d.spot_seconds - c.spot_seconds) / (double)(d.spot_moves - c.spot_moves) : 0;
     out->relax_us = d.relax_calls > c.relax_calls ? 1e6 * (d.relax_seconds - c.relax_seconds) / (double)(d.relax_calls - c.relax_calls) : 0;
@@ -124,7 +130,7 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
     *out = (gf_bench_report){.lga_only = o->lga_only, .large = o->large && !o->lga_only,
                              .engine = o->event ? "event" : "spatial", .warmup = o->warmup, .window = o->window};
     gf_config cfg = *cfg_in;
-    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iterations, &out->lga);
+    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
     if (o->particles > 0) cfg.packing_particles = (int64_t)o->particles;
     if (o->event) {
         cfg.run_mode = GF_MODE_EVENT;
@@ -150,5 +156,5 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
         if ((st = gf_config_validate(&big)) == GF_OK) st = gf_bench_silo(&big, o, &out->big);
         if (st != GF_OK) return st;
     }
-    return gf_bench_lga_run(&cfg, o->lga_iterations, &out->lga);
+    return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
 }

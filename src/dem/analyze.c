@@ -41,6 +41,7 @@ gf_status gf_dem_analyze(const char *path, const gf_dem_source *src, const gf_an
     }
     gf_dem_source source = src ? *src : gf_dem_source_default();
     source.dump_dt = o->dump_dt;
+    if (!source.stop) source.stop = o->stop;
     gf_series s = {0};
     gf_status st = gf_dem_series_load(path, &source, &s, NULL);
     if (st != GF_OK) return st;

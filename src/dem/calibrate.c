@@ -15,6 +15,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/dem.h"
 
@@ -266,6 +267,7 @@ static gf_status gf_cal_measure(const gf_series *s, const gf_analysis_opts *base
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
     if (!(rs > 0)) rs = e->beta / GF_DEM_BETA_PER_RS;
+    if ((st = gf_stop_check(o.stop, "calibration")) != GF_OK) return st;
     e->p = isfinite(rs) ? gf_cal_balls(s, &o, e, rs, dw, k0, k1) : NAN;
     return GF_OK;
 }
@@ -315,6 +317,7 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     for (size_t j = 0; j < K; j++) {
         double a = t0 + (t1 - t0) * (double)j / (double)K, b = t0 + (t1 - t0) * (double)(j + 1) / (double)K;
         gf_cal_est e;
+        if ((st = gf_stop_check(o->stop, "calibration")) != GF_OK) return st;
         if ((st = gf_cal_measure(s, o, a, b, rs_full, dw, &e)) != GF_OK) return st;
         v[0][j] = e.q;
         v[1][j] = e.beta;

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "core/gnuplot.h"
+#include "core/stop.h"
 #include "granflow/dem.h"
 #include "granflow/render.h"
 
@@ -263,6 +264,7 @@ gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_a
     memset(md, 0, sizeof md);
     memset(ms, 0, sizeof ms);
     for (size_t k = 0; st == GF_OK && k < GF_CMP_N; k++) {
+        if ((st = gf_stop_check(o->stop, "compare")) != GF_OK) break;
         st = gf_cmp_measures[k].run(dem, o, &md[k]);
         if (st == GF_OK) st = gf_cmp_measures[k].run(spot, o, &ms[k]);
         for (size_t t = 0; st == GF_OK && t < md[k].ntables; t++) {
@@ -277,6 +279,7 @@ gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_a
         }
     }
     double times[4] = {0, 0, 0, 0};
+    if (st == GF_OK) st = gf_stop_check(o->stop, "compare");
     if (st == GF_OK) st = gf_cmp_slices(dem, spot, outdir, times);
     if (st == GF_OK) st = gf_cmp_summary(outdir, dem, spot, md, ms, o, times);
     if (st == GF_OK) st = gf_cmp_figure(outdir, &dem->cfg, o, plots);

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/dem.h"
 
@@ -104,6 +105,7 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
         gf_dem_flowstats e;
         memset(&e, 0, sizeof e);
         double a = t0 + (t1 - t0) * (double)j / (double)K, b = t0 + (t1 - t0) * (double)(j + 1) / (double)K;
+        if ((st = gf_stop_check(o->stop, "flow statistics")) != GF_OK) return st;
         if ((st = gf_fs_once(s, o, a, b, correlation, &e)) != GF_OK) return st;
         v[0][j] = e.flow.value;
         v[1][j] = e.bp.value;

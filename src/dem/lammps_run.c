@@ -4,18 +4,22 @@
 // line for the phase markers (`granflow-phase NAME A B`, printed by the
 // inputs) and the thermo lines (step time particles ke) that drive progress.
 #define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/alloc.h"
+#include "core/atomic_file.h"
 #include "core/clock.h"
 #include "core/error.h"
 #include "dem/lammps_output.h"
@@ -38,6 +42,64 @@ static int gf_dem_which(const char *name, char *out, size_t n)
         path += len + (end ? 1 : 0);
     }
     return 0;
+}
+
+static void gf_dem_nap(void)
+{
+    struct timespec ts = {0, 100 * 1000 * 1000};
+    nanosleep(&ts, NULL);
+}
+
+/// Feeds LAMMPS' output on `fd` line by line to gf_dem_line until it ends,
+/// polling r->o->stop at least every 0.2 s. True when stopped by the flag.
+static bool gf_dem_read(int fd, gf_dem_reader *r)
+{
+    volatile sig_atomic_t *stop = r->o->stop;
+    char acc[4096], chunk[4096];
+    size_t len = 0;
+    for (;;) {
+        if (stop && *stop) return true;
+        struct pollfd p = {.fd = fd, .events = POLLIN};
+        int np = poll(&p, 1, 200);
+        if (np < 0 && errno != EINTR) break;
+        if (np <= 0) continue; // a signal or the time-out: look at the flag again
+        ssize_t n = read(fd, chunk, sizeof chunk);
+        if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+        if (n <= 0) break; // end of output: LAMMPS is done
+        for (ssize_t i = 0; i < n; i++) {
+            if (len < sizeof acc - 1) acc[len++] = chunk[i]; // an over-long line is cut, still ended at its newline
+            if (chunk[i] == '\n') {
+                acc[len] = '\0';
+                gf_dem_line(r, acc);
+                len = 0;
+            }
+        }
+    }
+    if (len) {
+        acc[len] = '\0';
+        gf_dem_line(r, acc);
+    }
+    return stop && *stop;
+}
+
+/// Ends LAMMPS' process group: SIGTERM, up to 10 s for the group (mpirun
+/// passes it to its ranks) to go, then SIGKILL. The child is reaped: no zombie.
+static void gf_dem_stop_child(pid_t pid, int *status)
+{
+    kill(-pid, SIGTERM);
+    kill(pid, SIGTERM); // in case it had not made its group yet
+    bool reaped = false;
+    for (int k = 0; k < 100; k++) {
+        if (!reaped && waitpid(pid, status, WNOHANG) == pid) reaped = true;
+        if (reaped && kill(-pid, 0) != 0) return; // the whole group is gone
+        gf_dem_nap();
+    }
+    kill(-pid, SIGKILL);
+    if (!reaped) {
+        kill(pid, SIGKILL);
+        while (waitpid(pid, status, 0) < 0 && errno == EINTR) {
+        }
+    }
 }
 
 /// Runs one input file; returns GF_OK when LAMMPS exits 0.
@@ -72,6 +134,7 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
         return gf_error_set(GF_ERR_IO, "cannot start LAMMPS: %s", strerror(errno));
     }
     if (pid == 0) {
+        setpgid(0, 0); // LAMMPS and what it starts (mpirun's ranks) form one group that a stop ends
         dup2(fd[1], STDOUT_FILENO);
         dup2(fd[1], STDERR_FILENO);
         close(fd[0]);
@@ -89,19 +152,14 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
         _exit(127);
     }
     close(fd[1]);
-    FILE *in = fdopen(fd[0], "r");
-    if (!in) {
-        close(fd[0]);
-        kill(pid, SIGTERM);
-        waitpid(pid, NULL, 0);
-        return gf_error_set(GF_ERR_IO, "cannot read LAMMPS' output: %s", strerror(errno));
-    }
-    char *line = NULL;
-    size_t cap = 0;
-    while (gf_getline(&line, &cap, in) >= 0) gf_dem_line(r, line);
-    gf_free(line, cap);
-    fclose(in);
+    setpgid(pid, pid); // as the child does (whichever runs first): its own group, to be stopped as one
+    bool stopped = gf_dem_read(fd[0], r);
+    close(fd[0]);
     int status = 0;
+    if (stopped) {
+        gf_dem_stop_child(pid, &status);
+        return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped on request", dir, script);
+    }
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r->error[0]) return GF_OK;
@@ -111,6 +169,47 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
         return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped by signal %d", dir, script, WTERMSIG(status));
     return gf_error_set(GF_ERR_PARAM, "LAMMPS failed on %s/%s (see %s/%s): %s", dir, script, dir, log,
                         r->error[0] ? r->error : "non-zero exit status");
+}
+
+/// After LAMMPS was stopped: removes what the stopped phase may have left
+/// half-written (the fill's settled.restart and packing.dump; the drain's
+/// newest snapshot) and writes DIR/interrupted.txt saying so. The error
+/// message of the stop is kept.
+static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_reader *r)
+{
+    char msg[1024], path[GF_PATH_MAX + 64], removed[GF_PATH_MAX + 64] = "";
+    snprintf(msg, sizeof msg, "%s", gf_last_error());
+    if (fill) {
+        const char *names[2] = {"settled.restart", "packing.dump"};
+        for (int k = 0; k < 2; k++) {
+            snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+            if (unlink(path) == 0) snprintf(removed, sizeof removed, "settled.restart and packing.dump");
+        }
+    } else {
+        char snaps[GF_PATH_MAX + 32], newest[256] = "";
+        snprintf(snaps, sizeof snaps, "%s/snapshots", dir);
+        DIR *d = opendir(snaps);
+        for (struct dirent *e; d && (e = readdir(d)) != NULL;) // snap_NNNNNNNNN.dump: the largest name is the newest
+            if (!strncmp(e->d_name, "snap_", 5) && strcmp(e->d_name, newest) > 0 && strlen(e->d_name) < sizeof newest)
+                snprintf(newest, sizeof newest, "%s", e->d_name);
+        if (d) closedir(d);
+        snprintf(path, sizeof path, "%s/%s", snaps, newest);
+        if (newest[0] && unlink(path) == 0) snprintf(removed, sizeof removed, "snapshots/%s", newest);
+    }
+    snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
+    char tmp[GF_PATH_MAX + 96];
+    FILE *f;
+    if (gf_atomic_open(path, tmp, sizeof tmp, &f) == GF_OK) {
+        fprintf(f,
+                "interrupted: LAMMPS was stopped during the %s (t = %.6g tau of the phase, %.0f s after the start)\n"
+                "removed: %s\n"
+                "again: granflow dem ... --run --force (from the fill)%s\n",
+                r->p.phase ? r->p.phase : fill ? "fill" : "drain", r->p.time, gf_clock_now() - r->wall0,
+                removed[0] ? removed : (fill ? "nothing (no settled packing was written)" : "nothing (no snapshot yet)"),
+                fill ? "" : " or --drain-only (from settled.restart)");
+        gf_atomic_commit(f, tmp, path);
+    }
+    gf_error_set(GF_ERR_INTERRUPTED, "%s; %s/%s says what is left", msg, dir, GF_DEM_INTERRUPTED);
 }
 
 gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
@@ -135,8 +234,12 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         if (access(path, R_OK) != 0)
             return gf_error_set(GF_ERR_IO, "%s: %s (no LAMMPS inputs there: write them first)", path, strerror(errno));
         gf_status st = gf_dem_run_one(dir, scripts[k], lmp, use_mpi ? mpirun : NULL, ranks, &r);
+        if (st == GF_ERR_INTERRUPTED) gf_dem_mark_interrupted(dir, k == 0, &r);
         if (st != GF_OK) return st;
     }
+    char mark[GF_PATH_MAX + 32];
+    snprintf(mark, sizeof mark, "%s/%s", dir, GF_DEM_INTERRUPTED);
+    unlink(mark); // a complete run: an earlier interruption no longer holds
     return GF_OK;
 }
 

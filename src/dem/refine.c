@@ -241,7 +241,9 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         if (ro->stop && *ro->stop) return gf_error_set(GF_ERR_INTERRUPTED, "refine: interrupted");
         gf_series spot;
         const gf_packing *start = ro->start ? ro->start : &dem->frames[0].pk;
-        if ((st = gf_ref_run(dem, start, &cur, res->dem.t1, ro->stop, &spot)) != GF_OK) return st;
+        st = gf_ref_run(dem, start, &cur, res->dem.t1, ro->stop, &spot);
+        if (st == GF_ERR_INTERRUPTED) return gf_error_set(st, "refine: interrupted in spot run %d", it);
+        if (st != GF_OK) return st;
         gf_dem_flowstats fs;
         st = gf_dem_flowstats_measure(&spot, o, it == 1, &fs);
         gf_series_free(&spot);

@@ -108,8 +108,12 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if (!src) src = &none;
     gf_dem_load_report r = {0};
     if (rep) *rep = r;
-    gf_status st = gf_series_load(path, src->dump_dt, out);
+    gf_status st = gf_series_load_stoppable(path, src->dump_dt, src->stop, out);
     if (st != GF_OK) return st;
+    char mark[GF_PATH_MAX + 32];
+    struct stat sb;
+    if (snprintf(mark, sizeof mark, "%s/%s", path, GF_DEM_INTERRUPTED) < (int)sizeof mark && stat(mark, &sb) == 0)
+        gf_warn("%s: its LAMMPS run was stopped before the end (%s says where): the snapshots stop early", path, mark);
     gf_config cfg = out->cfg;
     if (src->config) {
         cfg = gf_config_default();

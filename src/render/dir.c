@@ -8,6 +8,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/stop.h"
 #include "granflow/render.h"
 
 enum { GF_RENDER_PATH = GF_PATH_MAX + 64 };
@@ -92,7 +93,8 @@ static gf_status gf_render_one(gf_render_job *j, size_t k, gf_render_colour colo
              j->o->format);
     gf_render_opts o = j->opts;
     o.colour = colour;
-    gf_status st = colour == GF_RENDER_PHI ? gf_render_phi(j->s, k, j->o->raw, j->phi) : GF_OK;
+    gf_status st = gf_stop_check(j->o->stop, "render");
+    if (st == GF_OK && colour == GF_RENDER_PHI) st = gf_render_phi(j->s, k, j->o->raw, j->phi);
     if (st == GF_OK) st = gf_render_slice(&j->s->frames[k].pk, j->s->frames[k].time, &j->s->cfg,
                                           j->phi[k], &o, path);
     if (st == GF_OK) gf_render_written(j, path);
@@ -121,7 +123,7 @@ static gf_status gf_render_contact_sheet(gf_render_job *j)
     for (size_t k = 0; st == GF_OK && k < want; k++) { // evenly spaced, first and last included
         size_t idx = want == 1 ? s->nframes - 1 : (size_t)llround((double)k * (double)(s->nframes - 1) / (double)(want - 1));
         fr[n] = s->frames[idx]; // a shallow copy: the series keeps the particles
-        if (c->colour == GF_RENDER_PHI) {
+        if (c->colour == GF_RENDER_PHI && (st = gf_stop_check(c->stop, "render")) == GF_OK) {
             st = gf_render_phi(s, idx, c->raw, j->phi);
             phi[n] = j->phi[idx];
         }
@@ -204,7 +206,7 @@ gf_status gf_render_dir(const char *dir, const gf_render_options *opt)
     gf_status st = gf_render_check(opt);
     if (st != GF_OK) return st;
     gf_series s;
-    if ((st = gf_series_load(dir, 0.0, &s)) != GF_OK) return st;
+    if ((st = gf_series_load_stoppable(dir, 0.0, opt->stop, &s)) != GF_OK) return st;
     if (s.nframes == 0) {
         gf_series_free(&s);
         return gf_error_set(GF_ERR_STATE, "%s: no snapshots", dir);
