@@ -112,7 +112,7 @@ gf_status gf_analysis_opts_copy(gf_analysis_opts *dst, const gf_analysis_opts *s
 gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
 {
     if (!o) return gf_error_set(GF_ERR_PARAM, "analysis option: NULL options");
-    return gf_keys_set(&gf_analysis_keys, o, assignment, "analysis option");
+    return gf_keys_set(&gf_analysis_keys, o, assignment, "analysis option", NULL);
 }
 
 gf_status gf_analysis_opts_get(const gf_analysis_opts *o, const char *key, char *buf, size_t size)
