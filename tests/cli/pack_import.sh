@@ -161,6 +161,14 @@ expect_err "(packing.file, outside.ini:2)" "pack outside.ini (outside.csv)"
 [ ! -e never.dump ] || fail "pack outside.ini: wrote never.dump despite the error"
 ok "particle beyond the wall: exit 2 naming the packing file, the particle's line and id 42"
 
+# packing.types needs a dump's type column: the error says where it was set.
+printf '[packing]\nfile = outside.csv\n\ntypes = 1\n' >types_csv.ini
+gf pack -q types_csv.ini "${TINY[@]}" -o never.dump
+expect_rc 2 "pack types_csv.ini (packing.types with a CSV)"
+expect_err "types_csv.ini:4: packing.types = 1 needs a LAMMPS dump with a type column, not outside.csv" \
+    "pack types_csv.ini (packing.types with a CSV)"
+ok "packing.types with a CSV: exit 2 naming the file and line that set it"
+
 # A particle with |x| > 4.5 is not over the orifice (diameter 8); put it below the base.
 low=$(awk '/^ITEM: ATOMS/ { a = 1; next } a && ($3 > 4.5 || $3 < -4.5) { print $1; exit }' x.dump)
 [ -n "$low" ] || fail "x.dump: no particle with |x| > 4.5 to move below the base"
