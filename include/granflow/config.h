@@ -228,6 +228,10 @@ GF_API gf_status gf_config_validate(gf_config *cfg);
 /// an INI file, the origin of gf_config_set ("--set"), "gf_config_set_key",
 /// or "default". GF_ERR_PARAM for an unknown key.
 GF_API gf_status gf_config_where(const gf_config *cfg, const char *key, char *buf, size_t size);
+/// The start of an error message about `key`: "WHERE: " (as gf_config_where
+/// says) when the key was set, "" when it is at its default (or unknown).
+/// Writes into `buf` and returns it.
+GF_API const char *gf_config_where_lead(const gf_config *cfg, const char *key, char *buf, size_t size);
 /// True when `key` was set by a file or an assignment (not left at its default).
 GF_API bool gf_config_is_set(const gf_config *cfg, const char *key);
 

@@ -51,6 +51,16 @@ gf_status gf_config_where(const gf_config *cfg, const char *key, char *buf, size
     return GF_OK;
 }
 
+const char *gf_config_where_lead(const gf_config *cfg, const char *key, char *buf, size_t size)
+{
+    if (!buf || size == 0) return buf;
+    buf[0] = '\0';
+    char where[GF_PATH_MAX + 32];
+    if (gf_config_is_set(cfg, key) && gf_config_where(cfg, key, where, sizeof where) == GF_OK)
+        snprintf(buf, size, "%s: ", where);
+    return buf;
+}
+
 bool gf_config_is_set(const gf_config *cfg, const char *key)
 {
     const char *dot = key ? strchr(key, '.') : NULL;

@@ -102,9 +102,8 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     int32_t types[GF_PACKING_MAXTYPES];
     size_t ntypes;
     // Errors about packing.types start with where it was set.
-    char where[GF_PATH_MAX + 32], at[GF_PATH_MAX + 40] = "";
-    if (gf_config_where(cfg, "packing.types", where, sizeof where) == GF_OK && strcmp(where, "default") != 0)
-        snprintf(at, sizeof at, "%s: ", where);
+    char at[GF_PATH_MAX + 40];
+    gf_config_where_lead(cfg, "packing.types", at, sizeof at);
     gf_status st = gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes);
     if (st != GF_OK) {
         char why[256];
