@@ -498,6 +498,114 @@ static void validate_rejects_cross_key(void **state)
     assert_int_equal(gf_config_validate(&c), GF_OK);
 }
 
+// Loads `text` as file `name`, applies `set` (NULL: none) as --set, and
+// expects validation to fail with exactly `want`, where "@" stands for the
+// file's path.
+static void expect_validate_message(const char *name, const char *text, const char *set, const char *want)
+{
+    char path[1024], full[4096];
+    snprintf(path, sizeof path, "%s", ini(name, text));
+    size_t n = 0;
+    for (const char *p = want; *p && n + 1 < sizeof full; p++) {
+        if (*p == '@') n += (size_t)snprintf(full + n, sizeof full - n, "%s", path);
+        else full[n++] = *p;
+        if (n >= sizeof full) n = sizeof full - 1;
+    }
+    full[n] = '\0';
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_load(&c, path), GF_OK);
+    if (set) assert_int_equal(gf_config_set(&c, set, "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_ERR_PARAM);
+    assert_string_equal(gf_last_error(), full);
+}
+
+// Validation names where each key it quotes was set: FILE:LINE, --set or default.
+static void validate_names_where_keys_were_set(void **state)
+{
+    (void)state;
+    expect_validate_message("w1.ini", "[container]\nwidth = 50\norifice_diameter = 60\n", NULL,
+                            "@:3: container.orifice_diameter = 60 must be less than container.width = 50 (@:2)");
+    expect_validate_message("w2.ini", "[container]\norifice_diameter = 60\n", "container.width=40",
+                            "@:2: container.orifice_diameter = 60 must be less than container.width = 40 (--set)");
+    expect_validate_message("w3.ini", "[spot]\n\nradius = 3\n", "relax.radius=2",
+                            "--set: relax.radius = 2 must be at least spot.radius = 3 (@:3)");
+    expect_validate_message("w4.ini", "; a comment\n[packing]\ntypes = 1,x\n", NULL,
+                            "@:3: packing.types = 1,x: 'x' is not an atom type (an integer >= 1)");
+    expect_validate_message("w5.ini", "[dem]\ntimestep = 0.005\n", NULL,
+                            "@:2: dem.timestep = 0.005 is too long for dem.kn = 200000 (default): at most 0.2 pi / "
+                            "sqrt(2 kn) = 0.000993 tau");
+    expect_validate_message("w6.ini", "[run]\nreinsert = zone\nreinsert_rmin = 5\nreinsert_rmax = 4\n", NULL,
+                            "@:3: run.reinsert_rmin = 5 must be less than run.reinsert_rmax = 4 (@:4)");
+    expect_validate_message("w7.ini", "[container]\nshape = cylinder\nradius = 5\noutlet_diameter = 12\n", NULL,
+                            "@:4: container.outlet_diameter = 12 must be less than 2 * container.radius = 5 (@:3)");
+    expect_validate_message("w8.ini", "[spot]\nwall_distance = 4.5\n", NULL,
+                            "@:2: spot.wall_distance = 4.5 leaves spots no room: 2 * spot.wall_distance must be "
+                            "less than min(container.width, container.depth) = 8 (container.depth = 8 (default))");
+
+    // gf_config_where / gf_config_is_set, and a copy keeps the record.
+    const char *path = ini("w9.ini", "[container]\n\n  width = 30\n");
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_load(&c, path), GF_OK);
+    assert_int_equal(gf_config_set(&c, "spot.w=3", "--set"), GF_OK);
+    char buf[1100], want[1100];
+    snprintf(want, sizeof want, "%s:3", path);
+    assert_int_equal(gf_config_where(&c, "container.width", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, want);
+    assert_int_equal(gf_config_where(&c, "spot.w", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, "--set");
+    assert_int_equal(gf_config_where(&c, "spot.radius", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, "default");
+    assert_int_equal(gf_config_where(&c, "spot.nope", buf, sizeof buf), GF_ERR_PARAM);
+    assert_true(gf_config_is_set(&c, "container.width") && gf_config_is_set(&c, "spot.w"));
+    assert_false(gf_config_is_set(&c, "spot.radius") || gf_config_is_set(&c, "nope"));
+    gf_config *copy = gf_config_create();
+    assert_int_equal(gf_config_copy(copy, &c), GF_OK);
+    assert_int_equal(gf_config_where(copy, "container.width", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, want);
+    gf_config_destroy(copy);
+    // A later assignment moves the record; set by name it says so.
+    assert_int_equal(gf_config_set_key(&c, "container.width", "31"), GF_OK);
+    assert_int_equal(gf_config_where(&c, "container.width", buf, sizeof buf), GF_OK);
+    assert_string_equal(buf, "gf_config_set_key");
+}
+
+// In a cylinder the outlet is container.outlet_diameter: an orifice_diameter
+// set apart from it is refused naming both keys; granflow's own effective
+// config (both equal, one file) reads back, with an outlet --set over it.
+static void cylinder_orifice_diameter_is_refused(void **state)
+{
+    (void)state;
+    expect_validate_message("c1.ini", "[container]\nshape = cylinder\norifice_diameter = 6\n", NULL,
+                            "@:3: container.orifice_diameter = 6 does nothing in a cylinder (container.shape = "
+                            "cylinder), whose outlet is container.outlet_diameter = 8 (default): set that instead");
+    expect_validate_message("c2.ini", "[container]\nshape = cylinder\noutlet_diameter = 5\norifice_diameter = 6\n",
+                            NULL,
+                            "@:4: container.orifice_diameter = 6 does nothing in a cylinder (container.shape = "
+                            "cylinder), whose outlet is container.outlet_diameter = 5 (@:3): set that instead");
+    // Equal to the outlet: nothing is lost.
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "container.shape=cylinder", "--set"), GF_OK);
+    assert_int_equal(gf_config_set(&c, "container.orifice_diameter=8", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    // The effective config of a cylinder reads back, and takes a new outlet.
+    c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "container.shape=cylinder", "--set"), GF_OK);
+    assert_int_equal(gf_config_set(&c, "container.outlet_diameter=6", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/cyl-effective.ini", gf_test_tmpdir());
+    assert_int_equal(gf_config_save(&c, path), GF_OK);
+    gf_config d = gf_config_default();
+    assert_int_equal(gf_config_load(&d, path), GF_OK);
+    assert_int_equal(gf_config_set(&d, "container.outlet_diameter=4", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&d), GF_OK);
+    assert_true(d.orifice_diameter == 4);
+    // A box keeps its orifice_diameter.
+    c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "container.orifice_diameter=6", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+}
+
 // Fields set directly (not through the parser) are range-checked too.
 static void validate_rejects_bad_fields(void **state)
 {
@@ -727,6 +835,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(validate_resolves_auto),
     cmocka_unit_test(validate_rejects_cross_key),
     cmocka_unit_test(validate_rejects_bad_fields),
+    cmocka_unit_test(validate_names_where_keys_were_set),
+    cmocka_unit_test(cylinder_orifice_diameter_is_refused),
     cmocka_unit_test(cookie_is_checked),
     cmocka_unit_test(round_trip_default),
     cmocka_unit_test(round_trip_modified),

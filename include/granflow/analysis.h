@@ -187,6 +187,11 @@ GF_API gf_status gf_analysis_opts_key_name(size_t i, char *buf, size_t size);
 GF_API const char *gf_analysis_opts_key_doc(size_t i);
 /// Option i's default as gf_analysis_opts_get writes it, or NULL past the end.
 GF_API const char *gf_analysis_opts_key_default(size_t i);
+/// Checks the options across keys: window.t0 < window.t1 when both are set.
+/// GF_ERR_PARAM naming both keys and their values. gf_dem_window and
+/// gf_dem_analyze call it (gf_analyze takes a window already resolved, which
+/// may be a single snapshot).
+GF_API gf_status gf_analysis_opts_check(const gf_analysis_opts *o);
 /// The window [t0, t1] resolved against the series (auto -> a quarter in, to the end).
 GF_API void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1);
 

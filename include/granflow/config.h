@@ -4,6 +4,8 @@
 #ifndef GRANFLOW_CONFIG_H
 #define GRANFLOW_CONFIG_H
 
+#include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -92,6 +94,10 @@ typedef enum gf_output_format {
 } gf_output_format;
 
 #define GF_PATH_MAX 1024
+/// Room for this many keys in a gf_config's record of where each was set.
+#define GF_CONFIG_MAX_KEYS 128
+/// Distinct origins (files, "--set", ...) a gf_config remembers.
+#define GF_CONFIG_MAX_ORIGINS 8
 
 /// The whole configuration. Make it with gf_config_default(), then change
 /// fields, load files (gf_config_load) or apply `section.key=value` strings
@@ -193,6 +199,10 @@ typedef struct gf_config {
     int64_t dem_mpi_ranks;             ///< MPI ranks for --run (mpirun -np N); 0 (default): one per core
 
     uint32_t cookie_; ///< private: marks a config made by gf_config_default()
+    // private: where each key got its value (read with gf_config_where)
+    int32_t where_line_[GF_CONFIG_MAX_KEYS];                ///< private: line in the origin file, 0: none
+    uint8_t where_origin_[GF_CONFIG_MAX_KEYS];              ///< private: 0 default, i: where_names_[i - 1]
+    char where_names_[GF_CONFIG_MAX_ORIGINS][GF_PATH_MAX];  ///< private: the origins' names
 } gf_config;
 
 /// The papers' silo (55,000 particles, 50 x 8 container, orifice 8, Fig. 2 parameters).
@@ -208,8 +218,22 @@ GF_API gf_status gf_config_load(gf_config *cfg, const char *path);
 GF_API gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *origin);
 
 /// Resolves derived defaults (relax.radius = spot.radius + 1, insertion margin
-/// = spot.radius) and checks cross-key constraints.
+/// = spot.radius) and checks cross-key constraints. A message starts with where
+/// the offending key was set and quotes where the others were, e.g.
+/// "silo.ini:12: container.orifice_diameter = 60 must be less than
+/// container.width = 50 (silo.ini:11)".
 GF_API gf_status gf_config_validate(gf_config *cfg);
+
+/// Where key `key` ("section.name") got its value, into `buf`: "FILE:LINE" for
+/// an INI file, the origin of gf_config_set ("--set"), "gf_config_set_key",
+/// or "default". GF_ERR_PARAM for an unknown key.
+GF_API gf_status gf_config_where(const gf_config *cfg, const char *key, char *buf, size_t size);
+/// The start of an error message about `key`: "WHERE: " (as gf_config_where
+/// says) when the key was set, "" when it is at its default (or unknown).
+/// Writes into `buf` and returns it.
+GF_API const char *gf_config_where_lead(const gf_config *cfg, const char *key, char *buf, size_t size);
+/// True when `key` was set by a file or an assignment (not left at its default).
+GF_API bool gf_config_is_set(const gf_config *cfg, const char *key);
 
 /// Most atom types `packing.types` may list.
 #define GF_PACKING_MAXTYPES 16

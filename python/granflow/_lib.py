@@ -81,6 +81,7 @@ _SIGNATURES = {
     "gf_config_load": (c_int, [c_void_p, c_char_p]),
     "gf_config_save": (c_int, [c_void_p, c_char_p]),
     "gf_config_validate": (c_int, [c_void_p]),
+    "gf_config_where": (c_int, [c_void_p, c_char_p, c_char_p, c_size_t]),
     # analysis options by name, and `granflow analyze`
     "gf_analysis_opts_create": (c_void_p, []),
     "gf_analysis_opts_destroy": (None, [c_void_p]),

@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: MIT
 """granflow configuration by key name ("spot.radius"), over gf_config_set_key/get_key."""
+import ctypes
+
 from ._keyed import Keyed, key_names
 from ._lib import check, enc, lib
 
@@ -39,6 +41,14 @@ class Config(Keyed):
         if lib.gf_config_load(self._ptr, enc(path)) != 0:
             raise ValueError(lib.gf_last_error().decode())
         return self
+
+    def where(self, key):
+        """Where `key` got its value: "FILE:LINE", "gf_config_set_key" (set from
+        Python), or "default"; validation errors quote the same places."""
+        buf = ctypes.create_string_buffer(4200)
+        if lib.gf_config_where(self._ptr, enc(key), buf, len(buf)) != 0:
+            raise KeyError(lib.gf_last_error().decode())
+        return buf.value.decode()
 
     def save(self, path):
         check(lib.gf_config_save(self._ptr, enc(path)))

@@ -58,3 +58,18 @@ def test_ini_file_round_trip(tmp_path):
     (tmp_path / "bad.ini").write_text("[spot]\nradius = x\n")
     with pytest.raises(ValueError, match="bad.ini:2"):
         granflow.Config(path=tmp_path / "bad.ini")
+
+
+def test_where_each_key_was_set(tmp_path):
+    (tmp_path / "silo.ini").write_text("[container]\nwidth = 50\norifice_diameter = 60\n")
+    c = granflow.Config(path=tmp_path / "silo.ini")
+    assert c.where("container.width") == f"{tmp_path / 'silo.ini'}:2"
+    assert c.where("spot.radius") == "default"
+    with pytest.raises(ValueError, match=r"silo.ini:3: container.orifice_diameter = 60 must be less than "
+                                         r"container.width = 50 \(.*silo.ini:2\)"):
+        c.copy().validate()
+    c["container.width"] = 70
+    assert c.where("container.width") == "gf_config_set_key"
+    c.validate()
+    with pytest.raises(KeyError):
+        c.where("nosuch.key")

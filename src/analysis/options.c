@@ -112,7 +112,7 @@ gf_status gf_analysis_opts_copy(gf_analysis_opts *dst, const gf_analysis_opts *s
 gf_status gf_analysis_opts_set(gf_analysis_opts *o, const char *assignment)
 {
     if (!o) return gf_error_set(GF_ERR_PARAM, "analysis option: NULL options");
-    return gf_keys_set(&gf_analysis_keys, o, assignment, "analysis option");
+    return gf_keys_set(&gf_analysis_keys, o, assignment, "analysis option", NULL);
 }
 
 gf_status gf_analysis_opts_get(const gf_analysis_opts *o, const char *key, char *buf, size_t size)
@@ -132,6 +132,19 @@ const char *gf_analysis_opts_key_doc(size_t i) { return i < gf_analysis_keys.cou
 const char *gf_analysis_opts_key_default(size_t i)
 {
     return i < gf_analysis_keys.count ? gf_analysis_key_list[i].def : NULL;
+}
+
+gf_status gf_analysis_opts_check(const gf_analysis_opts *o)
+{
+    if (!o) return gf_error_set(GF_ERR_PARAM, "gf_analysis_opts_check: NULL options");
+    if (!isnan(o->t0) && !isnan(o->t1) && !(o->t0 < o->t1)) {
+        char a[32], b[32];
+        gf_keys_format_double(o->t0, a, sizeof a);
+        gf_keys_format_double(o->t1, b, sizeof b);
+        return gf_error_set(GF_ERR_PARAM, "window.t0 = %s must be less than window.t1 = %s (the window is [t0, t1], tau)",
+                            a, b);
+    }
+    return GF_OK;
 }
 
 void gf_analysis_window(const gf_analysis_opts *o, const gf_series *s, double *t0, double *t1)

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "config/keys.h"
+#include "config/where.h"
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -169,7 +170,9 @@ static int gf_config_on_pair(void *user, const char *section, const char *name, 
     if (!*s) {
         st = gf_error_set(GF_ERR_PARAM, "%s: key '%s' is outside any [section]", lead, name);
     } else {
-        st = gf_keys_apply(&gf_config_keys, ld->cfg, lead, true, s, name, value ? value : "");
+        const gf_key *k;
+        st = gf_keys_apply(&gf_config_keys, ld->cfg, lead, true, s, name, value ? value : "", &k);
+        if (st == GF_OK) gf_config_mark(ld->cfg, k, ld->path, ld->line);
     }
     if (st != GF_OK) {
         gf_config_fail(ld, st);
@@ -207,35 +210,78 @@ gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *orig
     gf_status st = gf_config_check(cfg, "gf_config_set");
     if (st != GF_OK) return st;
     if (!origin || !*origin) origin = "gf_config_set";
-    return gf_keys_set(&gf_config_keys, cfg, assignment, origin);
+    const gf_key *k;
+    st = gf_keys_set(&gf_config_keys, cfg, assignment, origin, &k);
+    if (st == GF_OK) gf_config_mark(cfg, k, origin, 0);
+    return st;
 }
 
 // ---- validation ----------------------------------------------------------
 
-// At most GF_MAX_OUTPUTS outputs (`what`) of interval `dt` per run of
-// `duration`, naming `key` when there would be more.
-static gf_status gf_check_outputs(double dt, double duration, const char *key, const char *what, const char *or_else)
+// At most GF_MAX_OUTPUTS outputs (`what`) of interval `key` per run.duration.
+static gf_status gf_check_outputs(const gf_config *cfg, double dt, const char *key, const char *what,
+                                  const char *or_else)
 {
-    if (duration / dt <= GF_MAX_OUTPUTS) return GF_OK;
-    char a[64], b[64];
-    gf_keys_format_double(dt, a, sizeof a);
-    gf_keys_format_double(duration, b, sizeof b);
+    if (cfg->run_duration / dt <= GF_MAX_OUTPUTS) return GF_OK;
+    gf_config_msg m;
+    gf_config_msg_make(&m, cfg, key, "run.duration");
     return gf_error_set(GF_ERR_PARAM,
-                        "%s = %s is too small for run.duration = %s: at most %d %s per run (interval >= "
-                        "run.duration / %d%s)",
-                        key, a, b, GF_MAX_OUTPUTS, what, GF_MAX_OUTPUTS, or_else);
+                        "%s%s is too small for %s: at most %d %s per run (interval >= run.duration / %d%s)",
+                        m.lead, m.key[0], m.key[1], GF_MAX_OUTPUTS, what, GF_MAX_OUTPUTS, or_else);
+}
+
+// The checks of a cylinder; then its bounding box and outlet in the box's
+// keys, for everything that reads those (grid, dumps, analysis, pictures).
+static gf_status gf_config_validate_cylinder(gf_config *cfg)
+{
+    gf_config_msg m;
+    if (cfg->orifice_shape != GF_ORIFICE_CIRCLE) {
+        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a circle "
+                                          "(container.outlet_diameter)", m.lead, m.key[0], m.key[1]);
+    }
+    // A cylinder's outlet is outlet_diameter; an orifice_diameter set apart
+    // from it would be ignored. (A written effective config sets both equal
+    // in one file, and an outlet set elsewhere over it rules.)
+    if (gf_config_is_set(cfg, "container.orifice_diameter") && cfg->orifice_diameter != cfg->outlet_diameter &&
+        (!gf_config_is_set(cfg, "container.outlet_diameter") ||
+         gf_config_same_origin(cfg, "container.orifice_diameter", "container.outlet_diameter"))) {
+        gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.outlet_diameter");
+        return gf_error_set(GF_ERR_PARAM, "%s%s does nothing in a cylinder (container.shape = cylinder), whose "
+                                          "outlet is %s: set that instead", m.lead, m.key[0], m.key[1]);
+    }
+    if (!(cfg->outlet_diameter < 2.0 * cfg->container_radius)) {
+        gf_config_msg_make(&m, cfg, "container.outlet_diameter", "container.radius");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than 2 * %s", m.lead, m.key[0], m.key[1]);
+    }
+    if (cfg->inner_radius > 0.0 && !(cfg->inner_radius + 1.0 < cfg->container_radius)) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.radius");
+        return gf_error_set(GF_ERR_PARAM, "%s%s leaves no room for a sphere: it must be less than %s - 1", m.lead,
+                            m.key[0], m.key[1]);
+    }
+    if (cfg->inner_radius > 0.0 && !(cfg->hopper_angle > 0.0)) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+        return gf_error_set(GF_ERR_PARAM, "%s%s needs container.hopper_angle > 0, not %s: the column ends at the "
+                                          "top of the funnel, and on a flat base it would stand on the outlet",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    cfg->container_width = cfg->container_depth = 2.0 * cfg->container_radius;
+    cfg->orifice_diameter = cfg->outlet_diameter;
+    return GF_OK;
 }
 
 gf_status gf_config_validate(gf_config *cfg)
 {
     gf_status st = gf_config_check(cfg, "gf_config_validate");
     if (st != GF_OK) return st;
+    gf_config_msg m;
     for (size_t i = 0; i < gf_keys_count; i++) {
         const gf_key *k = &gf_keys[i];
-        char why[160], val[64];
+        char why[160], key[160];
         if (!gf_keys_check(k, cfg, why, sizeof why)) {
-            gf_keys_format(k, cfg, val, sizeof val);
-            return gf_error_set(GF_ERR_PARAM, "%s.%s = %s: %s", k->section, k->name, val, why);
+            snprintf(key, sizeof key, "%s.%s", k->section, k->name);
+            gf_config_msg_make(&m, cfg, key, NULL);
+            return gf_error_set(GF_ERR_PARAM, "%s%s: %s", m.lead, m.key[0], why);
         }
     }
     if (isnan(cfg->spot_insertion_margin)) cfg->spot_insertion_margin = cfg->spot_radius;
@@ -243,93 +289,63 @@ gf_status gf_config_validate(gf_config *cfg)
     if (isnan(cfg->dem_kt)) cfg->dem_kt = 2.0 / 7.0 * cfg->dem_kn;
     if (isnan(cfg->dem_gammat)) cfg->dem_gammat = 0.5 * cfg->dem_gamman;
 
-    char a[32], b[32];
-    if (cfg->container_shape == GF_SHAPE_CYLINDER) {
-        // The cylinder's bounding box and outlet, in the box's keys, for
-        // everything that reads those (grid, dumps, analysis, pictures).
-        if (cfg->orifice_shape != GF_ORIFICE_CIRCLE)
-            return gf_error_set(GF_ERR_PARAM, "container.orifice_shape = slit: a cylinder's outlet is a circle "
-                                              "(container.outlet_diameter)");
-        if (!(cfg->outlet_diameter < 2.0 * cfg->container_radius)) {
-            gf_keys_format_double(cfg->outlet_diameter, a, sizeof a);
-            gf_keys_format_double(cfg->container_radius, b, sizeof b);
-            return gf_error_set(GF_ERR_PARAM,
-                                "container.outlet_diameter = %s must be less than 2 * container.radius (radius %s)", a, b);
-        }
-        if (cfg->inner_radius > 0.0 && !(cfg->inner_radius + 1.0 < cfg->container_radius)) {
-            gf_keys_format_double(cfg->inner_radius, a, sizeof a);
-            gf_keys_format_double(cfg->container_radius, b, sizeof b);
-            return gf_error_set(GF_ERR_PARAM,
-                                "container.inner_radius = %s leaves no room for a sphere: it must be less than "
-                                "container.radius - 1 = %s - 1", a, b);
-        }
-        if (cfg->inner_radius > 0.0 && !(cfg->hopper_angle > 0.0))
-            return gf_error_set(GF_ERR_PARAM, "container.inner_radius > 0 needs container.hopper_angle > 0: the "
-                                              "column ends at the top of the funnel, and on a flat base it would "
-                                              "stand on the outlet");
-        cfg->container_width = cfg->container_depth = 2.0 * cfg->container_radius;
-        cfg->orifice_diameter = cfg->outlet_diameter;
-    }
+    if (cfg->container_shape == GF_SHAPE_CYLINDER && (st = gf_config_validate_cylinder(cfg)) != GF_OK) return st;
     if (!(cfg->orifice_diameter < cfg->container_width)) {
-        gf_keys_format_double(cfg->orifice_diameter, a, sizeof a);
-        gf_keys_format_double(cfg->container_width, b, sizeof b);
-        return gf_error_set(
-            GF_ERR_PARAM, "container.orifice_diameter = %s must be less than container.width = %s",
-            a, b);
+        gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.width");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than %s", m.lead, m.key[0], m.key[1]);
     }
     double room = fmin(cfg->container_width, cfg->container_depth);
     if (!(2.0 * cfg->spot_wall_distance < room)) {
-        gf_keys_format_double(cfg->spot_wall_distance, a, sizeof a);
-        gf_keys_format_double(room, b, sizeof b);
+        const char *wall = cfg->container_shape == GF_SHAPE_CYLINDER ? "container.radius"
+                           : cfg->container_depth < cfg->container_width ? "container.depth"
+                                                                         : "container.width";
+        gf_config_msg_make(&m, cfg, "spot.wall_distance", wall);
+        char r[32];
+        gf_keys_format_double(room, r, sizeof r);
         return gf_error_set(GF_ERR_PARAM,
-                            "spot.wall_distance = %s leaves spots no room: 2 * spot.wall_distance "
-                            "must be less than min(container.width, container.depth) = %s",
-                            a, b);
+                            "%s%s leaves spots no room: 2 * spot.wall_distance must be less than "
+                            "min(container.width, container.depth) = %s (%s)",
+                            m.lead, m.key[0], r, m.key[1]);
     }
     if (!(cfg->relax_radius >= cfg->spot_radius)) {
-        gf_keys_format_double(cfg->relax_radius, a, sizeof a);
-        gf_keys_format_double(cfg->spot_radius, b, sizeof b);
-        return gf_error_set(GF_ERR_PARAM, "relax.radius = %s must be at least spot.radius = %s", a,
-                            b);
+        gf_config_msg_make(&m, cfg, "relax.radius", "spot.radius");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be at least %s", m.lead, m.key[0], m.key[1]);
     }
     // Output intervals: a bounded number per run (an interval below the
     // rounding of the time would never advance, and the run never end).
-    st = gf_check_outputs(cfg->output_snapshot_interval, cfg->run_duration, "output.snapshot_interval",
-                                    "snapshots", "");
+    st = gf_check_outputs(cfg, cfg->output_snapshot_interval, "output.snapshot_interval", "snapshots", "");
     if (st == GF_OK && cfg->run_checkpoint_interval > 0)
-        st = gf_check_outputs(cfg->run_checkpoint_interval, cfg->run_duration, "run.checkpoint_interval",
-                              "checkpoints", ", or 0 for none");
+        st = gf_check_outputs(cfg, cfg->run_checkpoint_interval, "run.checkpoint_interval", "checkpoints",
+                              ", or 0 for none");
     if (st != GF_OK) return st;
     if (!(cfg->spot_insertion_rate / cfg->spot_move_rate <= GF_MAX_SPOTS_PER_MOVE)) {
-        gf_keys_format_double(cfg->spot_insertion_rate, a, sizeof a);
-        gf_keys_format_double(cfg->spot_move_rate, b, sizeof b);
+        gf_config_msg_make(&m, cfg, "spot.insertion_rate", "spot.move_rate");
         return gf_error_set(GF_ERR_PARAM,
-                            "spot.insertion_rate = %s is too high for spot.move_rate = %s: at most %g spots "
-                            "born per move time (the papers use ~13)",
-                            a, b, GF_MAX_SPOTS_PER_MOVE);
+                            "%s%s is too high for %s: at most %g spots born per move time (the papers use ~13)",
+                            m.lead, m.key[0], m.key[1], GF_MAX_SPOTS_PER_MOVE);
     }
     if (cfg->run_reinsert == GF_REINSERT_ZONE && !isnan(cfg->run_reinsert_rmax) &&
         !(cfg->run_reinsert_rmin < cfg->run_reinsert_rmax)) {
-        gf_keys_format_double(cfg->run_reinsert_rmin, a, sizeof a);
-        gf_keys_format_double(cfg->run_reinsert_rmax, b, sizeof b);
-        return gf_error_set(GF_ERR_PARAM, "run.reinsert_rmin = %s must be less than run.reinsert_rmax = %s", a, b);
+        gf_config_msg_make(&m, cfg, "run.reinsert_rmin", "run.reinsert_rmax");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than %s", m.lead, m.key[0], m.key[1]);
     }
     size_t ntypes;
     int32_t types[GF_PACKING_MAXTYPES];
     if (gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes) != GF_OK) {
         char why[256];
         snprintf(why, sizeof why, "%s", gf_last_error());
-        return gf_error_set(GF_ERR_PARAM, "packing.types = %s: %s", cfg->packing_types, why);
+        gf_config_msg_make(&m, cfg, "packing.types", NULL);
+        return gf_error_set(GF_ERR_PARAM, "%s%s: %s", m.lead, m.key[0], why);
     }
     // A Hooke contact of stiffness k_n between two unit masses lasts pi / sqrt(2 k_n)
     // tau; a Hertzian one is softer, so a fifth of that bounds the step safely.
     double dt_max = 0.2 * 3.14159265358979323846 / sqrt(2.0 * cfg->dem_kn);
     if (!(cfg->dem_timestep <= dt_max)) {
-        gf_keys_format_double(cfg->dem_timestep, a, sizeof a);
+        gf_config_msg_make(&m, cfg, "dem.timestep", "dem.kn");
+        char b[32];
         snprintf(b, sizeof b, "%.3g", dt_max);
-        return gf_error_set(GF_ERR_PARAM,
-                            "dem.timestep = %s is too long for dem.kn: at most 0.2 pi / sqrt(2 kn) = %s tau",
-                            a, b);
+        return gf_error_set(GF_ERR_PARAM, "%s%s is too long for %s: at most 0.2 pi / sqrt(2 kn) = %s tau", m.lead,
+                            m.key[0], m.key[1], b);
     }
     return GF_OK;
 }

@@ -227,3 +227,5 @@ const gf_key gf_keys[] = {
 const size_t gf_keys_count = sizeof gf_keys / sizeof gf_keys[0];
 const gf_key_table gf_config_keys = {gf_keys, sizeof gf_keys / sizeof gf_keys[0]};
 
+_Static_assert(sizeof gf_keys / sizeof gf_keys[0] <= GF_CONFIG_MAX_KEYS,
+               "gf_config records where each key was set: raise GF_CONFIG_MAX_KEYS");

@@ -93,12 +93,15 @@ void gf_keys_defaults(const gf_key_table *t, void *base);
 /// Stores `value` for section.name, or sets the error: `lead` starts the
 /// message ("x.ini:3" or "--set spot.w=abc"); `show_value` adds
 /// "[section] name = value" after it (file style). GF_ERR_PARAM on failure.
+/// `found` (may be NULL) receives the key stored, NULL on failure.
 gf_status gf_keys_apply(const gf_key_table *t, void *base, const char *lead, bool show_value, const char *section,
-                        const char *name, const char *value);
+                        const char *name, const char *value, const gf_key **found);
 
 /// Stores "section.name=value" (white space around each part ignored);
 /// errors start with "`origin` section.name=value". GF_ERR_PARAM on failure.
-gf_status gf_keys_set(const gf_key_table *t, void *base, const char *assignment, const char *origin);
+/// `found` (may be NULL) receives the key stored, NULL on failure.
+gf_status gf_keys_set(const gf_key_table *t, void *base, const char *assignment, const char *origin,
+                      const gf_key **found);
 
 /// Writes the value of key "section.name" into buf (`fn` names the caller in errors).
 gf_status gf_keys_get(const gf_key_table *t, const void *base, const char *key, char *buf, size_t size,

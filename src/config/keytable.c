@@ -470,9 +470,10 @@ const gf_key *gf_keys_lookup(const gf_key_table *t, const char *key, const char 
 }
 
 gf_status gf_keys_apply(const gf_key_table *t, void *base, const char *lead, bool show_value, const char *section,
-                        const char *name, const char *value)
+                        const char *name, const char *value, const gf_key **found)
 {
     char list[256];
+    if (found) *found = NULL;
     if (!gf_keys_section_known(t, section)) {
         gf_keys_list(t, NULL, list, sizeof list);
         return gf_error_set(GF_ERR_PARAM, "%s: unknown section [%s] (known: %s)", lead, section, list);
@@ -485,7 +486,10 @@ gf_status gf_keys_apply(const gf_key_table *t, void *base, const char *lead, boo
     }
     char why[160];
     gf_key_result r = gf_keys_assign(k, base, value, why, sizeof why);
-    if (r == GF_KEY_OK) return GF_OK;
+    if (r == GF_KEY_OK) {
+        if (found) *found = k;
+        return GF_OK;
+    }
     if (!show_value) return gf_error_set(GF_ERR_PARAM, "%s: %s", lead, why);
     const char *q = r == GF_KEY_BAD_VALUE ? "'" : "";
     return gf_error_set(GF_ERR_PARAM, "%s: [%s] %s = %s%s%s: %s", lead, section, name, q, value, q, why);
@@ -500,8 +504,10 @@ static char *gf_keys_trim(char *s)
     return s;
 }
 
-gf_status gf_keys_set(const gf_key_table *t, void *base, const char *assignment, const char *origin)
+gf_status gf_keys_set(const gf_key_table *t, void *base, const char *assignment, const char *origin,
+                      const gf_key **found)
 {
+    if (found) *found = NULL;
     if (!assignment) return gf_error_set(GF_ERR_PARAM, "%s: assignment is NULL", origin);
     size_t size = strlen(assignment) + 1;
     char *buf = gf_alloc(size);
@@ -524,7 +530,7 @@ gf_status gf_keys_set(const gf_key_table *t, void *base, const char *assignment,
         } else {
             char lead[GF_PATH_MAX + 160];
             snprintf(lead, sizeof lead, "%s %s.%s=%s", origin, section, name, value);
-            st = gf_keys_apply(t, base, lead, false, section, name, value);
+            st = gf_keys_apply(t, base, lead, false, section, name, value, found);
         }
     }
     gf_free(buf, size);

@@ -30,6 +30,8 @@ gf_status gf_dem_analyze(const char *path, const gf_dem_source *src, const gf_an
                          const char *outdir, bool plots, gf_dem_analysis *info)
 {
     if (!path || !o) return gf_error_set(GF_ERR_PARAM, "gf_dem_analyze: NULL path or options");
+    gf_status sc = gf_analysis_opts_check(o); // before reading any data
+    if (sc != GF_OK) return sc;
     gf_dem_analysis tmp;
     gf_dem_analysis *a = info ? info : &tmp;
     memset(a, 0, sizeof *a);

@@ -115,7 +115,8 @@ gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_steady *w)
 {
     gf_steady tmp;
     gf_steady *win = w ? w : &tmp;
-    gf_status st = gf_steady_window(s, win);
+    gf_status st = gf_analysis_opts_check(o);
+    if (st == GF_OK) st = gf_steady_window(s, win);
     if (st != GF_OK) return st;
     if (!isnan(o->t0) && !isnan(o->t1)) {
         win->t0 = o->t0;
@@ -128,6 +129,14 @@ gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_steady *w)
         if (!isnan(o->t1)) win->t1 = o->t1;
         size_t len = strlen(win->reason);
         snprintf(win->reason + len, sizeof win->reason - len, "; %s given", !isnan(o->t0) ? "window.t0" : "window.t1");
+        // One end given, the other automatic: the two must still make a window.
+        if (!(win->t0 < win->t1))
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s = %.6g leaves no window: the automatic %s is %.6g tau (the run's snapshots span "
+                                "%.6g..%.6g tau)",
+                                !isnan(o->t0) ? "window.t0" : "window.t1", !isnan(o->t0) ? o->t0 : o->t1,
+                                !isnan(o->t0) ? "window.t1" : "window.t0", !isnan(o->t0) ? win->t1 : win->t0,
+                                s->nframes ? s->frames[0].time : 0.0, s->nframes ? s->frames[s->nframes - 1].time : 0.0);
     }
     o->t0 = win->t0;
     o->t1 = win->t1;

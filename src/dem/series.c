@@ -119,7 +119,7 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
         cfg = gf_config_default();
         st = gf_config_load(&cfg, src->config);
     }
-    for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&cfg, src->sets[k], "setting");
+    for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&cfg, src->sets[k], "--set");
     if (st == GF_OK) st = gf_config_validate(&cfg);
     if (st != GF_OK) goto fail;
     out->cfg = cfg;

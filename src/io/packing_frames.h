@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Internal: every frame of a LAMMPS text dump with its time, box and `type` column.
+// Internal: every frame of a LAMMPS text dump with its time, box and `type` column;
+// the line of one particle of a packing file.
 #ifndef GF_IO_PACKING_FRAMES_H
 #define GF_IO_PACKING_FRAMES_H
 
@@ -28,5 +29,11 @@ typedef gf_status (*gf_packing_frame_fn)(void *ctx, const gf_packing_frame *f, g
 /// have 0 atoms (a drained silo), ITEM: TIME is converted (a malformed value
 /// is an error) and the `type` column becomes the layer tag.
 gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx);
+
+/// Line of the particle with id `id` in the packing file `path` as
+/// gf_packing_read reads it (a dump's last complete frame; without an id
+/// column, id i is the i-th row), or 0 when the file cannot be read or has no
+/// such particle. For error messages: it reads the whole file again.
+long gf_packing_line_of(const char *path, int64_t id);
 
 #endif

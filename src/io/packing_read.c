@@ -132,6 +132,8 @@ typedef struct gf_reader {
     gf_idset ids;
     gf_packing_frame_fn each; // non-NULL: convert every frame, read TIME and type, call this
     void *each_ctx;
+    int64_t find_id;          // > 0: note the line of the particle with this id
+    long found_line;          // its line in the last frame converted, 0: not seen
 } gf_reader;
 
 static gf_status gf_read_bad_number(const gf_textscan *ts, const char *col, const char *tok,
@@ -182,6 +184,7 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
                                 ts->path, ts->line, t, first);
         id = (int64_t)t;
     }
+    if (rd->find_id > 0 && id == rd->find_id) rd->found_line = ts->line;
     int32_t layer = 0;
     if (rd->each && c->type >= 0) {
         long long t;
@@ -749,7 +752,9 @@ static gf_status gf_read_csv(gf_reader *rd)
 
 // ---------------------------------------------------------------------------
 
-gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out)
+// gf_packing_read, noting in *line (when find_id > 0) the line of particle find_id.
+static gf_status gf_packing_read_finding(const char *path, gf_packing_format format, gf_packing *out,
+                                         int64_t find_id, long *line)
 {
     if (!out) return gf_error_set(GF_ERR_PARAM, "gf_packing_read: no output packing");
     if (!path || !*path) {
@@ -767,7 +772,7 @@ gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing
     }
     // Build into a private packing so that `out` never holds half a result.
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp};
+    gf_reader rd = {.out = &tmp, .find_id = find_id};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) {
         switch (format) {
@@ -779,12 +784,27 @@ gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing
     gf_textscan_close(&rd.ts);
     gf_idset_free(&rd.ids);
     gf_packing_free(out);
+    if (line) *line = rd.found_line;
     if (st != GF_OK) {
         gf_packing_free(&tmp);
         return st;
     }
     *out = tmp;
     return GF_OK;
+}
+
+gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out)
+{
+    return gf_packing_read_finding(path, format, out, 0, NULL);
+}
+
+long gf_packing_line_of(const char *path, int64_t id)
+{
+    gf_packing pk = {0};
+    long line = 0;
+    if (gf_packing_read_finding(path, GF_FORMAT_AUTO, &pk, id, &line) != GF_OK) line = 0;
+    gf_packing_free(&pk);
+    return line;
 }
 
 gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)

@@ -3,6 +3,7 @@
 #include "lga/scenario.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
@@ -16,6 +17,34 @@ double gf_lga_hopper_angle(const gf_config *cfg)
 }
 
 static int gf_lga_or(int64_t v, int def) { return v > 0 ? (int)v : def; }
+
+// A lattice size key that is too small: "WHERE: lga.KEY = N is too small: the
+// SCENARIO needs at least MIN UNIT".
+static gf_status gf_lga_size_error(const gf_lga *l, const char *key, int v, const char *scenario, int min)
+{
+    const char *unit = strcmp(key, "lga.width") == 0 ? "columns" : "rows";
+    char at[GF_PATH_MAX + 40];
+    gf_config_where_lead(&l->cfg, key, at, sizeof at);
+    const char *auto_note = gf_config_is_set(&l->cfg, key) ? "" : " (the scenario's default)";
+    return gf_error_set(GF_ERR_PARAM, "%s%s = %d%s is too small: the %s needs at least %d %s", at, key, v, auto_note,
+                        scenario, min, unit);
+}
+
+// gf_lga_lattice_alloc, with a lattice too large blamed on lga.width and lga.height.
+static gf_status gf_lga_scenario_alloc(gf_lga *l, int w, int h, bool periodic)
+{
+    if (!gf_lga_lattice_fits(w, h)) {
+        const char *key = gf_config_is_set(&l->cfg, "lga.width") ? "lga.width" : "lga.height";
+        char at[GF_PATH_MAX + 40];
+        gf_config_where_lead(&l->cfg, key, at, sizeof at);
+        return gf_error_set(GF_ERR_PARAM,
+                            "%slga.width = %lld and lga.height = %lld make a lattice of %d x %d sites, too large (at "
+                            "most %.0f sites)",
+                            at, (long long)l->cfg.lga_width, (long long)l->cfg.lga_height, w, h,
+                            (double)GF_LGA_MAX_SITES);
+    }
+    return gf_lga_lattice_alloc(l, w, h, periodic);
+}
 
 gf_status gf_lga_scenario_finish(gf_lga *l)
 {
@@ -53,9 +82,12 @@ static gf_status gf_lga_fill_random(gf_lga *l, int64_t n)
     for (int j = 0; j < l->h; j++)
         for (int i = 0; i < l->w; i++)
             if (!(l->state[gf_lga_index(l, i, j)] & (GF_LGA_WALL | GF_LGA_SINK))) nf++;
-    if (n > (int64_t)nf * 12)
-        return gf_error_set(GF_ERR_PARAM, "lga.particles = %lld does not fit: at most 12 per site, %zu sites",
+    if (n > (int64_t)nf * 12) {
+        char at[GF_PATH_MAX + 40];
+        gf_config_where_lead(&l->cfg, "lga.particles", at, sizeof at);
+        return gf_error_set(GF_ERR_PARAM, "%slga.particles = %lld does not fit: at most 12 per site, %zu sites", at,
                             (long long)n, nf);
+    }
     size_t *fl = GF_NEW(size_t, nf ? nf : 1);
     if (!fl) return gf_error_set(GF_ERR_NOMEM, "out of memory (LGA fill)");
     nf = 0;
@@ -79,8 +111,9 @@ static gf_status gf_lga_build_pile(gf_lga *l)
 {
     const gf_config *c = &l->cfg;
     int w = gf_lga_or(c->lga_width, GF_LGA_PILE_WIDTH), h = gf_lga_or(c->lga_height, GF_LGA_PILE_HEIGHT);
-    if (w < 8 || h < 6) return gf_error_set(GF_ERR_PARAM, "lga pile: lattice %d x %d is too small (at least 8 x 6)", w, h);
-    gf_status st = gf_lga_lattice_alloc(l, w, h, false);
+    if (w < 8) return gf_lga_size_error(l, "lga.width", w, "pile", 8);
+    if (h < 6) return gf_lga_size_error(l, "lga.height", h, "pile", 6);
+    gf_status st = gf_lga_scenario_alloc(l, w, h, false);
     if (st != GF_OK) return st;
     for (int i = 0; i < w; i++)
         for (int j = 0; j < h; j++) {
@@ -114,8 +147,8 @@ static gf_status gf_lga_build_channel(gf_lga *l)
 {
     const gf_config *c = &l->cfg;
     int w = gf_lga_or(c->lga_width, GF_LGA_CHANNEL_WIDTH) + 2, h = gf_lga_or(c->lga_height, GF_LGA_CHANNEL_HEIGHT);
-    if (h < 8) return gf_error_set(GF_ERR_PARAM, "lga channel: %d rows is too few (at least 8)", h);
-    gf_status st = gf_lga_lattice_alloc(l, w, h, true);
+    if (h < 8) return gf_lga_size_error(l, "lga.height", h, "channel", 8);
+    gf_status st = gf_lga_scenario_alloc(l, w, h, true);
     if (st != GF_OK) return st;
     for (int j = 0; j < h; j++) {
         l->state[gf_lga_index(l, 0, j)] = GF_LGA_WALL;
@@ -139,17 +172,24 @@ static gf_status gf_lga_build_silo(gf_lga *l)
     double angle = gf_lga_hopper_angle(c);
     double half = 0.5 * wp * GF_LGA_SQRT3_2; // half-width of the parallel part, d
     double out = 0.5 * c->lga_outlet_width;
-    if (out > half - 1.0)
-        return gf_error_set(GF_ERR_PARAM, "lga.outlet_width = %g must be less than the silo's width %g d - 2 (lga.width = %d columns)",
-                            c->lga_outlet_width, 2.0 * half, wp);
-    if (hp < 4) return gf_error_set(GF_ERR_PARAM, "lga silo: %d rows is too few (at least 4)", hp);
+    if (out > half - 1.0) {
+        char at[GF_PATH_MAX + 40], where[GF_PATH_MAX + 32];
+        gf_config_where_lead(c, gf_config_is_set(c, "lga.outlet_width") ? "lga.outlet_width" : "lga.width", at,
+                             sizeof at);
+        gf_config_where(c, "lga.width", where, sizeof where);
+        return gf_error_set(GF_ERR_PARAM,
+                            "%slga.outlet_width = %g must be less than the silo's width %g d - 2 (lga.width = %d "
+                            "columns, %s)",
+                            at, c->lga_outlet_width, 2.0 * half, wp, where);
+    }
+    if (hp < 4) return gf_lga_size_error(l, "lga.height", hp, "silo's parallel part", 4);
     double tana = tan(angle * 3.14159265358979323846 / 180.0);
     double y0 = 2.0;                           // outlet level: two sink rows below
     double y1 = y0 + (half - out) / tana;      // top of the hopper
     double ytop = y1 + hp;
     int w = wp + 4;                            // two wall columns each side
     int h = (int)ceil(ytop) + 1;
-    gf_status st = gf_lga_lattice_alloc(l, w, h, false);
+    gf_status st = gf_lga_scenario_alloc(l, w, h, false);
     if (st != GF_OK) return st;
     double xc = 0.5 * (w - 1) * GF_LGA_SQRT3_2;
     for (int i = 0; i < w; i++)
@@ -170,9 +210,12 @@ static gf_status gf_lga_build_silo(gf_lga *l)
             *s |= GF_LGA_REST;
             placed++;
         }
-    if (placed < n)
-        return gf_error_set(GF_ERR_PARAM, "lga.particles = %lld does not fit in the silo (%lld sites); raise lga.height",
-                            (long long)n, (long long)placed);
+    if (placed < n) {
+        char at[GF_PATH_MAX + 40];
+        gf_config_where_lead(c, "lga.particles", at, sizeof at);
+        return gf_error_set(GF_ERR_PARAM, "%slga.particles = %lld does not fit in the silo (%lld sites); raise lga.height",
+                            at, (long long)n, (long long)placed);
+    }
     return gf_lga_scenario_finish(l);
 }
 

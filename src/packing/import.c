@@ -101,25 +101,28 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     const char *path = cfg->packing_file;
     int32_t types[GF_PACKING_MAXTYPES];
     size_t ntypes;
+    // Errors about packing.types start with where it was set.
+    char at[GF_PATH_MAX + 40];
+    gf_config_where_lead(cfg, "packing.types", at, sizeof at);
     gf_status st = gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes);
     if (st != GF_OK) {
         char why[256];
         snprintf(why, sizeof why, "%s", gf_last_error());
-        return gf_error_set(st, "packing.types = %s: %s", cfg->packing_types, why);
+        return gf_error_set(st, "%spacking.types = %s: %s", at, cfg->packing_types, why);
     }
     gf_packing pk = {0};
     if (ntypes == 0) {
         st = gf_packing_read(path, GF_FORMAT_AUTO, &pk);
     } else if (!gf_import_is_lammps(path)) {
-        st = gf_error_set(GF_ERR_PARAM, "packing.types = %s needs a LAMMPS dump with a type column, not %s",
-                          cfg->packing_types, path);
+        st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s needs a LAMMPS dump with a type column, not %s",
+                          at, cfg->packing_types, path);
     } else {
         gf_import_last last = {0};
         st = gf_packing_read_frames(path, gf_import_keep_last, &last);
         if (st == GF_OK && last.frames == 0) st = gf_error_set(GF_ERR_FORMAT, "%s: no frame in the file", path);
         else if (st == GF_OK && !last.have_type)
-            st = gf_error_set(GF_ERR_PARAM, "packing.types = %s: %s has no `type` column in its ITEM: ATOMS line",
-                              cfg->packing_types, path);
+            st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s: %s has no `type` column in its ITEM: ATOMS line",
+                              at, cfg->packing_types, path);
         pk = last.pk; // the frames reader keeps the type column in `layer`
     }
     if (st != GF_OK) {

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "geom/celllist.h"
 #include "geom/container.h"
+#include "io/packing_frames.h"
 #include "packing/layer.h"
 
 int32_t gf_packing_layer_of(double z, double thickness)
@@ -81,12 +82,22 @@ gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
 {
     gf_container box = gf_container_make(cfg);
     for (size_t i = 0; i < p->n; i++) {
-        if (!gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0))
-            return gf_error_set(GF_ERR_PARAM,
-                                "particle id %lld at (%g, %g, %g) is outside the container "
-                                "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)",
-                                (long long)p->id[i], p->x[i], p->y[i], p->z[i],
-                                box.kind == GF_SHAPE_CYLINDER ? "a cylinder within" : "a box", box.xhi, box.yhi);
+        if (gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0)) continue;
+        // An imported packing: lead with its file and the particle's line there.
+        char lead[GF_PATH_MAX + 32] = "", from[GF_PATH_MAX + 64] = "";
+        if (cfg->packing_file[0]) {
+            long line = gf_packing_line_of(cfg->packing_file, p->id[i]);
+            if (line > 0) snprintf(lead, sizeof lead, "%s:%ld: ", cfg->packing_file, line);
+            else snprintf(lead, sizeof lead, "%s: ", cfg->packing_file);
+            char where[GF_PATH_MAX + 32];
+            if (gf_config_where(cfg, "packing.file", where, sizeof where) == GF_OK)
+                snprintf(from, sizeof from, " (packing.file, %s)", where);
+        }
+        return gf_error_set(GF_ERR_PARAM,
+                            "%sparticle id %lld at (%g, %g, %g) is outside the container "
+                            "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)%s",
+                            lead, (long long)p->id[i], p->x[i], p->y[i], p->z[i],
+                            box.kind == GF_SHAPE_CYLINDER ? "a cylinder within" : "a box", box.xhi, box.yhi, from);
     }
     return GF_OK;
 }

@@ -94,6 +94,14 @@ expect_rc 2 "no directory"
 gf analyze missing-dir
 expect_rc 1 "missing run"
 grep -q "missing-dir" err || fail "missing run: message does not name the path"
+cp run/analysis/summary.json summary_before_window.json
+gf analyze run --no-plots --set window.t0=10 --set window.t1=5
+expect_rc 2 "reversed window (t0 = 10, t1 = 5)"
+expect_err "window.t0 = 10 must be less than window.t1 = 5" "reversed window"
+gf analyze run --no-plots --set window.t0=100
+expect_rc 2 "window.t0 after the last snapshot"
+expect_err "window.t0 = 100 leaves no window: the automatic window.t1 is 12 tau" "window.t0 after the last snapshot"
+cmp -s run/analysis/summary.json summary_before_window.json || fail "a refused window changed summary.json"
 ok "bad command lines exit 2 naming the key; a missing run exits 1 naming it"
 
 # A run of one snapshot: gnuplot warns of empty ranges and cannot draw some

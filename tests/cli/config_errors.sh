@@ -51,6 +51,32 @@ expect_rc 2 "config: container.shape=cone"
 expect_err "container.shape" "config: container.shape=cone"
 ok "a cylinder's config round-trips; bad cylinders exit 2 naming the key"
 
+# --- checks across keys name where each key was set -------------------------
+printf '[container]\nwidth = 50\norifice_diameter = 60\n' > silo.ini
+gf config silo.ini
+expect_rc 2 "config silo.ini (orifice wider than the box)"
+expect_err "silo.ini:3: container.orifice_diameter = 60 must be less than container.width = 50 (silo.ini:2)" \
+    "config silo.ini (orifice wider than the box)"
+expect_no_stdout "config silo.ini (orifice wider than the box)"
+gf config silo.ini --set container.width=40
+expect_err "silo.ini:3: container.orifice_diameter = 60 must be less than container.width = 40 (--set)" \
+    "config silo.ini --set container.width=40"
+printf '[packing]\ntypes = 1,x\n' > types.ini
+gf config types.ini
+expect_rc 2 "config types.ini (bad packing.types)"
+expect_err "types.ini:2: packing.types = 1,x: 'x' is not an atom type" "config types.ini (bad packing.types)"
+ok "cross-key and validation-time errors start with FILE:LINE and quote the other key's place"
+
+printf '[container]\nshape = cylinder\norifice_diameter = 6\n' > cylorifice.ini
+gf config cylorifice.ini
+expect_rc 2 "config: orifice_diameter in a cylinder"
+expect_err "cylorifice.ini:3: container.orifice_diameter = 6 does nothing in a cylinder" "config: orifice_diameter in a cylinder"
+expect_err "container.outlet_diameter = 8 (default)" "config: orifice_diameter in a cylinder"
+gf config cylinder.ini --set container.outlet_diameter=5
+expect_rc 0 "config: a cylinder's effective config with a new outlet"
+grep -qx 'orifice_diameter = 5' out || fail "a cylinder's orifice_diameter does not follow a new outlet_diameter"
+ok "container.orifice_diameter set in a cylinder exits 2 naming container.outlet_diameter"
+
 # --- --set errors -----------------------------------------------------------
 gf config --set spot.w=abc
 expect_rc 2 "config --set spot.w=abc"
@@ -166,6 +192,15 @@ gf help
 expect_rc 0 "granflow help"
 for word in run pack config bench; do
     grep -qw -- "$word" out || fail "granflow help does not mention '$word'"
+done
+# Every option a command takes is in its synopsis (and in the README's).
+for cmd in analyze calibrate compare; do
+    line=$(grep -E "^  $cmd " out)
+    readme=$(grep -E "^granflow $cmd " "$DATA/../../README.md")
+    for opt in --timestep --config --set; do
+        grep -qF -- "$opt" <<<"$line" || fail "granflow help: the $cmd synopsis lacks $opt"
+        grep -qF -- "$opt" <<<"$readme" || fail "README: the granflow $cmd synopsis lacks $opt"
+    done
 done
 ok "granflow help: exit 0, mentions run, pack, config, bench"
 

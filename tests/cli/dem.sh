@@ -91,5 +91,7 @@ gf calibrate cyl --no-refine -o cyl.ini
 expect_rc 0 "calibrate cyl --no-refine"
 grep -q '^note: the v_z(r) profile variance' out || fail "calibrate of a cylinder: no note naming v_z(r): $(cat out)"
 grep -q 'v_z(x)' out && fail "calibrate of a cylinder says v_z(x): $(grep 'v_z(x)' out)"
-ok "profiles named for the container: v_z(x) in a box, v_z(r) in a cylinder (compare table, summary.md, compare.gp, calibrate note)"
+grep -q 'cylinder of radius 5, outlet 8$' err || fail "calibrate of a cylinder: header does not name its radius and outlet: $(grep snapshots err)"
+grep -q 'orifice' err && fail "calibrate of a cylinder names an orifice: $(grep orifice err)"
+ok "profiles named for the container: v_z(x) in a box, v_z(r) in a cylinder (compare table, summary.md, compare.gp, calibrate note and header)"
 echo "cli $NAME: $PASS passed, 0 failed"

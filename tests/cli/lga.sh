@@ -88,6 +88,19 @@ printf '[lga]\nscenario = silo\nq = -1\n' > bad.ini
 gf lga bad.ini -o bad
 expect_rc 2 "lga bad.ini"
 expect_err "bad.ini:3" "lga bad.ini (q = -1)"
+# Lattice sizes the scenario cannot use name the key and where it was set.
+printf '[lga]\nscenario = pile\n\nwidth = 5\n' > small.ini
+gf lga small.ini -o bad
+expect_rc 2 "lga small.ini (a pile 5 columns wide)"
+expect_err "small.ini:4: lga.width = 5 is too small: the pile needs at least 8 columns" "lga small.ini"
+gf lga --set lga.scenario=channel --set lga.height=4 -o bad
+expect_rc 2 "lga channel of 4 rows"
+expect_err "--set: lga.height = 4 is too small: the channel needs at least 8 rows" "lga channel of 4 rows"
+gf lga --set lga.width=100000 --set lga.height=100000 -o bad
+expect_rc 2 "lga silo of 100000 x 100000"
+expect_err "--set: lga.width = 100000 and lga.height = 100000 make a lattice of" "lga silo of 100000 x 100000"
+expect_err "too large (at most 100000000 sites)" "lga silo of 100000 x 100000"
+[ ! -e bad ] || fail "a bad lattice size still created the output directory"
 ok "bad keys, values, scenarios and geometries exit 2 naming the key"
 
 gf lga -q --set lga.scenario=channel --set lga.width=8 --set lga.height=20 --set lga.iterations=5 -o pile

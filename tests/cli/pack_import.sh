@@ -147,8 +147,27 @@ awk '/^ITEM: ATOMS/ { a = 1; print; next } a && $1 == 42 { $3 = 9.5 } { print }'
 gf run -q "${TINY[@]}" --set packing.file=outside.dump -o run_outside
 expect_rc 2 "run with particle 42 at x = 9.5 (wall at 6)"
 expect_err "id 42" "run with particle 42 at x = 9.5"
+line42=$(awk '/^ITEM: ATOMS/ { a = 1; next } a && $1 == 42 { print NR; exit }' outside.dump)
+expect_err "outside.dump:$line42: particle id 42 at (9.5," "run with particle 42 at x = 9.5"
+expect_err "(packing.file, --set)" "run with particle 42 at x = 9.5"
 no_run_output run_outside "run with particle 42 at x = 9.5"
-ok "particle beyond the wall: exit 2 naming id 42"
+# The same in a CSV without an id column (id i is row i) set in a config file.
+awk '/^ITEM: ATOMS/ { a = 1; print "x,y,z"; next } a { print $3 "," $4 "," $5 }' outside.dump >outside.csv
+printf '[packing]\nfile = outside.csv\n' >outside.ini
+gf pack -q outside.ini "${TINY[@]}" -o never.dump
+expect_rc 2 "pack outside.ini (packing.file = outside.csv, row 42 at x = 9.5)"
+expect_err "outside.csv:43: particle id 42 at (9.5," "pack outside.ini (outside.csv)"
+expect_err "(packing.file, outside.ini:2)" "pack outside.ini (outside.csv)"
+[ ! -e never.dump ] || fail "pack outside.ini: wrote never.dump despite the error"
+ok "particle beyond the wall: exit 2 naming the packing file, the particle's line and id 42"
+
+# packing.types needs a dump's type column: the error says where it was set.
+printf '[packing]\nfile = outside.csv\n\ntypes = 1\n' >types_csv.ini
+gf pack -q types_csv.ini "${TINY[@]}" -o never.dump
+expect_rc 2 "pack types_csv.ini (packing.types with a CSV)"
+expect_err "types_csv.ini:4: packing.types = 1 needs a LAMMPS dump with a type column, not outside.csv" \
+    "pack types_csv.ini (packing.types with a CSV)"
+ok "packing.types with a CSV: exit 2 naming the file and line that set it"
 
 # A particle with |x| > 4.5 is not over the orifice (diameter 8); put it below the base.
 low=$(awk '/^ITEM: ATOMS/ { a = 1; next } a && ($3 > 4.5 || $3 < -4.5) { print $1; exit }' x.dump)
