@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "config/keys.h"
+#include "config/orifice.h"
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -277,6 +278,7 @@ gf_status gf_config_validate(gf_config *cfg)
             GF_ERR_PARAM, "container.orifice_diameter = %s must be less than container.width = %s",
             a, b);
     }
+    if ((st = gf_config_check_orifice(cfg)) != GF_OK) return st;
     double room = fmin(cfg->container_width, cfg->container_depth);
     if (!(2.0 * cfg->spot_wall_distance < room)) {
         gf_keys_format_double(cfg->spot_wall_distance, a, sizeof a);
