@@ -44,13 +44,13 @@ static double gf_cal_volume(const gf_config *cfg, double z0, double z1)
 }
 
 /// Top of the packing in a frame: the mean of its 20 highest centres with
-/// |x| < xhalf (the centre of a draining silo is lower than its sides).
-static double gf_cal_top(const gf_packing *p, double xhalf)
+/// |x - xc| < xhalf (above the orifice at x = xc a draining silo is lower than at its sides).
+static double gf_cal_top(const gf_packing *p, double xc, double xhalf)
 {
     double top[20];
     size_t m = 0;
     for (size_t i = 0; i < p->n; i++) {
-        if (fabs(p->x[i]) >= xhalf) continue;
+        if (fabs(p->x[i] - xc) >= xhalf) continue;
         double z = p->z[i];
         if (m < 20) {
             top[m++] = z;
@@ -77,11 +77,11 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
     double W = gf_cal_width(&s->cfg);
-    // h1: the lowest the surface gets in the window, in the centre (a
-    // crater forms above the orifice), so that no region leaves the packing.
-    double h0 = gf_cal_top(&s->frames[0].pk, INFINITY);
+    // h1: the lowest the surface gets in the window, above the orifice (a
+    // crater forms there), so that no region leaves the packing.
+    double h0 = gf_cal_top(&s->frames[0].pk, 0.0, INFINITY), xo = s->cfg.orifice_x;
     const gf_packing *last = &s->frames[k1 > 0 ? k1 - 1 : 0].pk;
-    double h1 = fmin(gf_cal_top(last, INFINITY), gf_cal_top(last, fmax(2.0, 0.25 * W)));
+    double h1 = fmin(gf_cal_top(last, 0.0, INFINITY), gf_cal_top(last, xo, fmax(2.0, 0.25 * W)));
     // The papers' regions belong to a fill of 110 d: scaled to this one, and
     // kept below the surface at the end of the window.
     if (k.vel_nheights == d.vel_nheights && !memcmp(k.vel_heights, d.vel_heights, sizeof d.vel_heights)) {
