@@ -7,6 +7,8 @@
 #include "support.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "geom/container.h"
@@ -168,11 +170,59 @@ static void orifice_outside_the_base_is_rejected(void **state)
     rejected(f, "container.orifice_y = -3");
 }
 
+// `granflow dem`'s LAMMPS input: the hole in the base wall is a cylinder
+// about the orifice centre, and every frozen rim bead lies on its edge.
+static void dem_input_cuts_the_hole_there(void **state)
+{
+    (void)state;
+    gf_config c = off_centre();
+    c.orifice_y = 1;
+    c.packing_particles = 300;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    char dir[900], path[1000];
+    snprintf(dir, sizeof dir, "%s/dem", gf_test_tmpdir());
+    gf_dem_plan plan;
+    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    snprintf(path, sizeof path, "%s/in.drain", dir);
+    char *text = gf_test_read_file(path, NULL);
+    assert_non_null(text);
+    if (!strstr(text, "region hole cylinder z 7 1 2.5 ")) fail_msg("in.drain lacks the hole at (7, 1):\n%s", text);
+    assert_non_null(strstr(text, "orifice of 5 d at x = 7, y = 1 on the base"));
+    free(text);
+    snprintf(path, sizeof path, "%s/in.fill", dir);
+    text = gf_test_read_file(path, NULL);
+    assert_non_null(text);
+    size_t beads = 0;
+    for (const char *p = strstr(text, "create_atoms 2 single "); p; p = strstr(p + 1, "create_atoms 2 single ")) {
+        double x, y;
+        assert_int_equal(sscanf(p, "create_atoms 2 single %lf %lf", &x, &y), 2);
+        gf_assert_near(hypot(x - 7, y - 1), 2.5, 1e-5);
+        beads++;
+    }
+    assert_int_equal(beads, plan.rim_beads);
+    assert_true(beads > 100);
+    free(text);
+    // A slit at x = -5 of width 4: the hole is the block -7 < x < -3.
+    gf_config s = off_centre();
+    s.orifice_shape = GF_ORIFICE_SLIT;
+    s.orifice_diameter = 4;
+    s.orifice_x = -5;
+    s.packing_particles = 300;
+    assert_int_equal(gf_config_validate(&s), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&s, dir, &plan), GF_OK);
+    snprintf(path, sizeof path, "%s/in.drain", dir);
+    text = gf_test_read_file(path, NULL);
+    assert_non_null(text);
+    assert_non_null(strstr(text, "region hole block -7 -3 INF INF "));
+    free(text);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(rim_and_exit_follow_the_centre),
     cmocka_unit_test(spots_are_born_over_it),
     cmocka_unit_test(off_centre_circle_drains_through_it),
     cmocka_unit_test(orifice_outside_the_base_is_rejected),
+    cmocka_unit_test(dem_input_cuts_the_hole_there),
 };
 
 GF_TEST_MAIN("orifice", tests)
