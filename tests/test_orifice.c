@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "geom/container.h"
+#include "geom/mesh.h"
 #include "granflow/granflow.h"
 #include "spot/sim_internal.h"
 
@@ -217,12 +218,45 @@ static void dem_input_cuts_the_hole_there(void **state)
     free(text);
 }
 
+// The container mesh (container.vtk): the base plate at z = 0 has the area
+// of the base less the hole's, and every plate vertex lies outside the hole
+// around (7, 1) (on its rim at most), none inside the disc where a centred
+// orifice would be cut.
+static void mesh_cuts_the_hole_there(void **state)
+{
+    (void)state;
+    gf_config cfg = off_centre();
+    cfg.orifice_y = 1;
+    assert_int_equal(gf_config_validate(&cfg), GF_OK);
+    gf_container c = gf_container_make(&cfg);
+    gf_mesh m;
+    assert_int_equal(gf_container_mesh(&c, 10.0, 256, &m), GF_OK);
+    double area = 0;
+    bool touches_rim = false;
+    for (size_t k = 0; k < m.nt; k++) {
+        const double *a = m.v[m.t[k][0]], *b = m.v[m.t[k][1]], *d = m.v[m.t[k][2]];
+        if (a[2] != 0.0 || b[2] != 0.0 || d[2] != 0.0) continue; // a side wall
+        area += 0.5 * fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+        for (int j = 0; j < 3; j++) {
+            const double *v = m.v[m.t[k][j]];
+            double r = hypot(v[0] - 7, v[1] - 1);
+            assert_true(r >= 2.5 - 1e-9);
+            touches_rim |= r < 2.5 + 1e-9;
+        }
+    }
+    assert_true(touches_rim);
+    // The hole is a polygon of ~256 sides inscribed in the circle: pi R^2 less ~1e-4 of it.
+    gf_assert_near(area, 24.0 * 8.0 - 3.14159265358979323846 * 2.5 * 2.5, 0.01);
+    gf_mesh_free(&m);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(rim_and_exit_follow_the_centre),
     cmocka_unit_test(spots_are_born_over_it),
     cmocka_unit_test(off_centre_circle_drains_through_it),
     cmocka_unit_test(orifice_outside_the_base_is_rejected),
     cmocka_unit_test(dem_input_cuts_the_hole_there),
+    cmocka_unit_test(mesh_cuts_the_hole_there),
 };
 
 GF_TEST_MAIN("orifice", tests)
