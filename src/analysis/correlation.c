@@ -85,7 +85,7 @@ static void gf_corr_set_free(gf_corr_set *c)
 }
 
 /// Collects every frame pair of [k0, k1): the particles in the region
-/// |x| < size/2, |z - zc| < size/2 (all y) with their velocity and the binned
+/// |x - orifice_x| < size/2, |z - zc| < size/2 (all y) with their velocity and the binned
 /// mean field at their position (in a cylinder the (r, z) field's
 /// (v_r, v_theta, v_z) turned to the particle's azimuth).
 static gf_status gf_corr_collect(const gf_series *s, size_t k0, size_t k1, const gf_vfield *f,

@@ -216,14 +216,16 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
                                          "title 'measured'");
         if (st == GF_OK) st = gf_measure_gnuplot(out, "\n");
     }
-    // v_z(y) across the depth.
+    // v_z(y) across the depth, above the orifice (|x - orifice_x| < y_xhalf).
+    char xs[48] = "|x|";
+    if (cfg->orifice_x != 0.0) snprintf(xs, sizeof xs, "|x - %g|", cfg->orifice_x);
     if (st == GF_OK && td->nrow == 0) st = gf_vel_nodata(out, "v_z(y)");
     else if (st == GF_OK)
         st = gf_measure_gnuplot(out,
-                                "set title 'v_z(y), |x| < %g, %g < z < %g'\n"
+                                "set title 'v_z(y), %s < %g, %g < z < %g'\n"
                                 "set xlabel 'y (d)'\nset ylabel 'v_z (d/tau)'\nunset key\n"
                                 "plot 'velocity_depth.csv' skip 1 using 1:2 with linespoints pt 7 ps 0.5\n",
-                                o->vely_xhalf, o->vely_z0, o->vely_z1);
+                                xs, o->vely_xhalf, o->vely_z0, o->vely_z1);
     // The mean field, coloured by v_z.
     if (st == GF_OK && tf->nrow == 0) st = gf_vel_nodata(out, "mean v_z(x, z)");
     else if (st == GF_OK)

@@ -95,7 +95,7 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     // Never below the base (nor in the orifice's jet) nor above the surface.
     if (k.corr_zc == d.corr_zc)
         o->corr_zc = fmax(0.5 * o->corr_size + 2.0, fmin(0.55 * h0, h1 - 0.5 * o->corr_size - 4.0));
-    // Diffusion: particles starting in the centre (|x| < 5, or W/4), from the
+    // Diffusion: particles starting above the orifice (|x - orifice_x| < 5, or W/4), from the
     // slice's bottom up (the papers: z > 60 of 110), followed as they drop.
     if (k.diff_xhalf == d.diff_xhalf) o->diff_xhalf = fmin(5.0, 0.25 * W);
     if (k.dens_z0 == d.dens_z0) o->dens_z0 = fmax(2.0, fmin(0.45 * h0, h1 - 6.0));
