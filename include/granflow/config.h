@@ -17,8 +17,8 @@ extern "C" {
 
 /// Shape of the hole in the base.
 typedef enum gf_orifice_shape {
-    GF_ORIFICE_CIRCLE = 0, ///< disc of diameter orifice_diameter centred at (0, 0)
-    GF_ORIFICE_SLIT = 1,   ///< |x| < orifice_diameter/2, all y
+    GF_ORIFICE_CIRCLE = 0, ///< disc of diameter orifice_diameter centred at (orifice_x, orifice_y)
+    GF_ORIFICE_SLIT = 1,   ///< |x - orifice_x| < orifice_diameter/2, all y
 } gf_orifice_shape;
 
 /// The container's shape (docs/geometry.md).
@@ -108,6 +108,8 @@ typedef struct gf_config {
     double container_depth;            ///< depth (y), d; default 8
     gf_orifice_shape orifice_shape;    ///< circle (default) or slit
     double orifice_diameter;           ///< diameter (circle) or full width (slit), d; default 8
+    double orifice_x;                  ///< x of the orifice centre (circle) or mid-line (slit), d; default 0
+    double orifice_y;                  ///< y of the orifice centre (circle only), d; default 0
     double exit_z;                     ///< particles whose centre falls below this leave, d; default 0
     gf_container_shape container_shape; ///< box (default) or cylinder
     double container_radius;           ///< cylinder: radius of the wall, d; default 12.5

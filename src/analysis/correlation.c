@@ -85,7 +85,7 @@ static void gf_corr_set_free(gf_corr_set *c)
 }
 
 /// Collects every frame pair of [k0, k1): the particles in the region
-/// |x| < size/2, |z - zc| < size/2 (all y) with their velocity and the binned
+/// |x - orifice_x| < size/2, |z - zc| < size/2 (all y) with their velocity and the binned
 /// mean field at their position (in a cylinder the (r, z) field's
 /// (v_r, v_theta, v_z) turned to the particle's azimuth).
 static gf_status gf_corr_collect(const gf_series *s, size_t k0, size_t k1, const gf_vfield *f,
@@ -96,7 +96,7 @@ static gf_status gf_corr_collect(const gf_series *s, size_t k0, size_t k1, const
     if (!c->off) return gf_error_set(GF_ERR_NOMEM, "correlation: out of memory");
     gf_steps st = {0};
     gf_status rc = GF_OK;
-    double half = 0.5 * o->corr_size;
+    double half = 0.5 * o->corr_size, ox = s->cfg.orifice_x; // the region: above the orifice
     for (size_t k = 0; rc == GF_OK && k < c->npair; k++) {
         c->off[k] = c->n;
         rc = gf_steps_between(&s->frames[k0 + k], &s->frames[k0 + k + 1], &st);
@@ -112,7 +112,7 @@ static gf_status gf_corr_collect(const gf_series *s, size_t k0, size_t k1, const
             c->cap = cap;
         }
         for (size_t j = 0; j < st.n; j++) {
-            if (!(fabs(st.x[j]) < half && fabs(st.z[j] - o->corr_zc) < half)) continue;
+            if (!(fabs(st.x[j] - ox) < half && fabs(st.z[j] - o->corr_zc) < half)) continue;
             gf_corr_pt *q = &c->p[c->n];
             if (gf_vfield_mean(f, st.x[j], st.y[j], st.z[j], q->mean) == 0.0) continue; // cannot happen: it is in the field
             q->x = st.x[j];

@@ -51,6 +51,7 @@ static bool gf_diff_project(double *r, double *c, size_t n)
 /// Variance of dx about the mean flow: the residual of dx regressed on
 /// 1, x0 and x0 (z0 - mean z0), divided by n - (parameters). The mean flow
 /// converges towards the orifice, so dx has a drift ~ -x0 dz b_s / Var(z)
+/// (x0 measured from the orifice's x, container.orifice_x)
 /// (kinematic model) that varies with the start position; high in the centre
 /// (|x0| < 5, dz = 20) its spread is ~10x the diffusive Var(dx) = 2 b_p dz, so
 /// it is removed as the part of dx linear in x0, with a slope varying with z0.
@@ -89,14 +90,15 @@ static double gf_diff_resid_var(double *dx, double *c1, double *c2, size_t n)
     return ss / (double)(n - p);
 }
 
-/// Selects the particles of frame `f` with |x| < xhalf (r < xhalf in a
-/// cylinder) and z > z0.
-static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bool radial, gf_diff_work *w)
+/// Selects the particles of frame `f` with |x - ox| < xhalf, above the
+/// orifice at x = ox (r < xhalf in a cylinder), and z > z0.
+static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bool radial, double ox,
+                                gf_diff_work *w)
 {
     const gf_packing *pk = &f->pk;
     gf_status st = GF_OK;
     for (size_t i = 0; st == GF_OK && i < pk->n; i++)
-        if ((radial ? hypot(pk->x[i], pk->y[i]) : fabs(pk->x[i])) < o->diff_xhalf && pk->z[i] > o->diff_z0)
+        if ((radial ? hypot(pk->x[i], pk->y[i]) : fabs(pk->x[i] - ox)) < o->diff_xhalf && pk->z[i] > o->diff_z0)
             st = gf_packing_push(&w->start, pk->id[i], pk->layer ? pk->layer[i] : 0, pk->x[i], pk->y[i], pk->z[i],
                                  pk->r ? pk->r[i] : 0.5);
     if (st == GF_OK) st = gf_idmap_build(&w->start, &w->map);
@@ -122,7 +124,7 @@ static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bo
 /// compression by the converging flow. (dx itself would keep the radial
 /// convergence, a drift ~ r0 that varies with the azimuth: b_p ~4x.) The raw
 /// column is then the same dt.
-static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, bool radial, double row[5])
+static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, bool radial, double ox, double row[5])
 {
     const gf_packing *pk = &f->pk, *s0 = &w->start;
     double zbar = 0.0;
@@ -135,8 +137,8 @@ static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, bool radial, doubl
         if (i == SIZE_MAX) continue;
         w->dx[n] = pk->x[j] - s0->x[i];
         w->dz[n] = pk->z[j] - s0->z[i];
-        w->c1[n] = s0->x[i];
-        w->c2[n] = s0->x[i] * (s0->z[i] - zbar);
+        w->c1[n] = s0->x[i] - ox; // the drift grows with the distance from the orifice's x
+        w->c2[n] = (s0->x[i] - ox) * (s0->z[i] - zbar);
         if (radial) {
             double r0 = hypot(s0->x[i], s0->y[i]), dy = pk->y[j] - s0->y[i];
             w->dx[n] = r0 > 0.0 ? (s0->x[i] * dy - s0->y[i] * w->dx[n]) / r0 : dy;
@@ -169,7 +171,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     // and before the window the flow is still spreading up from the orifice.
     bool radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
     gf_diff_work w = {0};
-    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, radial, &w) : GF_OK;
+    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, radial, s->cfg.orifice_x, &w) : GF_OK;
     gf_table *t = &out->tables[out->ntables];
     if (st == GF_OK && (st = gf_table_init(t, "diffusion", "time_tau,mean_dz_d,var_dx_d2,particles,var_dx_raw_d2")) == GF_OK)
         out->ntables++;
@@ -179,7 +181,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     for (size_t k = k0 + 1; st == GF_OK && w.start.n && k < k1; k++) {
         if ((st = gf_stop_check(o->stop, "diffusion")) != GF_OK) break;
         double row[5];
-        if (!gf_diff_frame(&s->frames[k], &w, radial, row)) continue;
+        if (!gf_diff_frame(&s->frames[k], &w, radial, s->cfg.orifice_x, row)) continue;
         st = gf_table_add(t, row);
         smv += row[1] * row[2];
         smm += row[1] * row[1];

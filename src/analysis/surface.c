@@ -2,8 +2,8 @@
 // Free-surface angle per frame by the 2009 paper's regression (Sec. 3, Fig. 7).
 //
 // Columns x_j = dx j - dx/2, j = 1..ncols (the paper: 2.5 j - 1.25, j = 1..10);
-// z_j = the highest particle centre with ||x| - x_j| < dx/2 (columns with no
-// particle are skipped); the slope of the least-squares line through the
+// z_j = the highest particle centre with ||x - orifice_x| - x_j| < dx/2
+// (columns with no particle are skipped); the slope of the least-squares line through the
 // (x_j, z_j) gives the angle atan(slope) in degrees. Sign: a draining silo's
 // surface dips towards the centre and rises towards the walls, so its angle is
 // positive (as in the paper's Fig. 7); a heap peaked at the centre is negative.
@@ -17,14 +17,14 @@
 static const double gf_deg_per_rad = 57.295779513082320876798154814105;
 
 /// The regression slope of one packing's surface, NaN with fewer than 2 columns.
-static double gf_surface_slope(const gf_packing *p, double dx, size_t ncols, double *zmax, double *xj)
+static double gf_surface_slope(const gf_packing *p, double ox, double dx, size_t ncols, double *zmax, double *xj)
 {
     for (size_t j = 0; j < ncols; j++) {
         zmax[j] = -INFINITY;
         xj[j] = dx * (double)(j + 1) - 0.5 * dx;
     }
     for (size_t i = 0; i < p->n; i++) {
-        double ax = fabs(p->x[i]);
+        double ax = fabs(p->x[i] - ox); // distance from the orifice's x
         // The column is ||x| - x_j| < dx/2, i.e. (j-1) dx < |x| < j dx (open at both ends).
         double u = ax / dx;
         double fl = floor(u);
@@ -62,7 +62,7 @@ gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *o, gf_m
     size_t nwin = 0;
     for (size_t k = 0; st == GF_OK && k < s->nframes; k++) {
         if ((st = gf_stop_check(o->stop, "surface")) != GF_OK) break;
-        double slope = gf_surface_slope(&s->frames[k].pk, o->surf_dx, o->surf_ncols, zmax, xj);
+        double slope = gf_surface_slope(&s->frames[k].pk, s->cfg.orifice_x, o->surf_dx, o->surf_ncols, zmax, xj);
         double row[3] = {s->frames[k].time, slope, atan(slope) * gf_deg_per_rad};
         st = gf_table_add(tb, row);
         if (row[0] >= t0 && row[0] <= t1 && !isnan(row[2])) {

@@ -25,6 +25,7 @@ typedef struct gf_vel_acc {
     gf_vfield field;
     size_t nh;      ///< heights
     bool radial;    ///< cylinder: profiles in r = sqrt(x^2 + y^2), not x
+    double ox;      ///< x of the orifice (container.orifice_x): the v_z(y) region is |x - ox| < y_xhalf
     bool mirror;    ///< radial, no central column: fit with the points mirrored to -r
     size_t np;      ///< profile bins: field.nx, or radial bins of field.bin from the axis
     double *prof;   ///< nh x np x 2: sum vz, samples
@@ -54,7 +55,7 @@ static void gf_vel_acc_add(gf_vel_acc *a, const gf_steps *st, const gf_analysis_
                     b[0] += st->vz[j];
                     b[1] += 1.0;
                 }
-        if (a->ny && fabs(x) < o->vely_xhalf && z > o->vely_z0 && z < o->vely_z1) {
+        if (a->ny && fabs(x - a->ox) < o->vely_xhalf && z > o->vely_z0 && z < o->vely_z1) {
             double iy = floor((st->y[j] - a->y0) / GF_VELY_BIN);
             if (iy >= 0.0 && iy < (double)a->ny) {
                 a->depth[2 * (size_t)iy] += st->vz[j];
@@ -216,14 +217,16 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
                                          "title 'measured'");
         if (st == GF_OK) st = gf_measure_gnuplot(out, "\n");
     }
-    // v_z(y) across the depth.
+    // v_z(y) across the depth, above the orifice (|x - orifice_x| < y_xhalf).
+    char xs[48] = "|x|";
+    if (cfg->orifice_x != 0.0) snprintf(xs, sizeof xs, "|x - %g|", cfg->orifice_x);
     if (st == GF_OK && td->nrow == 0) st = gf_vel_nodata(out, "v_z(y)");
     else if (st == GF_OK)
         st = gf_measure_gnuplot(out,
-                                "set title 'v_z(y), |x| < %g, %g < z < %g'\n"
+                                "set title 'v_z(y), %s < %g, %g < z < %g'\n"
                                 "set xlabel 'y (d)'\nset ylabel 'v_z (d/tau)'\nunset key\n"
                                 "plot 'velocity_depth.csv' skip 1 using 1:2 with linespoints pt 7 ps 0.5\n",
-                                o->vely_xhalf, o->vely_z0, o->vely_z1);
+                                xs, o->vely_xhalf, o->vely_z0, o->vely_z1);
     // The mean field, coloured by v_z.
     if (st == GF_OK && tf->nrow == 0) st = gf_vel_nodata(out, "mean v_z(x, z)");
     else if (st == GF_OK)
@@ -257,6 +260,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin, false);
     a.nh = o->vel_nheights;
     a.np = a.field.nx;
+    a.ox = s->cfg.orifice_x;
     if (gf_velocity_radial(&s->cfg)) {
         a.radial = true; // bins of r out to the wall
         a.mirror = !(s->cfg.inner_radius > 0.0);

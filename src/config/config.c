@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "config/keys.h"
+#include "config/orifice.h"
 #include "config/where.h"
 #include "core/alloc.h"
 #include "core/atomic_file.h"
@@ -294,6 +295,7 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.width");
         return gf_error_set(GF_ERR_PARAM, "%s%s must be less than %s", m.lead, m.key[0], m.key[1]);
     }
+    if ((st = gf_config_check_orifice(cfg)) != GF_OK) return st;
     double room = fmin(cfg->container_width, cfg->container_depth);
     if (!(2.0 * cfg->spot_wall_distance < room)) {
         const char *wall = cfg->container_shape == GF_SHAPE_CYLINDER ? "container.radius"

@@ -45,13 +45,13 @@ static double gf_cal_volume(const gf_config *cfg, double z0, double z1)
 }
 
 /// Top of the packing in a frame: the mean of its 20 highest centres with
-/// |x| < xhalf (the centre of a draining silo is lower than its sides).
-static double gf_cal_top(const gf_packing *p, double xhalf)
+/// |x - xc| < xhalf (above the orifice at x = xc a draining silo is lower than at its sides).
+static double gf_cal_top(const gf_packing *p, double xc, double xhalf)
 {
     double top[20];
     size_t m = 0;
     for (size_t i = 0; i < p->n; i++) {
-        if (fabs(p->x[i]) >= xhalf) continue;
+        if (fabs(p->x[i] - xc) >= xhalf) continue;
         double z = p->z[i];
         if (m < 20) {
             top[m++] = z;
@@ -78,11 +78,11 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
     double W = gf_cal_width(&s->cfg);
-    // h1: the lowest the surface gets in the window, in the centre (a
-    // crater forms above the orifice), so that no region leaves the packing.
-    double h0 = gf_cal_top(&s->frames[0].pk, INFINITY);
+    // h1: the lowest the surface gets in the window, above the orifice (a
+    // crater forms there), so that no region leaves the packing.
+    double h0 = gf_cal_top(&s->frames[0].pk, 0.0, INFINITY), xo = s->cfg.orifice_x;
     const gf_packing *last = &s->frames[k1 > 0 ? k1 - 1 : 0].pk;
-    double h1 = fmin(gf_cal_top(last, INFINITY), gf_cal_top(last, fmax(2.0, 0.25 * W)));
+    double h1 = fmin(gf_cal_top(last, 0.0, INFINITY), gf_cal_top(last, xo, fmax(2.0, 0.25 * W)));
     // The papers' regions belong to a fill of 110 d: scaled to this one, and
     // kept below the surface at the end of the window.
     if (k.vel_nheights == d.vel_nheights && !memcmp(k.vel_heights, d.vel_heights, sizeof d.vel_heights)) {
@@ -96,7 +96,7 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     // Never below the base (nor in the orifice's jet) nor above the surface.
     if (k.corr_zc == d.corr_zc)
         o->corr_zc = fmax(0.5 * o->corr_size + 2.0, fmin(0.55 * h0, h1 - 0.5 * o->corr_size - 4.0));
-    // Diffusion: particles starting in the centre (|x| < 5, or W/4), from the
+    // Diffusion: particles starting above the orifice (|x - orifice_x| < 5, or W/4), from the
     // slice's bottom up (the papers: z > 60 of 110), followed as they drop.
     if (k.diff_xhalf == d.diff_xhalf) o->diff_xhalf = fmin(5.0, 0.25 * W);
     if (k.dens_z0 == d.dens_z0) o->dens_z0 = fmax(2.0, fmin(0.45 * h0, h1 - 6.0));

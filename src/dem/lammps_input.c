@@ -55,14 +55,17 @@ static int64_t gf_dem_steps(const gf_config *c, double t)
 /// The common head: units, atom style, communication, neighbour lists.
 static void gf_dem_head(FILE *f, const gf_config *c, const char *what)
 {
+    char at[96] = "the centre of";
+    if (c->orifice_x != 0.0 || c->orifice_y != 0.0) // container.orifice_x, orifice_y
+        snprintf(at, sizeof at, "x = %g, y = %g on", c->orifice_x, c->orifice_y);
     fprintf(f,
             "# granflow %s: %s\n"
-            "# container %s%g x %g d, %s orifice of %g d at the centre of the base z = 0.\n"
+            "# container %s%g x %g d, %s orifice of %g d at %s the base z = 0.\n"
             "# Units lj: d = 1, particle mass 1, g = 1, so times are in tau = sqrt(d/g).\n"
             "# Written by `granflow dem`; see docs/dem.md.\n\n",
             gf_version(), what, c->container_shape == GF_SHAPE_CYLINDER ? "cylinder (bounding box) " : "",
             c->container_width, c->container_depth,
-            c->orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", c->orifice_diameter);
+            c->orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", c->orifice_diameter, at);
 }
 
 /// A cylinder's walls as one region, prefix_vessel (docs/geometry.md): the
@@ -138,10 +141,12 @@ static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double 
             (long long)gf_dem_steps(c, 0.1));
 }
 
-/// The frozen beads along the orifice edge at z = 0 (only inside the walls).
+/// The frozen beads along the orifice edge at z = 0 (only inside the walls),
+/// around the orifice centre (container.orifice_x, orifice_y).
 static size_t gf_dem_beads(FILE *f, const gf_config *c)
 {
     double R = 0.5 * c->orifice_diameter, hw = 0.5 * c->container_width, hd = 0.5 * c->container_depth;
+    const double ox = c->orifice_x, oy = c->orifice_y;
     size_t n = 0;
     if (c->orifice_shape == GF_ORIFICE_SLIT) {
         long m = (long)floor(c->container_depth / GF_DEM_BEAD_STEP);
@@ -149,14 +154,14 @@ static size_t gf_dem_beads(FILE *f, const gf_config *c)
             for (long k = 0; k <= m; k++) {
                 double y = -hd + GF_DEM_BEAD_STEP * (double)k;
                 if (fabs(y) > hd) continue;
-                if (f) fprintf(f, "create_atoms %d single %.6f %.6f 0 units box\n", GF_DEM_TYPE_RIM, side * R, y);
+                if (f) fprintf(f, "create_atoms %d single %.6f %.6f 0 units box\n", GF_DEM_TYPE_RIM, ox + side * R, y);
                 n++;
             }
         return n;
     }
     long m = (long)ceil(2.0 * GF_DEM_PI * R / GF_DEM_BEAD_STEP);
     for (long k = 0; k < m; k++) {
-        double a = 2.0 * GF_DEM_PI * (double)k / (double)m, x = R * cos(a), y = R * sin(a);
+        double a = 2.0 * GF_DEM_PI * (double)k / (double)m, x = ox + R * cos(a), y = oy + R * sin(a);
         if (fabs(x) > hw || fabs(y) > hd) continue;
         if (f) fprintf(f, "create_atoms %d single %.6f %.6f 0 units box\n", GF_DEM_TYPE_RIM, x, y);
         n++;
@@ -333,10 +338,11 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
     if (!cyl) {
         fprintf(f, "# the base with its hole: the surface of (z > 0) united with the hole below it\n"
                    "region above block INF INF INF INF 0 INF units box\n");
+        const double ox = c->orifice_x, oy = c->orifice_y; // the orifice centre
         if (c->orifice_shape == GF_ORIFICE_SLIT)
-            fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", -R, R, plan.box_zlo);
+            fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", ox - R, ox + R, plan.box_zlo);
         else
-            fprintf(f, "region hole cylinder z 0 0 %.10g %.10g 1 units box\n", R, plan.box_zlo);
+            fprintf(f, "region hole cylinder z %.10g %.10g %.10g %.10g 1 units box\n", ox, oy, R, plan.box_zlo);
         fprintf(f, "region vessel union 2 above hole\n"
                    "fix base flow wall/gran/region hertz/history %s region vessel\n",
                 law);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The box (SPEC 1.1; 2009 paper Sec. 2: walls x = +-25, y = +-4, base z = 0
-// with a circular or slit orifice).
+// with a circular or slit orifice, centred at container.orifice_x, orifice_y).
 #include "geom/container.h"
 
 static int gf_box_walls(const gf_container *c, const double p[3], double reach, gf_wall_hit *hit)
@@ -16,16 +16,16 @@ static int gf_box_walls(const gf_container *c, const double p[3], double reach, 
         return n;
     }
     // Over the hole: the nearest plate point is on the rim (a circle or the two slit edges).
-    double ex, ey;
+    double ex, ey, qx = p[0] - c->ox, qy = p[1] - c->oy; // q: from the outlet centre
     if (c->shape == GF_ORIFICE_SLIT) {
-        ex = p[0] >= 0 ? p[0] - c->hole : p[0] + c->hole;
+        ex = qx >= 0 ? qx - c->hole : qx + c->hole;
         ey = 0.0;
     } else {
-        double rho = sqrt(p[0] * p[0] + p[1] * p[1]);
+        double rho = sqrt(qx * qx + qy * qy);
         if (rho <= 0.0) return n;
         double s = (rho - c->hole) / rho;
-        ex = p[0] * s;
-        ey = p[1] * s;
+        ex = qx * s;
+        ey = qy * s;
     }
     double dist = sqrt(ex * ex + ey * ey + p[2] * p[2]);
     if (dist < reach && dist > 0.0) hit[n++] = (gf_wall_hit){dist, {ex / dist, ey / dist, p[2] / dist}, false};
@@ -47,15 +47,16 @@ static void gf_box_push(const gf_container *c, double x, double y, double z, dou
     }
     // Over the hole: the nearest plate point is on the rim (a circle or the two slit edges).
     double ex, ey; // horizontal vector from the rim point to the centre
+    double qx = x - c->ox, qy = y - c->oy; // from the outlet centre
     if (c->shape == GF_ORIFICE_SLIT) {
-        ex = x >= 0 ? x - c->hole : x + c->hole;
+        ex = qx >= 0 ? qx - c->hole : qx + c->hole;
         ey = 0.0;
     } else {
-        double rho = sqrt(x * x + y * y);
+        double rho = sqrt(qx * qx + qy * qy);
         if (rho <= 0.0) return; // the rim is a full hole radius away
         double s = (rho - c->hole) / rho;
-        ex = x * s;
-        ey = y * s;
+        ex = qx * s;
+        ey = qy * s;
     }
     double dist = sqrt(ex * ex + ey * ey + z * z);
     if (dist >= r || dist <= 0.0) return;

@@ -15,6 +15,8 @@ gf_container gf_container_make(const gf_config *cfg)
         .yhi = 0.5 * cfg->container_depth,
         .shape = cfg->orifice_shape,
         .hole = 0.5 * cfg->orifice_diameter,
+        .ox = cfg->orifice_x,
+        .oy = cfg->orifice_y,
         .exit_z = gf_config_exit_plane(cfg),
     };
     if (cfg->container_shape == GF_SHAPE_CYLINDER) {
@@ -24,6 +26,7 @@ gf_container gf_container_make(const gf_config *cfg)
         c.xhi = c.yhi = R;
         c.shape = GF_ORIFICE_CIRCLE;
         c.hole = ro;
+        c.ox = c.oy = 0.0; // on the axis (validation rejects an off-centre outlet)
         c.radius = R;
         c.r_out = ro;
         c.r_in = cfg->inner_radius;

@@ -58,6 +58,7 @@ struct gf_container {
     double xlo, xhi, ylo, yhi; ///< side walls (box) or bounding box (cylinder)
     gf_orifice_shape shape;    ///< the outlet: circle or slit (a cylinder's is a circle)
     double hole;               ///< outlet radius (circle) or half-width (slit)
+    double ox, oy;             ///< outlet centre (circle) or mid-line x = ox (slit); 0 for a cylinder
     double exit_z;             ///< exit plane: a centre below this (over the outlet) has left
     // Cylinder (cylinder.c): wall radius, outlet radius, column radius, funnel.
     double radius, r_out, r_in;
@@ -76,8 +77,9 @@ gf_container gf_container_make(const gf_config *cfg);
 /// True when (x, y) lies over the outlet (the hole in the base).
 static inline bool gf_container_over_hole(const gf_container *c, double x, double y)
 {
-    if (c->shape == GF_ORIFICE_SLIT) return fabs(x) < c->hole;
-    return x * x + y * y < c->hole * c->hole;
+    double dx = x - c->ox, dy = y - c->oy;
+    if (c->shape == GF_ORIFICE_SLIT) return fabs(dx) < c->hole;
+    return dx * dx + dy * dy < c->hole * c->hole;
 }
 
 /// True when a centre at (x, y, z) has left through the outlet.

@@ -54,12 +54,12 @@ static bool gf_mesh_quad(gf_mesh *m, const double a[3], const double b[3], const
 static void gf_mesh_rect_point(const gf_container *c, double th, double out[3])
 {
     double cx = cos(th), sy = sin(th), t = INFINITY;
-    if (cx > 0) t = fmin(t, c->xhi / cx);
-    if (cx < 0) t = fmin(t, c->xlo / cx);
-    if (sy > 0) t = fmin(t, c->yhi / sy);
-    if (sy < 0) t = fmin(t, c->ylo / sy);
-    out[0] = t * cx;
-    out[1] = t * sy;
+    if (cx > 0) t = fmin(t, (c->xhi - c->ox) / cx);
+    if (cx < 0) t = fmin(t, (c->xlo - c->ox) / cx);
+    if (sy > 0) t = fmin(t, (c->yhi - c->oy) / sy);
+    if (sy < 0) t = fmin(t, (c->ylo - c->oy) / sy);
+    out[0] = c->ox + t * cx;
+    out[1] = c->oy + t * sy;
     out[2] = 0.0;
 }
 
@@ -110,19 +110,21 @@ gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_
         double a[3] = {p[0], p[1], 0.0}, b[3] = {q[0], q[1], 0.0}, cc[3] = {q[0], q[1], top}, d[3] = {p[0], p[1], top};
         ok = gf_mesh_quad(m, a, b, cc, d);
     }
-    if (c->shape == GF_ORIFICE_SLIT) { // two plates |x| > hole
-        double a[3] = {X0, Y0, 0}, b[3] = {-c->hole, Y0, 0}, cc[3] = {-c->hole, Y1, 0}, d[3] = {X0, Y1, 0};
-        double e[3] = {c->hole, Y0, 0}, f[3] = {X1, Y0, 0}, g[3] = {X1, Y1, 0}, h[3] = {c->hole, Y1, 0};
+    if (c->shape == GF_ORIFICE_SLIT) { // two plates |x - ox| > hole
+        const double L = c->ox - c->hole, R = c->ox + c->hole;
+        double a[3] = {X0, Y0, 0}, b[3] = {L, Y0, 0}, cc[3] = {L, Y1, 0}, d[3] = {X0, Y1, 0};
+        double e[3] = {R, Y0, 0}, f[3] = {X1, Y0, 0}, g[3] = {X1, Y1, 0}, h[3] = {R, Y1, 0};
         ok = ok && gf_mesh_quad(m, a, b, cc, d) && gf_mesh_quad(m, e, f, g, h);
     } else {
         // The plate between the hole's circle and the rectangle: quads from
         // circle points to where their rays meet the walls, with the four
-        // corners' angles among the rays so the outline is exact.
+        // corners' angles among the rays so the outline is exact (rays from
+        // the hole's centre (ox, oy)).
         double ang[4096 + 4];
         int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments, na = 0;
         for (int k = 0; k < n; k++) ang[na++] = 2.0 * GF_MESH_PI * k / n;
         for (int k = 0; k < 4; k++) {
-            double th = atan2(corners[k][1], corners[k][0]);
+            double th = atan2(corners[k][1] - c->oy, corners[k][0] - c->ox);
             if (th < 0) th += 2.0 * GF_MESH_PI;
             int j = na++;
             while (j > 0 && ang[j - 1] > th) {
@@ -133,7 +135,8 @@ gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_
         }
         for (int k = 0; k < na && ok; k++) {
             double t0 = ang[k], t1 = ang[(k + 1) % na];
-            double a[3] = {c->hole * cos(t0), c->hole * sin(t0), 0}, b[3], cc[3], d[3] = {c->hole * cos(t1), c->hole * sin(t1), 0};
+            double a[3] = {c->ox + c->hole * cos(t0), c->oy + c->hole * sin(t0), 0}, b[3], cc[3];
+            double d[3] = {c->ox + c->hole * cos(t1), c->oy + c->hole * sin(t1), 0};
             gf_mesh_rect_point(c, t0, b);
             gf_mesh_rect_point(c, t1, cc);
             ok = gf_mesh_quad(m, a, b, cc, d);

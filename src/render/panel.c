@@ -112,7 +112,9 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
 #define GF_X(x) (ox + ((x) - p->xlo) * s)
 #define GF_Y(z) (vy + (p->ztop - (z)) * s)
     const double hw = 0.5 * cfg->container_width;
-    const double ho = fmin(0.5 * cfg->orifice_diameter, hw);
+    // The orifice's edges in x (around container.orifice_x), within the walls.
+    const double hl = fmax(cfg->orifice_x - 0.5 * cfg->orifice_diameter, -hw);
+    const double hr = fmin(cfg->orifice_x + 0.5 * cfg->orifice_diameter, hw);
 
     // the set of visible particles, far first
     size_t m = 0;
@@ -194,18 +196,16 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
     cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
     if (!cyl) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-hw), GF_Y(p->ztop));
     if (!cyl) gf_rect(cr, GF_X(hw), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(p->ztop));
-    if (!cyl && ho < hw) {
-        gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-ho), GF_Y(0.0));
-        gf_rect(cr, GF_X(ho), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(0.0));
-    }
+    if (!cyl && hl > -hw) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(hl), GF_Y(0.0));
+    if (!cyl && hr < hw) gf_rect(cr, GF_X(hr), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(0.0));
     cairo_fill(cr);
     const double exit_plane = gf_config_exit_plane(cfg);
     if (exit_plane < 0.0) { // where particles leave, across the orifice
         double dash = 0.5 * s;
         cairo_set_dash(cr, &dash, 1, 0.0);
         cairo_set_line_width(cr, fmax(0.08 * s, 1.0));
-        cairo_move_to(cr, GF_X(-ho), GF_Y(exit_plane));
-        cairo_line_to(cr, GF_X(ho), GF_Y(exit_plane));
+        cairo_move_to(cr, GF_X(hl), GF_Y(exit_plane));
+        cairo_line_to(cr, GF_X(hr), GF_Y(exit_plane));
         cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0.0);
     }

@@ -79,16 +79,17 @@ gf_status gf_spot_insert(gf_sim *sim)
         sim->ns_cap = cap;
     }
     // SPEC 1.3 insertion: uniform on the orifice shrunk by the margin.
+    // The outlet centre (ox, oy) is container.orifice_x, orifice_y.
     double x, y;
     if (sim->box.shape == GF_ORIFICE_SLIT) {
-        x = (2.0 * gf_rng_uniform(&sim->rng) - 1.0) * sim->spot_ins_r;
+        x = sim->box.ox + (2.0 * gf_rng_uniform(&sim->rng) - 1.0) * sim->spot_ins_r;
         double ylo = sim->box.ylo + sim->cfg.spot_wall_distance, yhi = sim->box.yhi - sim->cfg.spot_wall_distance;
         y = ylo + (yhi - ylo) * gf_rng_uniform(&sim->rng);
     } else {
         double rad = sim->spot_ins_r * sqrt(gf_rng_uniform(&sim->rng));
         double ang = 2.0 * 3.14159265358979323846 * gf_rng_uniform(&sim->rng);
-        x = rad * cos(ang);
-        y = rad * sin(ang);
+        x = sim->box.ox + rad * cos(ang);
+        y = sim->box.oy + rad * sin(ang);
     }
     size_t k = sim->ns++;
     sim->sx[k] = x;
@@ -125,15 +126,16 @@ static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir
     double dw = c->spot_walls == GF_WALLS_REFLECT ? 0.0 : c->spot_wall_distance;
     b->ops->spot_clamp(b, n, dw);
     double nx = n[0], ny = n[1], nz = n[2];
-    if (nz < 0.0) {
+    if (nz < 0.0) { // kept over the birth region around the outlet centre (ox, oy)
         if (b->shape == GF_ORIFICE_SLIT) {
-            nx = nx < -sim->spot_ins_r ? -sim->spot_ins_r : (nx > sim->spot_ins_r ? sim->spot_ins_r : nx);
+            double lo = b->ox - sim->spot_ins_r, hi = b->ox + sim->spot_ins_r;
+            nx = nx < lo ? lo : (nx > hi ? hi : nx);
         } else {
-            double rho2 = nx * nx + ny * ny, R = sim->spot_ins_r;
+            double qx = nx - b->ox, qy = ny - b->oy, rho2 = qx * qx + qy * qy, R = sim->spot_ins_r;
             if (rho2 > R * R) {
                 double f = R / sqrt(rho2);
-                nx *= f;
-                ny *= f;
+                nx = b->ox + qx * f;
+                ny = b->oy + qy * f;
             }
         }
     }
