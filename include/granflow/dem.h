@@ -114,6 +114,8 @@ GF_API gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, 
 /// What gf_dem_analyze read and did.
 typedef struct gf_dem_analysis {
     size_t nframes, nexits;  ///< snapshots and exits read
+    bool exits_derived;      ///< no exits.csv: the exits were read off the snapshots
+    double exit_resolution;  ///< then their times are within +- this, tau (half a snapshot interval)
     double t_first, t_last;  ///< times of the first and last snapshot, tau
     gf_steady window;        ///< the window measured over (t0, t1) and why
     char outdir[GF_PATH_MAX + 16]; ///< where the results went
