@@ -249,7 +249,9 @@ GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flo
                                    double var_tol);
 /// Prints the table DEM | spot | difference with its uncertainty | verdict
 /// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
-/// each Var; the other rows have none).
+/// each Var; the other rows have none). The residence-time rows follow when
+/// both runs counted them over the same span (gf_dem_compare_opts), else a
+/// line saying why they are not compared.
 GF_API void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                                    double var_tol, FILE *f);
 

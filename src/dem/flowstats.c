@@ -242,9 +242,17 @@ void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats 
         if (run[r]->rtd_resolution > 0)
             snprintf(how[r], sizeof how[r], "read off the snapshots, +- %.3g tau", run[r]->rtd_resolution);
         else snprintf(how[r], sizeof how[r], "exits.csv");
+    // Means over different spans are not comparable (a longer run adds late exits).
+    double ta = dem->rtd_tmax, tb = spot->rtd_tmax;
+    if (!(fabs(ta - tb) <= 1e-9 * fmax(1.0, fmax(fabs(ta), fabs(tb))))) {
+        fprintf(f, "  residence times not compared: counted up to %.4g tau in the DEM, %.4g tau in the spot run "
+                   "(rtd.tmax sets one span)\n",
+                ta, tb);
+        return;
+    }
     fprintf(f, "  residence times of the first snapshot's particles exiting within %.4g tau (exit times: DEM %s, "
                "spot %s; uncertainty: standard error of the mean and that resolution):\n",
-            fmin(dem->rtd_tmax, spot->rtd_tmax), how[0], how[1]);
+            ta, how[0], how[1]);
     gf_fs_row(f, "mean residence time (tau)", dem->rtd, spot->rtd, 0.0, false);
     int32_t lo = INT32_MAX, hi = INT32_MIN;
     for (int r = 0; r < 2; r++)
