@@ -55,19 +55,27 @@ static double gf_rtd_mean_err(double sd, size_t n, double h)
     return n > 1 ? hypot(sd / sqrt((double)n), h / sqrt(3.0)) : NAN;
 }
 
+/// The times of r[0..n) (n > 0) copied into scratch, their mean and sample
+/// standard deviation (n - 1: NaN for a single particle).
+static void gf_rtd_moments(const gf_rtd_rec *r, size_t n, double *scratch, double *mean, double *sd)
+{
+    double m = 0.0, var = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        scratch[i] = r[i].t;
+        m += r[i].t;
+    }
+    m /= (double)n;
+    for (size_t i = 0; i < n; i++) var += (r[i].t - m) * (r[i].t - m);
+    *mean = m;
+    *sd = n > 1 ? sqrt(var / (double)(n - 1)) : NAN;
+}
+
 /// Adds the rows of one layer (records r[0..n), sorted by time) to both tables.
 static gf_status gf_rtd_layer(const gf_rtd_rec *r, size_t n, double *scratch, double bw, size_t nbins, double res,
                               gf_table *tb, gf_table *th)
 {
-    double mean = 0.0, var = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        scratch[i] = r[i].t;
-        mean += r[i].t;
-    }
-    mean /= (double)n;
-    for (size_t i = 0; i < n; i++) var += (r[i].t - mean) * (r[i].t - mean);
-    // Sample standard deviation (n - 1): undefined for a single particle.
-    double sd = n > 1 ? sqrt(var / (double)(n - 1)) : NAN;
+    double mean, sd;
+    gf_rtd_moments(r, n, scratch, &mean, &sd);
     double row[7] = {(double)r[0].layer, (double)n, mean, sd, gf_rtd_median(scratch, n), r[0].t,
                      gf_rtd_mean_err(sd, n, res)};
     gf_status st = gf_table_add(tb, row);
@@ -165,15 +173,9 @@ gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measu
     }
     double mean = NAN, median = NAN, err = NAN;
     if (st == GF_OK && n > 0) {
-        mean = 0.0;
-        for (size_t i = 0; i < n; i++) {
-            scratch[i] = rec[i].t;
-            mean += rec[i].t;
-        }
-        mean /= (double)n;
-        double var = 0.0;
-        for (size_t i = 0; i < n; i++) var += (rec[i].t - mean) * (rec[i].t - mean);
-        err = gf_rtd_mean_err(n > 1 ? sqrt(var / (double)(n - 1)) : NAN, n, h);
+        double sd;
+        gf_rtd_moments(rec, n, scratch, &mean, &sd);
+        err = gf_rtd_mean_err(sd, n, h);
         qsort(scratch, n, sizeof *scratch, gf_rtd_double_cmp);
         median = gf_rtd_median(scratch, n);
     }
