@@ -107,8 +107,11 @@ int gf_cmd_analyze(int argc, char **argv)
                                                             : "nothing written");
     if (st != GF_OK) return gf_cli_fail("analyze", st); // an unknown NAME was refused above, with the list
     if (!quiet) {
-        fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits; window %g..%g tau: %s\n",
-                info.nframes, info.t_first, info.t_last, info.nexits, info.window.t0, info.window.t1,
+        char from[96] = "";
+        if (info.exits_derived)
+            snprintf(from, sizeof from, " (read off the snapshots, times within +- %.3g tau)", info.exit_resolution);
+        fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits%s; window %g..%g tau: %s\n",
+                info.nframes, info.t_first, info.t_last, info.nexits, from, info.window.t0, info.window.t1,
                 info.window.reason);
         fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", info.outdir);
     }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `granflow compare DEM_DIR SPOT_DIR`: the two runs side by side (thesis
 // Sec. 3.5): flow rate, velocity profiles, diffusion, g(r), g3, density drop,
-// central-slice pictures at the same times; CSV, plots and summary.md.
+// residence times, central-slice pictures at the same times; CSV, plots and summary.md.
 #include <stdio.h>
 #include <string.h>
 
@@ -42,6 +42,7 @@ int gf_cmd_compare(int argc, char **argv)
     if (st == GF_OK) {
         if (!a.quiet) fprintf(stderr, "granflow compare: window %g..%g tau: %s\n", win.t0, win.t1, win.reason);
         gf_dem_calibration_opts(&dem, &a.opts, &o);
+        gf_dem_compare_opts(&dem, &spot, &o); // both residence-time distributions cut at the shorter run
         st = gf_dem_compare(&dem, &spot, &o, out, a.plots);
     }
     // Each difference with its uncertainty and verdict; the exit code does

@@ -308,7 +308,8 @@ static void types_parse(void **state)
 
 // A multi-frame dump with scaled coordinates and TIMESTEP only: --timestep
 // gives the times; the type filter and the particles below the base apply to
-// every frame; the layers are tagged by the first frame's heights.
+// every frame; the layers are tagged by the first frame's heights; the
+// particle gone below the base is an exit read off the frames.
 static void series_scaled_steps_types(void **state)
 {
     (void)state;
@@ -343,6 +344,12 @@ static void series_scaled_steps_types(void **state)
     assert_int_equal(s.frames[0].pk.layer[0], 1);
     assert_int_equal(s.frames[0].pk.layer[1], 2);
     assert_int_equal(s.frames[1].pk.layer[0], 2);
+    // No exits.csv: particle 1, below the base in the second frame, exited
+    // between the two, at the midpoint t = 1 (+- 1 tau), where it was in the first.
+    assert_true(s.has_exits && s.exits_derived);
+    assert_int_equal(s.nexits, 1);
+    assert_true(s.exits[0].id == 1 && s.exits[0].time == 1.0 && s.exits[0].x == 0.0 && s.exits[0].pass == 1);
+    gf_assert_near(s.exit_resolution, 1.0, 1e-12);
     // The same dump gzipped: the same series, bit for bit (the type column
     // is found through the compression too).
     char gz[1024];

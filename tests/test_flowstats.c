@@ -367,6 +367,107 @@ static void rtd_needs_exits(void **state)
     gf_series_free(&s);
 }
 
+// Exits read off the frames (gf_series_derive_exits), by hand. Frames at
+// t = 0, 0.5, 1.5, 2 (intervals 0.5, 1, 0.5); ids 1..6. Id 3 is gone from
+// the second frame: exit at 0.25; ids 1, 5 and 6 from the third: 1.0; id 4
+// from the fourth: 1.75. Id 6 comes back in the fourth frame and is not
+// counted again. Each exit sits where the particle was in its last frame
+// (x = 10 id + frame), enters at the first frame (entry_r its first |x|).
+// Resolution: half the longest interval with an exit, 0.5.
+static void exits_read_off_frames(void **state)
+{
+    (void)state;
+    const double times[4] = {0, 0.5, 1.5, 2};
+    const int present[4][6] = {{1, 1, 1, 1, 1, 1}, {1, 1, 0, 1, 1, 1}, {0, 1, 0, 1, 0, 0}, {0, 1, 0, 0, 0, 1}};
+    gf_series s;
+    series_init(&s, 4, times);
+    for (int k = 0; k < 4; k++)
+        for (int id = 1; id <= 6; id++)
+            if (present[k][id - 1]) push(&s.frames[k].pk, id, 1, 10.0 * id + k, 5.0);
+    s.n_initial = 6;
+    assert_int_equal(gf_series_derive_exits(&s), GF_OK);
+    assert_true(s.has_exits && s.exits_derived);
+    gf_assert_near(s.exit_resolution, 0.5, 0.0);
+    const struct { int64_t id; double t, x; } want[] = {{3, 0.25, 30}, {1, 1.0, 11}, {5, 1.0, 51}, {6, 1.0, 61}, {4, 1.75, 42}};
+    assert_int_equal(s.nexits, 5);
+    for (size_t e = 0; e < 5; e++) {
+        assert_true(s.exits[e].id == want[e].id);
+        gf_assert_near(s.exits[e].time, want[e].t, 0.0);
+        gf_assert_near(s.exits[e].x, want[e].x, 0.0);
+        assert_true(s.exits[e].pass == 1 && s.exits[e].entry_time == 0.0);
+        gf_assert_near(s.exits[e].entry_r, 10.0 * (double)want[e].id, 0.0);
+    }
+    // A second call keeps them; the outflow still counts the snapshots
+    // (6 - 2 = 4 by the last frame: id 6 is back), not the derived exits.
+    assert_int_equal(gf_series_derive_exits(&s), GF_OK);
+    assert_int_equal(s.nexits, 5);
+    gf_analysis_opts o = gf_analysis_opts_default();
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_outflow(&s, &o, &out), GF_OK);
+    assert_true(gf_test_value(&out, "particles_exited") == 4.0);
+    assert_non_null(strstr(out.gnuplot, "from snapshot counts"));
+    gf_measure_free(&out);
+    gf_series_free(&s);
+    // An id twice in one frame is refused, naming the frame's time.
+    series_init(&s, 2, times);
+    push(&s.frames[0].pk, 1, 1, 0, 1);
+    push(&s.frames[1].pk, 2, 1, 0, 1);
+    push(&s.frames[1].pk, 2, 1, 1, 1);
+    assert_int_equal(gf_series_derive_exits(&s), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "t = 0.5 tau"));
+    assert_non_null(strstr(gf_last_error(), "id 2"));
+    assert_true(!s.has_exits && s.exits == NULL);
+    gf_series_free(&s);
+}
+
+// Residence times from the snapshots of a drain whose true exit times are
+// known: 400 particles in 4 layers, particle i leaves at T_i = 0.37 + 0.0213 i
+// (up to 8.9 tau), snapshots every 0.5 tau to 10 tau. Every derived exit is
+// within the stated resolution (0.25 tau) of T_i, so is every layer's mean,
+// and rtd says so (rtd_resolution; err_mean_tau at least 0.25 / sqrt 3).
+// rtd.tmax = 4 counts only the exits up to 4 tau after the first frame.
+static void derived_rtd_within_resolution(void **state)
+{
+    (void)state;
+    enum { N = 400, F = 21 };
+    double times[F], truth[N + 1];
+    for (int k = 0; k < F; k++) times[k] = 0.5 * k;
+    for (int i = 1; i <= N; i++) truth[i] = 0.37 + 0.0213 * i;
+    gf_series s;
+    series_init(&s, F, times);
+    for (int k = 0; k < F; k++)
+        for (int i = 1; i <= N; i++)
+            if (times[k] < truth[i]) push(&s.frames[k].pk, i, 1 + (i - 1) / 100, 0.1 * i, 1.0);
+    s.n_initial = N;
+    assert_int_equal(gf_series_derive_exits(&s), GF_OK);
+    assert_int_equal(s.nexits, N);
+    gf_assert_near(s.exit_resolution, 0.25, 0.0);
+    for (size_t e = 0; e < s.nexits; e++)
+        assert_true(fabs(s.exits[e].time - truth[s.exits[e].id]) <= s.exit_resolution + 1e-12);
+    gf_analysis_opts o = gf_analysis_opts_default();
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
+    gf_assert_near(gf_test_value(&out, "rtd_resolution"), 0.25, 0.0);
+    const gf_table *t = gf_test_table(&out, "rtd");
+    assert_int_equal(t->nrow, 4);
+    for (size_t r = 0; r < 4; r++) {
+        double mean = 0.0;
+        for (int i = 1 + 100 * (int)r; i <= 100 * ((int)r + 1); i++) mean += truth[i] / 100.0;
+        assert_true(cell(t, r, 1) == 100.0);
+        assert_true(fabs(cell(t, r, 2) - mean) <= 0.25);
+        assert_true(cell(t, r, 6) >= 0.25 / sqrt(3.0) && cell(t, r, 6) < 0.25);
+    }
+    gnuplot_runs(&out, "rtd_derived");
+    gf_measure_free(&out);
+    // Cut at 4 tau: the exits at midpoints up to 4 (T_i < 4: i <= 170).
+    assert_int_equal(gf_analysis_opts_set(&o, "rtd.tmax=4"), GF_OK);
+    memset(&out, 0, sizeof out);
+    assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
+    assert_true(gf_test_value(&out, "rtd_exited") == 170.0 && gf_test_value(&out, "rtd_tmax") == 4.0);
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(outflow_from_exits),
     cmocka_unit_test(outflow_from_counts),
@@ -374,6 +475,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(surface_angle_regression),
     cmocka_unit_test(rtd_per_layer),
     cmocka_unit_test(rtd_needs_exits),
+    cmocka_unit_test(exits_read_off_frames),
+    cmocka_unit_test(derived_rtd_within_resolution),
 };
 
 GF_TEST_MAIN("flowstats", tests)

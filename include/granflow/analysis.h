@@ -37,6 +37,9 @@ typedef struct gf_series {
     gf_exit *exits;     ///< from exits.csv (sorted by time), NULL when there is none
     size_t nexits;
     bool has_exits;
+    bool exits_derived;     ///< the exits were read off the frames (gf_series_derive_exits), not exits.csv
+    double exit_resolution; ///< tau: a derived exit time is within +- this of the true one (half the
+                            ///< longest frame interval an exit was found in); 0 for exits.csv
     size_t n_initial;   ///< particles in the first frame
     gf_config cfg;      ///< the run's config.ini when there is one, else defaults
                         ///< with the container fitted to the first frame's box
@@ -52,6 +55,15 @@ GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out
 GF_API gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop,
                                           gf_series *out);
 GF_API void gf_series_free(gf_series *s);
+/// Exits of a series without exits.csv (the dumps of a DEM drain), read off
+/// its frames: a particle in frame k and not in frame k + 1 exited at the
+/// midpoint of their times, at its (x, y) of frame k; only its first
+/// disappearance counts; entry at the first frame (entry_r from its position
+/// there, NaN for an id not in it), pass 1. Sets has_exits, exits_derived
+/// and exit_resolution (half the longest frame interval an exit was found
+/// in). A series that has exits is left as it is. GF_ERR_PARAM when an id
+/// occurs twice in one frame.
+GF_API gf_status gf_series_derive_exits(gf_series *s);
 
 // Particles matched by id across frames, and the frames of a time window
 // (the motion measurements, the DEM comparison).
@@ -160,6 +172,8 @@ typedef struct gf_analysis_opts {
     size_t zone_nradii;       ///< how many radii were given (0: automatic)
     double zone_dr;           ///< radial bin of v_z(r), d (0.5)
     double zone_dz;           ///< height bin of the streamlines, d (2)
+    // rtd
+    double rtd_tmax;          ///< residence times counted up to this, tau; NaN = auto: the whole run
     /// Not an option key: polled in the frame loops of every measurement, of
     /// gf_analyze, gf_dem_analyze, gf_dem_calibrate, gf_dem_flowstats_measure
     /// and gf_dem_compare; once non-zero (a signal handler may set it) they

@@ -132,6 +132,8 @@ GF_API gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, 
 /// What gf_dem_analyze read and did.
 typedef struct gf_dem_analysis {
     size_t nframes, nexits;  ///< snapshots and exits read
+    bool exits_derived;      ///< no exits.csv: the exits were read off the snapshots
+    double exit_resolution;  ///< then their times are within +- this, tau (half a snapshot interval)
     double t_first, t_last;  ///< times of the first and last snapshot, tau
     gf_steady window;        ///< the window measured over (t0, t1) and why
     char outdir[GF_PATH_MAX + 16]; ///< where the results went
@@ -226,9 +228,13 @@ GF_API gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_stead
 // Matching a spot run to a DEM run (thesis Sec. 3.5).
 
 #define GF_DEM_FS_MAXZ 16
+#define GF_DEM_FS_MAXL 32
 /// The numbers a spot run must match a DEM run on, over the window of the
 /// options, each with the standard error of its mean over 4 (or 2)
-/// sub-windows (NaN: unknown or not measurable).
+/// sub-windows (NaN: unknown or not measurable); the residence times (the
+/// whole run, up to the options' rtd.tmax) with the uncertainty of a mean
+/// of gf_measure_rtd (standard error, and the exit-time resolution of
+/// exits read off the snapshots).
 typedef struct gf_dem_flowstats {
     double t0, t1;                     ///< the window, tau
     gf_dem_value flow;                 ///< flow rate Q, particles per tau
@@ -240,6 +246,12 @@ typedef struct gf_dem_flowstats {
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
     gf_dem_value drop;                 ///< particles fewer in the slice in flow than at rest
     gf_dem_value beta;                 ///< velocity correlation length (when asked), d
+    gf_dem_value rtd;                  ///< mean residence time of the first frame's exited particles, tau
+    double rtd_tmax;                   ///< residence times counted up to this, tau
+    double rtd_resolution;             ///< their exit-time resolution, tau (0: exits.csv)
+    size_t nlayer;                     ///< initial layers with exits
+    int32_t layer[GF_DEM_FS_MAXL];     ///< their tags (1: the bottom 10 d band)
+    gf_dem_value rtd_layer[GF_DEM_FS_MAXL]; ///< mean residence time of each, tau
 } gf_dem_flowstats;
 /// Measures `fs` on the series over the window of `o` (the correlation
 /// length too when `correlation`: the slowest measurement).
@@ -255,9 +267,16 @@ GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flo
                                    double var_tol);
 /// Prints the table DEM | spot | difference with its uncertainty | verdict
 /// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
-/// each Var; the other rows have none).
+/// each Var; the other rows have none). The residence-time rows follow when
+/// both runs counted them over the same span (gf_dem_compare_opts), else a
+/// line saying why they are not compared.
 GF_API void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                                    double var_tol, FILE *f);
+
+/// The options of a comparison of `dem` and `spot`: `o` with rtd.tmax, when
+/// auto, set to the shorter run's length (first to last snapshot), so both
+/// residence-time distributions are cut at the same time.
+GF_API void gf_dem_compare_opts(const gf_series *dem, const gf_series *spot, gf_analysis_opts *o);
 
 /// Tolerances of the closed-loop calibration and of `granflow compare`.
 #define GF_DEM_FLOW_TOL 0.05

@@ -73,6 +73,8 @@ static const gf_key gf_analysis_key_list[] = {
      .doc = "radial bin of v_z(r)"},
     {"zones", "dz", GF_KEY_DOUBLE, GF_AOFF(zone_dz), GF_IN(0.01, 1e3), .def = "2", .unit = "d",
      .doc = "height bin of the streamlines"},
+    {"rtd", "tmax", GF_KEY_AUTO, GF_AOFF(rtd_tmax), GF_IN(0, 1e12), .def = "auto", .unit = "tau",
+     .doc = "residence times counted up to this after the first frame (auto: the whole run)"},
 };
 #undef GF_Z
 #undef GF_IN

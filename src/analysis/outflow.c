@@ -2,6 +2,7 @@
 // Outflow: particles exited vs time and the steady flow rate (SPEC 1.6; the
 // 2009 paper's DEM drains at 131.1 particles per tau).
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 #include "core/alloc.h"
@@ -21,17 +22,21 @@ static void gf_outflow_free(gf_outflow_curve *k)
     if (k->c) GF_DELETE(k->c, k->cap);
 }
 
+/// Whether the curve is made of the exits: only exits.csv's, which are exact;
+/// exits read off the frames carry no more than the frames' counts.
+static bool gf_outflow_from_exits(const gf_series *s) { return s->has_exits && !s->exits_derived; }
+
 /// From the exits (one row per exit: a step curve, between a start row at the
 /// first frame and a row holding the count to the last frame) when the series
 /// has them, else n_initial - n per frame. Counts start at the first frame;
 /// exits before it are not counted.
 static gf_status gf_outflow_make(const gf_series *s, gf_outflow_curve *k)
 {
-    k->cap = (s->has_exits ? s->nexits + 2 : s->nframes) + 1;
+    k->cap = (gf_outflow_from_exits(s) ? s->nexits + 2 : s->nframes) + 1;
     k->t = GF_NEW(double, k->cap);
     k->c = GF_NEW(double, k->cap);
     if (!k->t || !k->c) return gf_error_set(GF_ERR_NOMEM, "outflow: out of memory for %zu points", k->cap);
-    if (!s->has_exits) {
+    if (!gf_outflow_from_exits(s)) {
         for (size_t f = 0; f < s->nframes; f++) {
             k->t[f] = s->frames[f].time;
             k->c[f] = (double)s->n_initial - (double)s->frames[f].pk.n;
@@ -107,7 +112,7 @@ gf_status gf_measure_outflow(const gf_series *s, const gf_analysis_opts *o, gf_m
                                 "plot 'outflow.csv' skip 1 using 1:2 with steps lw 2 title 'exited', \\\n"
                                 "     '' skip 1 using 1:3 with lines dt 2 lw 2 title 'fit over %.4g-%.4g tau: "
                                 "%.5g particles/tau'\n",
-                                s->has_exits ? "from exits.csv" : "from snapshot counts", t0, t1, a);
+                                gf_outflow_from_exits(s) ? "from exits.csv" : "from snapshot counts", t0, t1, a);
     gf_outflow_free(&k);
     return st;
 }

@@ -49,6 +49,8 @@ gf_status gf_dem_analyze(const char *path, const gf_dem_source *src, const gf_an
     if (st != GF_OK) return st;
     a->nframes = s.nframes;
     a->nexits = s.nexits;
+    a->exits_derived = s.exits_derived;
+    a->exit_resolution = s.exit_resolution;
     a->t_first = s.nframes ? s.frames[0].time : 0.0;
     a->t_last = s.nframes ? s.frames[s.nframes - 1].time : 0.0;
     gf_analysis_opts opts = *o;

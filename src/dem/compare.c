@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A DEM run and a spot run side by side (thesis Sec. 3.5): the same
 // measurements on both (flow rate, velocity profiles and their spreading,
-// diffusion, velocity correlation, g(r) and g3, density drop), their tables
+// diffusion, velocity correlation, g(r) and g3, density drop, residence
+// times per initial layer up to the shorter run's length), their tables
 // as dem_NAME.csv / spot_NAME.csv, one figure overlaying them, central-slice
 // pictures at the same times, and summary.md with the differences.
 #include <math.h>
@@ -16,6 +17,13 @@
 #include "granflow/dem.h"
 #include "granflow/render.h"
 
+/// Residence times when the series has exits (gf_dem_series_load reads them
+/// off the snapshots of dumps without exits.csv); none, not an error, else.
+static gf_status gf_cmp_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out)
+{
+    return s->has_exits ? gf_measure_rtd(s, o, out) : GF_OK;
+}
+
 /// The compared measurements, in figure order.
 static const struct {
     const char *name;
@@ -23,6 +31,7 @@ static const struct {
 } gf_cmp_measures[] = {
     {"outflow", gf_measure_outflow},         {"velocity", gf_measure_velocity}, {"diffusion", gf_measure_diffusion},
     {"correlation", gf_measure_correlation}, {"gr", gf_measure_gr},             {"density", gf_measure_density},
+    {"rtd", gf_cmp_rtd},
 };
 #define GF_CMP_N (sizeof gf_cmp_measures / sizeof gf_cmp_measures[0])
 
@@ -42,6 +51,8 @@ static const struct {
     {"coordination", "neighbours closer than the g3 bond", "", "-", false},
     {"density_initial", "particles in the slice at rest", "", "9400 (thesis)", false},
     {"density_steady", "particles in the slice in flow", "", "8850 (thesis)", false},
+    {"rtd_mean", "mean residence time of the first snapshot's particles", "tau", "-", false},
+    {"rtd_median", "median residence time", "tau", "-", false},
 };
 #define GF_CMP_K (sizeof gf_cmp_keys / sizeof gf_cmp_keys[0])
 
@@ -243,6 +254,33 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
         gf_cmp_num(f, vs->v[r * vs->ncol + 2]);
         fputc('\n', f);
     }
+    const gf_table *rd = gf_cmp_table(md, GF_CMP_N, "rtd"), *rs = gf_cmp_table(ms, GF_CMP_N, "rtd");
+    if (rd || rs) {
+        fprintf(f,
+                "\nResidence times by initial layer (the first snapshot's particles that exit within %.4g tau of it; "
+                "DEM exit times %s; +- the uncertainty of the mean: standard error and exit-time resolution):\n\n"
+                "| layer | DEM exited | DEM mean (tau) | spot exited | spot mean (tau) |\n|---|---|---|---|---|\n",
+                o->rtd_tmax, dem->exits_derived ? "read off the snapshots" : "from exits.csv");
+        double lo = INFINITY, hi = -INFINITY;
+        const gf_table *both[2] = {rd, rs};
+        for (int r = 0; r < 2; r++)
+            for (size_t i = 0; both[r] && i < both[r]->nrow; i++) {
+                lo = fmin(lo, both[r]->v[i * both[r]->ncol]);
+                hi = fmax(hi, both[r]->v[i * both[r]->ncol]);
+            }
+        for (double l = lo; l <= hi; l += 1.0) {
+            fprintf(f, "| %g |", l);
+            for (int r = 0; r < 2; r++) {
+                const double *row = NULL;
+                for (size_t i = 0; both[r] && i < both[r]->nrow; i++)
+                    if (both[r]->v[i * both[r]->ncol] == l) row = &both[r]->v[i * both[r]->ncol];
+                if (!row) fprintf(f, " 0 | - |");
+                else if (isfinite(row[6])) fprintf(f, " %g | %.4g +- %.2g |", row[1], row[2], row[6]);
+                else fprintf(f, " %g | %.4g |", row[1], row[2]);
+            }
+            fputc('\n', f);
+        }
+    }
     fprintf(f,
             "\nThe central slice (y > 0) at t = %.3g, %.3g, %.3g and %.3g tau, coloured by initial layer:\n\n"
             "![DEM](slices_dem.png)\n\n![spot model](slices_spot.png)\n\n"
@@ -260,6 +298,9 @@ gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_a
                             dem->nframes, spot->nframes);
     gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;
+    gf_analysis_opts oc = *o;
+    gf_dem_compare_opts(dem, spot, &oc); // both residence-time distributions cut at one time
+    o = &oc;
     gf_measure_out md[GF_CMP_N], ms[GF_CMP_N];
     memset(md, 0, sizeof md);
     memset(ms, 0, sizeof ms);

@@ -3,9 +3,11 @@
 // rate, variance of the Gaussian v_z(x) profiles (v_z(r) in a cylinder) at
 // each height, particle diffusion length b_p, velocity correlation length
 // beta and packing fraction in the flowing slice, each over the window with
-// an uncertainty from the scatter over sub-windows; and the table of DEM vs
+// an uncertainty from the scatter over sub-windows; the mean residence time
+// per initial layer (SPEC 1.6), over the whole run; and the table of DEM vs
 // spot with a within-tolerance verdict for each.
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -73,6 +75,32 @@ static gf_status gf_fs_once(const gf_series *s, const gf_analysis_opts *base, do
     return st;
 }
 
+/// The residence times of gf_measure_rtd: the mean over all layers and per
+/// layer, each with the uncertainty of its mean (err_mean_tau).
+static gf_status gf_fs_rtd(const gf_series *s, const gf_analysis_opts *o, gf_dem_flowstats *fs)
+{
+    fs->rtd = (gf_dem_value){NAN, NAN};
+    fs->rtd_tmax = fs->rtd_resolution = NAN;
+    fs->nlayer = 0;
+    if (!s->has_exits) return GF_OK; // a series made without gf_dem_series_load: no residence times
+    gf_measure_out m;
+    memset(&m, 0, sizeof m);
+    gf_status st = gf_measure_rtd(s, o, &m);
+    if (st == GF_OK) {
+        fs->rtd = (gf_dem_value){gf_fs_value(&m, "rtd_mean"), gf_fs_value(&m, "rtd_mean_err")};
+        fs->rtd_tmax = gf_fs_value(&m, "rtd_tmax");
+        fs->rtd_resolution = gf_fs_value(&m, "rtd_resolution");
+        const gf_table *t = m.ntables ? &m.tables[0] : NULL; // "rtd": layer, count, mean, sd, median, first, err
+        for (size_t r = 0; t && r < t->nrow && fs->nlayer < GF_DEM_FS_MAXL; r++) {
+            const double *row = &t->v[r * t->ncol];
+            fs->layer[fs->nlayer] = (int32_t)row[0];
+            fs->rtd_layer[fs->nlayer++] = (gf_dem_value){row[2], row[6]};
+        }
+    }
+    gf_measure_free(&m);
+    return st;
+}
+
 /// Standard error of the mean of the finite values among v[0..n).
 static double gf_fs_err(const double *v, size_t n)
 {
@@ -128,7 +156,15 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     fs->t0 = t0;
     fs->t1 = t1;
     fs->profile = gf_velocity_profile_name(&s->cfg);
-    return GF_OK;
+    return gf_fs_rtd(s, o, fs);
+}
+
+void gf_dem_compare_opts(const gf_series *dem, const gf_series *spot, gf_analysis_opts *o)
+{
+    if (!isnan(o->rtd_tmax) || !dem->nframes || !spot->nframes) return;
+    double a = dem->frames[dem->nframes - 1].time - dem->frames[0].time;
+    double b = spot->frames[spot->nframes - 1].time - spot->frames[0].time;
+    o->rtd_tmax = fmax(0.0, fmin(a, b));
 }
 
 static bool gf_fs_within(gf_dem_value d, gf_dem_value s, double tol)
@@ -199,4 +235,42 @@ void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats 
     gf_fs_row(f, "density drop in the slice", dem->drop, spot->drop, 0.0, false);
     if (isfinite(dem->beta.value) || isfinite(spot->beta.value))
         gf_fs_row(f, "correlation length beta (d)", dem->beta, spot->beta, 0.0, false);
+    if (!isfinite(dem->rtd.value) && !isfinite(spot->rtd.value)) return;
+    // Residence times: how they were measured, the mean over all layers, then
+    // each initial layer either run has.
+    char how[2][64];
+    const gf_dem_flowstats *run[2] = {dem, spot};
+    for (int r = 0; r < 2; r++)
+        if (run[r]->rtd_resolution > 0)
+            snprintf(how[r], sizeof how[r], "read off the snapshots, +- %.3g tau", run[r]->rtd_resolution);
+        else snprintf(how[r], sizeof how[r], "exits.csv");
+    // Means over different spans are not comparable (a longer run adds late exits).
+    double ta = dem->rtd_tmax, tb = spot->rtd_tmax;
+    if (!(fabs(ta - tb) <= 1e-9 * fmax(1.0, fmax(fabs(ta), fabs(tb))))) {
+        fprintf(f, "  residence times not compared: counted up to %.4g tau in the DEM, %.4g tau in the spot run "
+                   "(rtd.tmax sets one span)\n",
+                ta, tb);
+        return;
+    }
+    fprintf(f, "  residence times of the first snapshot's particles exiting within %.4g tau (exit times: DEM %s, "
+               "spot %s; uncertainty: standard error of the mean and that resolution):\n",
+            ta, how[0], how[1]);
+    gf_fs_row(f, "mean residence time (tau)", dem->rtd, spot->rtd, 0.0, false);
+    int32_t lo = INT32_MAX, hi = INT32_MIN;
+    for (int r = 0; r < 2; r++)
+        for (size_t k = 0; k < run[r]->nlayer; k++) {
+            if (run[r]->layer[k] < lo) lo = run[r]->layer[k];
+            if (run[r]->layer[k] > hi) hi = run[r]->layer[k];
+        }
+    for (int64_t l = lo; l <= hi; l++) {
+        gf_dem_value d = {NAN, NAN}, s = {NAN, NAN};
+        for (size_t k = 0; k < dem->nlayer; k++)
+            if (dem->layer[k] == l) d = dem->rtd_layer[k];
+        for (size_t k = 0; k < spot->nlayer; k++)
+            if (spot->layer[k] == l) s = spot->rtd_layer[k];
+        if (!isfinite(d.value) && !isfinite(s.value)) continue;
+        char name[64];
+        snprintf(name, sizeof name, "  of layer %lld (tau)", (long long)l);
+        gf_fs_row(f, name, d, s, 0.0, false);
+    }
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A DEM run (LAMMPS dumps) as a series: the container from a config or
-// --set, the atom types of packing.types, and the particles below the base
-// counted as exited (SPEC 1.8).
+// --set, the atom types of packing.types, the particles below the base
+// counted as exited, and without exits.csv the exits read off the frames
+// (SPEC 1.8).
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -155,6 +156,9 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     // A `type` column was read into the layer tags: tag them by height again.
     if (r.have_type && (st = gf_dem_retag(out)) != GF_OK) goto fail;
     out->n_initial = out->nframes ? out->frames[0].pk.n : 0;
+    // No exits.csv (LAMMPS writes none): the exits are read off the frames,
+    // after the particles below the exit plane were dropped from them.
+    if (!out->has_exits && (st = gf_series_derive_exits(out)) != GF_OK) goto fail;
     if (rep) *rep = r;
     return GF_OK;
 fail:

@@ -94,4 +94,32 @@ grep -q 'v_z(x)' out && fail "calibrate of a cylinder says v_z(x): $(grep 'v_z(x
 grep -q 'cylinder of radius 5, outlet 8$' err || fail "calibrate of a cylinder: header does not name its radius and outlet: $(grep snapshots err)"
 grep -q 'orifice' err && fail "calibrate of a cylinder names an orifice: $(grep orifice err)"
 ok "profiles named for the container: v_z(x) in a box, v_z(r) in a cylinder (compare table, summary.md, compare.gp, calibrate note and header)"
+# A DEM reference without exits.csv (the tiny run's snapshots and config.ini,
+# all LAMMPS leaves): the exits are read off the snapshots (every 0.5 tau), so
+# its residence times are exits.csv's to within 0.25 tau, and compare has
+# residence-time rows with uncertainties.
+mkdir demlike && cp tiny/snapshots/*.dump tiny/config.ini demlike/
+gf analyze rtd demlike --no-plots
+expect_rc 0 "analyze rtd of dumps without exits.csv"
+expect_err "exits (read off the snapshots, times within +- 0.25 tau)" "analyze rtd of dumps"
+gf analyze rtd tiny --no-plots -q
+expect_rc 0 "analyze rtd tiny"
+val() { sed -n "s/^ *\"$2\": *\([^,]*\),*\$/\1/p" "$1/analysis/summary.json"; }
+[ "$(val demlike rtd_exited)" = "$(val tiny rtd_exited)" ] || fail "exits read off the snapshots: $(val demlike rtd_exited), exits.csv: $(val tiny rtd_exited)"
+[ "$(val demlike rtd_resolution)" = 0.25 ] && [ "$(val tiny rtd_resolution)" = 0 ] ||
+    fail "rtd_resolution: dumps $(val demlike rtd_resolution) (want 0.25), run $(val tiny rtd_resolution) (want 0)"
+awk -v a="$(val demlike rtd_mean)" -v b="$(val tiny rtd_mean)" -v e="$(val demlike rtd_mean_err)" \
+    'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0 && d <= 0.25 && e >= 0.25 / sqrt(3)) }' ||
+    fail "rtd_mean from the snapshots $(val demlike rtd_mean) +- $(val demlike rtd_mean_err), from exits.csv $(val tiny rtd_mean): not within 0.25 tau"
+ok "rtd of dumps without exits.csv: $(val demlike rtd_exited) exits, mean $(val demlike rtd_mean) tau (exits.csv: $(val tiny rtd_mean))"
+gf compare demlike tiny --no-plots -o cmp_rtd
+expect_rc 0 "compare demlike tiny"
+grep -Eq '^  mean residence time \(tau\) +[0-9.]+ \+- [0-9.e-]+ +[0-9.]+ \+- [0-9.e-]+ +[-+][0-9.]+% \+- ' out ||
+    fail "compare: no residence-time row with uncertainties: $(cat out)"
+grep -q 'DEM read off the snapshots, +- 0.25 tau, spot exits.csv' out || fail "compare does not state the exit-time resolution"
+grep -Eq '^    of layer 1 \(tau\) ' out || fail "compare: no per-layer residence-time row"
+grep -q '^| 1 | [0-9]* | [0-9.]* +- ' cmp_rtd/summary.md || fail "summary.md: no residence times by layer"
+grep -Eq '^rtd_mean,[0-9.]+,[0-9.]+,' cmp_rtd/summary.csv || fail "summary.csv: no rtd_mean of both runs"
+[ -s cmp_rtd/dem_rtd.csv ] && [ -s cmp_rtd/spot_rtd.csv ] || fail "compare wrote no dem_rtd.csv / spot_rtd.csv"
+ok "compare of a DEM without exits.csv: residence-time rows with uncertainties, summary.md, summary.csv"
 echo "cli $NAME: $PASS passed, 0 failed"
