@@ -243,8 +243,30 @@ static void checkpoint_compares_settings_not_comments(void **state)
     assert_non_null(strstr(gf_last_error(), "spot.radius differs"));
 }
 
+// A checkpoint of a version that did not have a key (here container.orifice_x,
+// its line turned into a comment) resumes while the key is at its default,
+// and is refused, naming the key, once it is not.
+static void checkpoint_of_an_older_version_resumes(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(10, 300, 3);
+    gf_sim *sim = gf_test_generated_sim(&c);
+    char path[600];
+    snprintf(path, sizeof path, "%s/ck_older.bin", gf_test_tmpdir());
+    assert_int_equal(gf_sim_save(sim, path), GF_OK);
+    gf_sim_destroy(sim);
+    patch_checkpoint(path, "\norifice_x = 0\n", "\n; 3456789012\n");
+    gf_sim *back = NULL;
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_OK);
+    gf_sim_destroy(back);
+    c.orifice_x = 0.5;
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "container.orifice_x differs"));
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(checkpoint_compares_settings_not_comments),
+    cmocka_unit_test(checkpoint_of_an_older_version_resumes),
     cmocka_unit_test(alloc_refuses_wrapping_sizes),
     cmocka_unit_test(poisson_of_a_huge_mean_is_huge),
     cmocka_unit_test(layer_tags_are_clamped),

@@ -238,6 +238,32 @@ static const char *gf_ckpt_setting(const char *p, const char *end, size_t *len)
     return NULL;
 }
 
+// Whether setting `line` (len bytes) of section `section` is, word for word,
+// a setting of that section in `def` (the defaults' text): a key that a
+// checkpoint of an older version does not list, at its default, changes
+// nothing the older version did.
+static bool gf_ckpt_is_default(const char *line, size_t len, const char *section, const char *def, size_t dlen)
+{
+    char sec[64] = "";
+    const char *p = def, *end = def + dlen;
+    size_t n = 0;
+    while ((p = gf_ckpt_setting(p, end, &n)) != NULL) {
+        if (p[0] == '[' && n < sizeof sec) snprintf(sec, sizeof sec, "%.*s", (int)n - 2, p + 1);
+        else if (n == len && !memcmp(p, line, len) && !strcmp(sec, section)) return true;
+        p += n;
+    }
+    return false;
+}
+
+// The key of setting `s` (len bytes): its length up to " =".
+static size_t gf_ckpt_key_len(const char *s, size_t len)
+{
+    const char *eq = memchr(s, '=', len);
+    size_t kl = eq ? (size_t)(eq - s) : len;
+    while (kl > 0 && s[kl - 1] == ' ') kl--;
+    return kl;
+}
+
 static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, size_t cap, gf_status st)
 {
     gf_free(data, cap);
@@ -325,10 +351,19 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     char *mine = NULL;
     size_t mlen = 0, mcap = 0;
     if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen, &mcap)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
+    gf_config dcfg = gf_config_default();
+    char *def = NULL;
+    size_t dlen = 0, dcap = 0;
+    if ((st = gf_config_validate(&dcfg)) != GF_OK || (st = gf_ckpt_physics(&dcfg, &def, &dlen, &dcap)) != GF_OK) {
+        gf_free(mine, mcap);
+        return gf_ckpt_fail(sim, data, cap, st);
+    }
     bool ok = !r.bad && plen <= r.len - r.pos;
     // The two INI texts are compared setting by setting: comments and blank
     // lines are skipped, so a key's documentation may change between
-    // versions without stranding checkpoints; the first key that differs is named.
+    // versions without stranding checkpoints, and a key this version added
+    // is passed over where the checkpoint's text does not have it and it is
+    // at its default; the first key that differs is named.
     char key[160] = "", section[64] = "";
     const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
     const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
@@ -336,21 +371,25 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     for (;;) {
         a = gf_ckpt_setting(a, ae, &al);
         b = gf_ckpt_setting(b, be, &bl);
+        if (b && b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
+        const size_t kl = b ? gf_ckpt_key_len(b, bl) : 0;
+        if (b && b[0] != '[' && (!a || a[0] == '[' || gf_ckpt_key_len(a, al) != kl || memcmp(a, b, kl) != 0) &&
+            gf_ckpt_is_default(b, bl, section, def, dlen)) {
+            b += bl; // a key the checkpoint's version did not have, at its default
+            continue;
+        }
         if (!a || !b) {
             if (a || b) snprintf(key, sizeof key, "%s", "the list of keys");
             break;
         }
-        if (b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
         if (al != bl || memcmp(a, b, al) != 0) {
-            const char *eq = memchr(b, '=', bl);
-            size_t kl = eq ? (size_t)(eq - b) : bl;
-            while (kl > 0 && b[kl - 1] == ' ') kl--;
             snprintf(key, sizeof key, "%s.%.*s", section, (int)kl, b);
             break;
         }
         a += al;
         b += bl;
     }
+    gf_free(def, dcap);
     if (!ok || key[0]) {
         if (!key[0]) snprintf(key, sizeof key, "%s", "the configuration");
         gf_free(mine, mcap);
