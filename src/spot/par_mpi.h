@@ -16,6 +16,9 @@
 /// This process's rank and the number of ranks (0 and 1 before MPI_Init).
 int gf_mpi_rank(void);
 int gf_mpi_size(void);
+/// Ranks on this machine (MPI_COMM_TYPE_SHARED), 1 before MPI_Init: with
+/// run.threads = 0 each rank takes its share of the cores, not all of them.
+int gf_mpi_local_size(void);
 /// Before a colour phase: empties the workers' logs of what their moves
 /// change (gf_work.touched) and has them log.
 gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads);
@@ -35,9 +38,13 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads);
 /// regrow on the next run) and, with GF_MPI_STATS=1, passes rank 0's
 /// counters to gf_warn; gf_par_free calls it.
 void gf_mpi_release(void);
-#define GF_MPI_OWNS(r) ((int)((r) % (size_t)gf_mpi_size()) == gf_mpi_rank())
+/// Which of a colour phase's n blocks (heaviest first, load[k] moves each)
+/// this rank runs: each block in turn goes to the rank with the fewest moves
+/// so far (the lowest rank on a tie), as threads taking blocks in turn would
+/// share them; every rank computes the same split. mine[k] = 1 for this
+/// rank's; scratch holds n entries.
+void gf_mpi_assign(const uint32_t *load, size_t n, uint64_t *scratch, uint8_t *mine);
 #else
-#define GF_MPI_OWNS(r) true
 #define gf_mpi_release() ((void)0)
 #endif
 

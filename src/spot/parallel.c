@@ -85,6 +85,9 @@ typedef struct gf_par {
     uint8_t *phase;                 ///< per spot: its phase this step
     size_t spot_cap;
     uint32_t *run;                  ///< blocks of the current colour, heaviest first
+    uint32_t *runload;              ///< their moves in the current phase
+    uint8_t *mine;                  ///< per run[] entry: this rank runs it (gf_mpi_assign)
+    uint64_t *rankload;             ///< scratch of gf_mpi_assign
     double *coltop;                 ///< per grid column: its top z at the step start
     size_t ncol;
     uint64_t shared_phases; ///< colour phases with two or more blocks to run
@@ -123,6 +126,9 @@ void gf_par_free(gf_sim *sim)
     GF_DELETE(q->dead, q->spot_cap);
     GF_DELETE(q->phase, q->spot_cap);
     GF_DELETE(q->run, q->nblock);
+    GF_DELETE(q->runload, q->nblock);
+    GF_DELETE(q->mine, q->nblock);
+    GF_DELETE(q->rankload, q->nblock);
     GF_DELETE(q->coltop, q->ncol);
     gf_free(q, sizeof *q);
     sim->par = NULL;
@@ -131,7 +137,15 @@ void gf_par_free(gf_sim *sim)
 static int gf_par_threads(const gf_config *c)
 {
 #ifdef _OPENMP
-    return c->run_threads > 0 ? (int)c->run_threads : omp_get_num_procs();
+    if (c->run_threads > 0) return (int)c->run_threads;
+#ifdef GF_MPI
+    // Every core, shared by this machine's ranks: more threads than cores
+    // make every colour phase's barrier wait for a preempted thread.
+    const int t = omp_get_num_procs() / gf_mpi_local_size();
+    return t > 0 ? t : 1;
+#else
+    return omp_get_num_procs();
+#endif
 #else
     (void)c;
     return 1;
@@ -168,7 +182,10 @@ static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
     q->blockof = GF_NEW(uint32_t, g->ncell);
     q->pstart = GF_NEW(uint32_t, q->nblock * (GF_PAR_PHASES + 1));
     q->run = GF_NEW(uint32_t, q->nblock);
-    if (!q->block || !q->blockof || !q->pstart || !q->run)
+    q->runload = GF_NEW(uint32_t, q->nblock);
+    q->mine = GF_NEW(uint8_t, q->nblock);
+    q->rankload = GF_NEW(uint64_t, q->nblock);
+    if (!q->block || !q->blockof || !q->pstart || !q->run || !q->runload || !q->mine || !q->rankload)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
     gf_status st = gf_celllist_keys(&q->colours, (size_t)q->ncolour, q->nblock);
     if (st != GF_OK) return st;
@@ -489,17 +506,20 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
                 if (load == 0) continue;
                 moves += load;
                 size_t k = nrun++;
-                while (k > 0) {
-                    const uint32_t *pk = &q->pstart[(size_t)q->run[k - 1] * (GF_PAR_PHASES + 1)];
-                    if (pk[p + 1] - pk[p] >= load) break;
+                while (k > 0 && q->runload[k - 1] < load) {
                     q->run[k] = q->run[k - 1];
+                    q->runload[k] = q->runload[k - 1];
                     k--;
                 }
                 q->run[k] = b;
+                q->runload[k] = load;
             }
             q->shared_phases += nrun >= 2;
 #ifdef GF_MPI
             if (nrun > 0 && (st = gf_mpi_phase_begin(sim, q->work, q->threads)) != GF_OK) break;
+            gf_mpi_assign(q->runload, nrun, q->rankload, q->mine);
+#else
+            memset(q->mine, 1, nrun);
 #endif
             int threads = nrun < (size_t)q->threads ? (int)nrun : q->threads;
             if (threads < 1 || moves < GF_PAR_MIN_SHARED) threads = 1;
@@ -512,7 +532,7 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
 #else
                 gf_work *w = &q->work[0];
 #endif
-                if (GF_MPI_OWNS(r)) gf_par_block(sim, q, w, q->run[r], p);
+                if (q->mine[r]) gf_par_block(sim, q, w, q->run[r], p);
             }
 #ifdef GF_MPI
             if (nrun > 0 &&

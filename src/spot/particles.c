@@ -121,7 +121,7 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
         double dx = q->x - a->x, dy = q->y - a->y, dz = q->z - a->z, lim = a->h - GF_SKIN_SLACK;
         cross[nc] = i;
         nc += dx * dx + dy * dy + dz * dz > lim * lim;
-        gf_work_touch(w, GF_TOUCH_PARTICLE, i);
+        gf_work_touch(w, GF_TOUCH_MOVED, i);
         uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);
         if (c != g->cell_of[i]) {
             gf_work_touch(w, GF_TOUCH_CELL, g->cell_of[i]);
@@ -133,6 +133,7 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
     }
     for (size_t k = 0; sim->use_nlist && k < nc; k++) {
         gf_touch_row(sim, w, cross[k]); // the rows it leaves and joins
+        gf_work_touch(w, GF_TOUCH_PARTICLE, cross[k]); // its new p0
         gf_status st = gf_nlist_refresh(sim, cross[k]);
         gf_touch_row(sim, w, cross[k]);
         if (st != GF_OK) return st;

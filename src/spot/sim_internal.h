@@ -38,12 +38,14 @@ typedef struct gf_hist {
 } gf_hist;
 
 /// What a worker's moves changed in the shared state, logged for the MPI
-/// exchange (par_mpi.c) when its `log` flag is set: particles whose record
-/// (position, list reference, alive, cell, slot) may differ, particles whose
-/// neighbour-list row may differ, grid cells whose count or slots may differ,
-/// the spots moved and the blocks run. Entries may repeat. Nothing is logged
-/// in a build without GF_MPI.
-enum { GF_TOUCH_PARTICLE, GF_TOUCH_ROW, GF_TOUCH_CELL, GF_TOUCH_SPOT, GF_TOUCH_BLOCK, GF_TOUCH_KINDS };
+/// exchange (par_mpi.c) when its `log` flag is set: particles whose whole
+/// record (position, list reference, alive, cell, slot) may differ (exits,
+/// list refreshes), particles only moved (their position; a change of cell
+/// shows in the cells' records), particles whose neighbour-list row may
+/// differ, grid cells whose count or slots may differ, the spots moved and
+/// the blocks run. Entries may repeat. Nothing is logged in a build without
+/// GF_MPI.
+enum { GF_TOUCH_PARTICLE, GF_TOUCH_MOVED, GF_TOUCH_ROW, GF_TOUCH_CELL, GF_TOUCH_SPOT, GF_TOUCH_BLOCK, GF_TOUCH_KINDS };
 typedef struct gf_touch {
     uint32_t *v;
     size_t n, cap;

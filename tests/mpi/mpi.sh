@@ -65,6 +65,16 @@ for np in 1 2 4; do
 done
 [ -z "$(ls -d "${TMPDIR:-/tmp}"/granflow-rank* 2>/dev/null)" ] || echo "note: scratch dirs left in ${TMPDIR:-/tmp}"
 
+# run.threads = 0 (every core) under mpirun: the machine's cores are shared
+# by its ranks (4 ranks on 2 cores: one thread each, where every rank took
+# both cores before and the 8 threads' barriers made the run ~25x slower).
+mpi 4 run -q "${SILO[@]}" --set run.duration=2 --set run.threads=0 -o R4T0
+expect_rc 0 "4 ranks, run.threads = 0"
+same S R4T0
+want=$(( $(nproc) / 4 )); [ "$want" -gt 0 ] || want=1
+grep -q "mpi: 4 ranks of $want threads" "$T/err" || fail "4 ranks with run.threads = 0: want $want threads each: $(grep 'mpi: ' "$T/err")"
+ok "4 ranks with run.threads = 0: $want thread(s) each, the single process's results"
+
 # Stopped at t = 1 on 2 ranks, resumed on 1 process to t = 2. GF_MPI_CHECK=1:
 # after every colour phase the ranks compare a hash of their whole state (the
 # exchange sends only what the moves logged; a write it missed fails here even
