@@ -10,7 +10,11 @@ case $DATA in /*) ;; *) DATA=$PWD/$DATA ;; esac
 [ -x "$GF" ] || { echo "cli $NAME: $GF is not an executable"; exit 1; }
 
 T=$(mktemp -d "${TMPDIR:-/tmp}/gf-cli-$NAME.XXXXXX") || exit 1
-cleanup() { rm -rf "$T"; }
+BGPID=
+cleanup() {
+    if [ -n "$BGPID" ]; then kill -KILL "$BGPID" 2>/dev/null; wait "$BGPID" 2>/dev/null; fi
+    rm -rf "$T"
+}
 trap cleanup EXIT
 cd "$T" || exit 1
 
@@ -40,3 +44,20 @@ gf() {
 expect_rc() { [ "$RC" -eq "$1" ] || fail "$2: expected exit code $1, got $RC"; }
 # expect_err TEXT WHAT: stderr must contain TEXT (fixed string).
 expect_err() { grep -qF -- "$1" "$T/err" || fail "$2: stderr does not mention '$1'"; }
+# start ARGS...: granflow in the background (stderr -> $T/bgerr), pid in BGPID.
+start() { "$GF" "$@" >/dev/null 2>"$T/bgerr" & BGPID=$!; }
+# finish SECONDS: waits at most SECONDS for the background run; its exit code in RC (999: still running, killed).
+finish() {
+    local i
+    for ((i = 0; i < $1 * 10; i++)); do
+        kill -0 "$BGPID" 2>/dev/null || break
+        sleep 0.1
+    done
+    if kill -0 "$BGPID" 2>/dev/null; then
+        kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; RC=999
+    else
+        wait "$BGPID"; RC=$?
+    fi
+    BGPID=
+    cp "$T/bgerr" "$T/err"
+}

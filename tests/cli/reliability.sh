@@ -5,29 +5,7 @@
 # usage: bash tests/cli/reliability.sh GRANFLOW_BINARY TESTS_DATA_DIR
 NAME=reliability
 source "$(dirname "$0")/lib.bash" "$@"
-BGPID=
-cleanup() {
-    if [ -n "$BGPID" ]; then kill -KILL "$BGPID" 2>/dev/null; wait "$BGPID" 2>/dev/null; fi
-    rm -rf "$T"
-}
 json() { sed -n "s/^[[:space:]]*\"$2\":[[:space:]]*\"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}[[:space:]]*$/\1/p" "$1"; }
-# start ARGS...: granflow in the background (stderr -> $T/bgerr), pid in BGPID.
-start() { "$GF" "$@" >/dev/null 2>"$T/bgerr" & BGPID=$!; }
-# finish SECONDS: waits at most SECONDS for the background run; its exit code in RC (999: still running, killed).
-finish() {
-    local i
-    for ((i = 0; i < $1 * 10; i++)); do
-        kill -0 "$BGPID" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$BGPID" 2>/dev/null; then
-        kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; RC=999
-    else
-        wait "$BGPID"; RC=$?
-    fi
-    BGPID=
-    cp "$T/bgerr" "$T/err"
-}
 # wait_for FILE SECONDS: until FILE exists (false if it never does).
 wait_for() {
     local i

@@ -7,28 +7,11 @@
 # usage: bash tests/cli/stop_signals.sh GRANFLOW_BINARY TESTS_DATA_DIR
 NAME=stop_signals
 source "$(dirname "$0")/lib.bash" "$@"
-BGPID=
+# The stand-in LAMMPS's processes too, if a check failed with them running.
 cleanup() {
     if [ -n "$BGPID" ]; then kill -KILL "$BGPID" 2>/dev/null; wait "$BGPID" 2>/dev/null; fi
     for f in "$T"/D/*.pid; do [ -e "$f" ] && kill -KILL "$(cat "$f")" 2>/dev/null; done
     rm -rf "$T"
-}
-# start ARGS...: granflow in the background (stderr -> $T/bgerr), pid in BGPID.
-start() { "$GF" "$@" >/dev/null 2>"$T/bgerr" & BGPID=$!; }
-# finish SECONDS: waits at most SECONDS for the background run; its exit code in RC (999: still running, killed).
-finish() {
-    local i
-    for ((i = 0; i < $1 * 10; i++)); do
-        kill -0 "$BGPID" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$BGPID" 2>/dev/null; then
-        kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; RC=999
-    else
-        wait "$BGPID"; RC=$?
-    fi
-    BGPID=
-    cp "$T/bgerr" "$T/err"
 }
 # wait_line TEXT SECONDS: until the background command's stderr holds TEXT.
 wait_line() {
