@@ -173,9 +173,10 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
 
 /// After LAMMPS was stopped: removes what the stopped phase may have left
 /// half-written (the fill's settled.restart and packing.dump; the drain's
-/// newest snapshot) and writes DIR/interrupted.txt saying so. The error
-/// message of the stop is kept.
-static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_reader *r)
+/// newest snapshot, if this drain wrote it: modified after `since`, less a
+/// second for the file system's coarse clock) and writes DIR/interrupted.txt
+/// saying so. The error message of the stop is kept.
+static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_reader *r, time_t since)
 {
     char msg[1024], path[GF_PATH_MAX + 64], removed[GF_PATH_MAX + 64] = "";
     snprintf(msg, sizeof msg, "%s", gf_last_error());
@@ -194,7 +195,11 @@ static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_rea
                 snprintf(newest, sizeof newest, "%s", e->d_name);
         if (d) closedir(d);
         snprintf(path, sizeof path, "%s/%s", snaps, newest);
-        if (newest[0] && unlink(path) == 0) snprintf(removed, sizeof removed, "snapshots/%s", newest);
+        struct stat sb;
+        bool ours = newest[0] && stat(path, &sb) == 0 && sb.st_mtime >= since - 1;
+        if (ours && unlink(path) == 0) snprintf(removed, sizeof removed, "snapshots/%s", newest);
+        else if (newest[0])
+            snprintf(removed, sizeof removed, "nothing (the newest snapshot, %s, is older than this drain)", newest);
     }
     snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
     char tmp[GF_PATH_MAX + 96];
@@ -233,8 +238,9 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         snprintf(path, sizeof path, "%s/%s", dir, scripts[k]);
         if (access(path, R_OK) != 0)
             return gf_error_set(GF_ERR_IO, "%s: %s (no LAMMPS inputs there: write them first)", path, strerror(errno));
+        const time_t since = time(NULL);
         gf_status st = gf_dem_run_one(dir, scripts[k], lmp, use_mpi ? mpirun : NULL, ranks, &r);
-        if (st == GF_ERR_INTERRUPTED) gf_dem_mark_interrupted(dir, k == 0, &r);
+        if (st == GF_ERR_INTERRUPTED) gf_dem_mark_interrupted(dir, k == 0, &r, since);
         if (st != GF_OK) return st;
     }
     char mark[GF_PATH_MAX + 32];

@@ -74,8 +74,10 @@ if [ "$2" = in.fill ]; then
 else
     echo "granflow-phase drain 300 8"
     echo "  100 0.5 290 0.01"
-    printf 'ITEM: TIMESTEP\n0\n' >snapshots/snap_000000000.dump
-    printf 'ITEM: TIMESTEP\n1000\nITEM: NUM' >snapshots/snap_000001000.dump
+    if [ -z "${FAKE_NO_SNAPSHOT:-}" ]; then
+        printf 'ITEM: TIMESTEP\n0\n' >snapshots/snap_000000000.dump
+        printf 'ITEM: TIMESTEP\n1000\nITEM: NUM' >snapshots/snap_000001000.dump
+    fi
 fi
 sleep 60 &
 echo $! >sleep.pid
@@ -113,4 +115,20 @@ grep -q "^interrupted: LAMMPS was stopped during the drain" D/interrupted.txt ||
     fail "dem --drain-only: D/interrupted.txt missing or not about the drain"
 grep -q "^removed: snapshots/snap_000001000.dump" D/interrupted.txt || fail "interrupted.txt does not name the removed snapshot"
 ok "dem --drain-only: SIGINT -> exit 130, the newest snapshot removed, interrupted.txt says so"
+
+# Stopped before this drain wrote a snapshot: the newest one is an earlier
+# drain's, whole, and stays.
+rm -f D/*.pid D/interrupted.txt
+printf 'ITEM: TIMESTEP\n2000\n' >D/snapshots/snap_000002000.dump
+touch -d '1 hour ago' D/snapshots/snap_000002000.dump
+FAKE_NO_SNAPSHOT=1 start dem "${DEM[@]}" -o D --drain-only
+wait_for D/lmp.pid 10 || fail "dem --drain-only (no snapshot): the stand-in LAMMPS did not start in 10 s"
+kill -INT "$BGPID"
+finish 15
+LAST="granflow dem --drain-only (stand-in LAMMPS writes no snapshot), SIGINT"
+expect_rc 130 "SIGINT during dem --drain-only before its first snapshot"
+[ -e D/snapshots/snap_000002000.dump ] || fail "dem --drain-only: an earlier drain's snapshot was removed"
+grep -q "^removed: nothing (the newest snapshot, snap_000002000.dump, is older than this drain)" D/interrupted.txt ||
+    fail "interrupted.txt does not say the older snapshot was kept: $(cat D/interrupted.txt)"
+ok "dem --drain-only stopped before its first snapshot: an earlier drain's snapshot kept, interrupted.txt says so"
 echo "cli $NAME: $PASS passed, 0 failed"
