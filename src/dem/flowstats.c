@@ -216,13 +216,13 @@ static void gf_fs_row(FILE *f, const char *name, gf_dem_value d, gf_dem_value s,
                  100.0 * tol);
     else if (isfinite(delta)) snprintf(verdict, sizeof verdict, "(no tolerance)");
     else snprintf(verdict, sizeof verdict, "not measurable");
-    fprintf(f, "  %-30s %-20s %-20s %-20s %s\n", name, a, b, diff, verdict);
+    fprintf(f, "  %-34s %-20s %-20s %-20s %s\n", name, a, b, diff, verdict);
 }
 
 void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                             double var_tol, FILE *f)
 {
-    fprintf(f, "  %-30s %-20s %-20s %-20s %s\n", "quantity", "DEM", "spot", "spot - DEM", "verdict");
+    fprintf(f, "  %-34s %-20s %-20s %-20s %s\n", "quantity", "DEM", "spot", "spot - DEM", "verdict");
     gf_fs_row(f, "flow rate Q (1/tau)", dem->flow, spot->flow, flow_tol, false);
     const char *profile = dem->profile ? dem->profile : spot->profile ? spot->profile : "the profile";
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {

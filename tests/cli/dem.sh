@@ -84,6 +84,9 @@ expect_rc 0 "run cyl"
 gf compare cyl cyl --no-plots -o cmp_cyl
 expect_rc 0 "compare cyl cyl"
 grep -q 'Var of v_z(r) at z = ' out || fail "compare of a cylinder: no 'Var of v_z(r)' row: $(cat out)"
+# The rows' DEM column lines up with the header's (names up to 34 characters).
+awk '/^  quantity / { at = index($0, "DEM") } /^  Var of / && at && substr($0, at - 1, 2) !~ /^ [-0-9]/ { bad = 1 } END { exit bad || !at }' out ||
+    fail "compare of a cylinder: the Var rows do not line up with the header: $(grep -E '^  (quantity|Var of)' out)"
 grep -q 'Gaussian fits of v_z(r)' cmp_cyl/summary.md || fail "summary.md of a cylinder does not name v_z(r)"
 grep -q "set title 'v_z(r) at z = " cmp_cyl/compare.gp || fail "compare.gp of a cylinder does not title v_z(r)"
 grep -q 'v_z(x)' out cmp_cyl/summary.md cmp_cyl/compare.gp && fail "compare of a cylinder says v_z(x): $(grep -h 'v_z(x)' out cmp_cyl/*)"
