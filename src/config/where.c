@@ -81,8 +81,9 @@ static void gf_config_msg_key(const gf_config *cfg, const gf_key *k, const char 
     char val[GF_PATH_MAX + 64], where[GF_PATH_MAX + 32];
     gf_keys_format(k, cfg, val, sizeof val);
     gf_config_where_of(cfg, k, where, sizeof where);
-    if (strcmp(where, lead) == 0) snprintf(buf, n, "%s.%s = %s", k->section, k->name, val);
-    else snprintf(buf, n, "%s.%s = %s (%s)", k->section, k->name, val, where);
+    int w = strcmp(where, lead) == 0 ? snprintf(buf, n, "%s.%s = %s", k->section, k->name, val)
+                                     : snprintf(buf, n, "%s.%s = %s (%s)", k->section, k->name, val, where);
+    if (w >= (int)n && n > 4) memcpy(buf + n - 4, "...", 4); // a path that long is cut, visibly
 }
 
 // The key named "section.name" (which must exist).
