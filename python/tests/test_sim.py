@@ -2,6 +2,7 @@
 import numpy as np
 
 import granflow
+from granflow._lib import check, lib
 
 from conftest import SMALL
 
@@ -46,6 +47,45 @@ def test_same_seed_same_flow_other_seed_other_flow(small):
     a, b, c = drain(5), drain(5), drain(6)
     assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
     assert a[0].shape != c[0].shape or not np.array_equal(a[0], c[0])
+
+
+def test_run_in_pieces_is_one_run(small):
+    # run() goes in pieces of ~0.1 s (so Ctrl-C can stop it): the same state
+    # as one gf_sim_run call to the same time, bit for bit.
+    a, b = granflow.Simulation(small), granflow.Simulation(small)
+    a.run(3.0)
+    check(lib.gf_sim_run(b._ptr, 3.0, None))
+    assert a.time == b.time and a.stats()["events"] == b.stats()["events"]
+    assert np.array_equal(a.positions(), b.positions())
+    assert np.array_equal(a.exits()["time"], b.exits()["time"])
+
+
+def test_ctrl_c_stops_a_long_run(small):
+    # SIGINT during run(until=10,000 tau) raises KeyboardInterrupt within a
+    # few seconds, the simulation still usable (particles put back on the
+    # surface, so the silo never empties).
+    import os
+    import signal
+    import threading
+    import time
+    c = small.copy()
+    c["run.recirculate"] = "on"
+    sim = granflow.Simulation(c)
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    try:
+        sim.run(until=10000.0)
+        assert False, "run() was not interrupted"
+    except KeyboardInterrupt:
+        pass
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 5.0
+    assert 0 < sim.time < 10000.0
+    t = sim.time
+    sim.run(until=t + 0.5)
+    assert sim.time >= t + 0.5
 
 
 def test_python_run_matches_the_cli_run(rundir):
