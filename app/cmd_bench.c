@@ -19,14 +19,16 @@ static void gf_bench_on_packed(void *ctx, const gf_bench_spot *b, const gf_sim *
 int gf_cmd_bench(int argc, char **argv)
 {
     // --lga-only: time only the lattice-gas automaton (no packing, no spots).
-    // --event: the event-driven engine (one thread) instead of the spatial
-    // fixed step. --no-large: skip the silo ten times larger.
+    // --event: the event-driven engine (one thread), --spatial: the spatial
+    // fixed step, instead of the domain engine. --no-large: skip the silo ten
+    // times larger.
     gf_bench_opts o = gf_bench_opts_default();
     char *args[256];
     int nargs = 0;
     for (int i = 0; i < argc; i++) {
         if (!strcmp(argv[i], "--lga-only")) o.lga_only = true;
         else if (!strcmp(argv[i], "--event")) o.event = true;
+        else if (!strcmp(argv[i], "--spatial")) o.spatial = true;
         else if (!strcmp(argv[i], "--no-large")) o.large = false;
         else if (nargs < (int)(sizeof args / sizeof args[0])) args[nargs++] = argv[i];
     }
