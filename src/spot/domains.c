@@ -88,7 +88,7 @@ typedef struct gf_dom {
     double *secs;           ///< their times (profiling)
     int messages;           ///< neighbours a domain exchanges with: 3^(cut axes) - 1
     uint64_t shared;        ///< phases with two or more sectors to run side by side
-    bool drop_crossing;     ///< tests only: a spot that leaves its sector loses the rest of its window
+    bool drop_crossing;     ///< tests only: a spot whose move leaves its sector is lost with its moves
     gf_par_profile prof;
     bool profiling;
 } gf_dom;
@@ -330,7 +330,10 @@ static void gf_dom_sector(gf_sim *sim, gf_dom *q, int t, size_t b, double t_end)
         sim->sz[k] = s[2];
         sim->snext[k] += gf_rng_exp(&rng, sim->cfg.spot_move_rate);
         const bool stays = q->blockof[gf_grid_cell(g, s[0], s[1], s[2])] == b;
-        if (!stays && q->drop_crossing && sim->snext[k] <= t_end) sim->snext[k] = t_end + gf_rng_exp(&rng, sim->cfg.spot_move_rate);
+        if (!stays && q->drop_crossing) { // the broken engine of the tests: the spot and its moves are lost
+            q->dead[k] = 1;
+            continue;
+        }
         if (sim->snext[k] <= t_end && stays) gf_dom_push(sim, h, &nh, k);
     }
     if (q->profiling) {

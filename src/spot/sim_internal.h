@@ -271,9 +271,9 @@ void gf_dom_free(gf_sim *sim);
 gf_par_profile gf_dom_profile(const gf_sim *sim);
 /// Phases so far that had two or more sectors to run side by side.
 uint64_t gf_dom_shared_phases(const gf_sim *sim);
-/// Tests only: makes the engine wrong on purpose (a spot that leaves its
-/// sector loses the rest of its window's moves), to show that the flow test
-/// sees it.
+/// Tests only: makes the engine wrong on purpose (a spot whose move leaves
+/// its sector is lost, with all its later moves, as a domain engine that
+/// cannot hand spots over would lose them), to show that the flow test sees it.
 gf_status gf_dom_test_drop_crossing(gf_sim *sim);
 /// Starts or stops profiling the domain engine's sectors.
 void gf_dom_set_profiling(gf_sim *sim, int on);
