@@ -158,7 +158,9 @@ static void gf_report_analysis(gf_report *r, const char *dir)
     gf_report_join(sub, sizeof sub, dir, "analysis");
     gf_report_join(path, sizeof path, sub, "summary.json");
     if (!gf_report_exists(sub)) {
-        fputs("<h2>Analysis</h2><p>Not analysed yet (<code>granflow analyze DIR</code>).</p>\n", r->out);
+        // (an LGA run has no analysis to run: its numbers are in its summary)
+        if (!r->ctx.scenario[0])
+            fputs("<h2>Analysis</h2><p>Not analysed yet (<code>granflow analyze DIR</code>).</p>\n", r->out);
         return;
     }
     fputs("<h2>Analysis</h2>\n", r->out);
