@@ -228,7 +228,7 @@ static void lga_run_omissions(void **state)
     gf_report_context c;
     gf_report_context_read(&c, "/nonexistent", e, n);
     assert_string_equal(c.scenario, "silo");
-    assert_non_null(strstr(why_of(&c, e, n, "iterations_to_empty"), "did not empty"));
+    assert_non_null(strstr(why_of(&c, e, n, "iterations_to_empty"), "not empty at the end"));
     assert_non_null(strstr(why_of(&c, e, n, "particles_added"), "pile"));
     assert_non_null(strstr(why_of(&c, e, n, "slope_angle"), "pile only"));
     assert_non_null(strstr(why_of(&c, e, n, "wave_variance_ratio"), "channel only"));

@@ -131,8 +131,8 @@ static const char *gf_omit_lga(const gf_report_context *c, const gf_html_entry *
     if (channel && GF_OMIT_IS(e->key, "particles_removed", "mean_outflow_rate", "iterations_to_stop", "t50", "t90", "t99"))
         return "nothing leaves the channel (periodic top and bottom)";
     if (!strcmp(e->key, "iterations_to_empty") && null)
-        return silo ? "the silo did not empty (a stagnant heap stayed): when the outflow left is given by the "
-                      "iteration of the last outflow and t50, t90, t99"
+        return silo ? "the silo was not empty at the end of the run (a stagnant heap stayed, or the run stopped "
+                      "first): the iteration of the last outflow and t50, t90, t99 say when the outflow left"
                     : "only a silo runs until it is empty";
     if (null && GF_OMIT_IS(e->key, "iterations_to_stop", "t50", "t90", "t99")) return "no particle left";
     return NULL;
