@@ -15,6 +15,8 @@ typedef struct gf_packing_frame {
     int have_box;        ///< the frame has ITEM: BOX BOUNDS
     double lo[3], hi[3]; ///< the box, d
     int have_type;       ///< the ATOMS have a `type` column, read into pk->layer (else layer = 0)
+    const int32_t *pass; ///< granflow's `pass` column, one per particle of pk (NULL: no such column);
+                         ///< valid during the callback only
     long line;           ///< line of the frame's first ITEM
 } gf_packing_frame;
 
