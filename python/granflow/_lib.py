@@ -9,7 +9,7 @@ import ctypes.util
 import os
 from pathlib import Path
 
-from .errors import GranflowError, from_status
+from .errors import GranflowError, from_status  # noqa: F401 (GranflowError: importable from here, as before)
 
 _HERE = Path(__file__).resolve().parent
 

@@ -14,7 +14,7 @@ it does with any other library:
     |   +-- GranflowFileExistsError     FileExistsError: a directory already holds a run (GF_ERR_EXISTS)
     +-- GranflowMemoryError         MemoryError (GF_ERR_NOMEM)
     +-- GranflowStateError          RuntimeError: a corrupt checkpoint, a silo that cannot drain,
-                                    an interrupted call, a closed simulation (GF_ERR_STATE, ...)
+                                    an interrupted call (GF_ERR_STATE, GF_ERR_INTERRUPTED)
 """
 import errno
 import os
@@ -36,7 +36,8 @@ class GranflowError(Exception):
 
 
 class GranflowValueError(GranflowError, ValueError):
-    """A bad value: an argument, a key's value, an array (GF_ERR_PARAM)."""
+    """A bad value: an argument, a key's value, an array (GF_ERR_PARAM); also
+    a call on a closed Simulation, as on a closed file."""
 
 
 class GranflowFormatError(GranflowValueError):
@@ -74,8 +75,8 @@ class GranflowMemoryError(GranflowError, MemoryError):
 
 
 class GranflowStateError(GranflowError, RuntimeError):
-    """The call does not fit the state: a corrupt checkpoint, a closed
-    simulation, an interrupted call (GF_ERR_STATE, GF_ERR_INTERRUPTED)."""
+    """The call does not fit the state: a corrupt checkpoint, a silo that
+    cannot drain, an interrupted call (GF_ERR_STATE, GF_ERR_INTERRUPTED)."""
 
 
 # gf_status value -> class (the order of enum gf_status in granflow/core.h).

@@ -9,7 +9,7 @@ import numpy as np
 
 from ._lib import c_void_p, check, enc, lib
 from .config import Config
-from .errors import GranflowStateError, GranflowValueError, missing_file
+from .errors import GranflowValueError, missing_file
 from .rundir import RunDir
 from .snapshot import table
 
@@ -53,7 +53,7 @@ class Simulation:
 
     def _live(self):
         if not self._ptr:
-            raise GranflowStateError("the simulation is closed")
+            raise GranflowValueError("the simulation is closed")  # as a closed file: ValueError
         return self._ptr
 
     # ---- running -------------------------------------------------------------
