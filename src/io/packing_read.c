@@ -123,7 +123,7 @@ typedef struct gf_columns {
     int scaled;               // positions are fractions of the box (xs ys zs, xsu ysu zsu)
     int id, radius, diameter; // column index or -1
     int type;                 // LAMMPS `type` column or -1 (read only by gf_packing_read_frames)
-    int pass;                 // granflow's `pass` column (recirculation) or -1 (gf_packing_read_frames only)
+    int pass;                 // granflow's `pass` column (recirculation) or -1 (gf_packing_read_frames_pass only)
     const char *radius_name, *diameter_name;
 } gf_columns;
 
@@ -135,7 +135,8 @@ typedef struct gf_reader {
     void *each_ctx;
     int64_t find_id;          // > 0: note the line of the particle with this id
     long found_line;          // its line in the last frame converted, 0: not seen
-    int32_t *pass;            // with `each`: the pass column of the frame being converted
+    int want_pass;            // with `each`: read granflow's pass column (gf_packing_read_frames_pass)
+    int32_t *pass;            // its values in the frame being converted
     size_t pass_cap;
 } gf_reader;
 
@@ -196,7 +197,7 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
                                 ts->path, ts->line, tok[c->type]);
         layer = (int32_t)t;
     }
-    if (rd->each && c->pass >= 0) {
+    if (rd->want_pass && c->pass >= 0) {
         long long t;
         if (gf_textscan_int(tok[c->pass], &t) != 0 || t < 1 || t > INT32_MAX)
             return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'pass': '%.64s' is not a positive integer",
@@ -560,7 +561,7 @@ static gf_status gf_read_lammps(gf_reader *rd)
                                          .time = f.time,
                                          .have_box = f.have_box,
                                          .have_type = cur.cols.type >= 0,
-                                         .pass = cur.cols.pass >= 0 ? rd->pass : NULL,
+                                         .pass = rd->want_pass && cur.cols.pass >= 0 ? rd->pass : NULL,
                                          .line = f.start_line};
                 memcpy(info.lo, f.lo, sizeof info.lo);
                 memcpy(info.hi, f.hi, sizeof info.hi);
@@ -832,12 +833,12 @@ long gf_packing_line_of(const char *path, int64_t id)
     return line;
 }
 
-gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
+static gf_status gf_packing_read_each(const char *path, gf_packing_frame_fn fn, void *ctx, int want_pass)
 {
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no file name");
     if (!fn) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no frame callback");
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx};
+    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx, .want_pass = want_pass};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) st = gf_read_lammps(&rd);
     gf_textscan_close(&rd.ts);
@@ -845,4 +846,14 @@ gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void 
     GF_DELETE(rd.pass, rd.pass_cap);
     gf_packing_free(&tmp);
     return st;
+}
+
+gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
+{
+    return gf_packing_read_each(path, fn, ctx, 0);
+}
+
+gf_status gf_packing_read_frames_pass(const char *path, gf_packing_frame_fn fn, void *ctx)
+{
+    return gf_packing_read_each(path, fn, ctx, 1);
 }

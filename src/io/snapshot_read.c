@@ -62,7 +62,7 @@ gf_status gf_snapshot_read(const char *path, long frame, gf_snapshot **out)
     gf_snapshot *s = gf_alloc(sizeof *s);
     if (!s) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     gf_snapshot_pick pick = {s, frame};
-    gf_status st = gf_packing_read_frames(path, gf_snapshot_keep, &pick);
+    gf_status st = gf_packing_read_frames_pass(path, gf_snapshot_keep, &pick);
     if (st == GF_OK && s->frames == 0) st = gf_error_set(GF_ERR_FORMAT, "%s: no frame in the file", path);
     if (st == GF_OK && frame >= 0 && (size_t)frame >= s->frames)
         st = gf_error_set(GF_ERR_PARAM, "%s has %zu frame%s: there is no frame %ld", path, s->frames,
