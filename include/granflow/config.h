@@ -93,6 +93,12 @@ typedef enum gf_output_format {
     GF_OUTPUT_BOTH = 2, ///< both
 } gf_output_format;
 
+/// How the VTK XML files of a run store their arrays (output.vtk_encoding).
+typedef enum gf_vtk_encoding {
+    GF_VTK_BINARY = 0, ///< zlib-compressed, raw appended (default)
+    GF_VTK_ASCII = 1,  ///< inline text
+} gf_vtk_encoding;
+
 #define GF_PATH_MAX 1024
 /// Room for this many keys in a gf_config's record of where each was set.
 #define GF_CONFIG_MAX_KEYS 128
@@ -168,6 +174,7 @@ typedef struct gf_config {
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
     gf_output_format output_format;    ///< dump (default), vtk or both
+    gf_vtk_encoding output_vtk_encoding; ///< binary (default) or ascii
 
     // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:
     // nearest-neighbour distance 1 (one particle diameter), time in iterations.
