@@ -144,7 +144,13 @@ static void dump_directory_needs_dt(void **state)
         assert_int_equal(p->layer[i], 1);
         assert_int_equal(p->layer[find_id(p, 8)], 1);
     }
-    assert_true(s.cfg.container_width == 20 && s.cfg.container_depth == 6);
+    // The walls where the particles end, about the box's centre: the widest
+    // |x - 10| + r is 9.5 (x = 1), |y - 3| + r is 2.5 (not the box's 20 x 6).
+    assert_true(s.cfg.container_width == 19 && s.cfg.container_depth == 5);
+    char where[64];
+    assert_int_equal(gf_config_where(&s.cfg, "container.width", where, sizeof where), GF_OK);
+    assert_string_equal(where, "particle extent");
+    assert_false(s.has_config);
     assert_false(s.has_exits);
     assert_null(s.exits);
     assert_int_equal(s.n_initial, 2);
@@ -178,7 +184,9 @@ static void multiframe_dump(void **state)
     assert_int_equal(p->layer[find_id(p, 1)], 2);
     assert_int_equal(p->layer[find_id(p, 2)], 3);
     assert_true(p->r[find_id(p, 1)] == 0.4 && p->r[find_id(p, 2)] == 0.6);
-    assert_true(s.cfg.container_width == 10 && s.cfg.container_depth == 4);
+    // Walls at the particles' extent over every frame: |x| + r up to 1.6, |y| + r 0.6.
+    gf_assert_near(s.cfg.container_width, 3.2, 1e-12);
+    gf_assert_near(s.cfg.container_depth, 1.2, 1e-12);
     assert_true(p->x[find_id(p, 2)] == 1.0); // a centred box is not shifted
     assert_false(s.has_exits);
     gf_series_free(&s);

@@ -133,6 +133,10 @@ typedef struct gf_config {
     double packing_radius2;            ///< radius of the second species of a generated packing, d; default 0.5
     double packing_fraction2;          ///< number fraction of the second species; default 0 (monodisperse)
 
+    // [dump] the units of the dumps granflow reads but did not write (packing.file, DEM runs)
+    double dump_diameter;              ///< the particle diameter in their length unit; default 1 (they are in d)
+    double dump_gravity;               ///< gravity in their units; default 1 (times in tau = sqrt(diameter / gravity))
+
     // [spot] the five fitted parameters and the walk (2009 paper Fig. 2)
     double spot_radius;                ///< r_s, d; default 2.6
     double spot_w;                     ///< spot/particle displacement ratio w; default 399

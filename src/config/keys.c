@@ -89,6 +89,14 @@ const gf_key gf_keys[] = {
     {"packing", "fraction2", GF_KEY_DOUBLE, GF_OFF(packing_fraction2), .min = 0, .max = 1, .def = "0",
      .unit = "", .doc = "number fraction of the second species (0: monodisperse)"},
 
+    {"dump", "diameter", GF_KEY_DOUBLE, GF_OFF(dump_diameter), .min = 0, .max = 1e6, .min_open = true, .def = "1",
+     .unit = "dump length",
+     .doc = "the particle diameter in the length unit of the dumps read (packing.file; analyze, calibrate, compare): "
+            "1 for dumps in d, 0.004 for 4 mm spheres in metres"},
+    {"dump", "gravity", GF_KEY_DOUBLE, GF_OFF(dump_gravity), .min = 0, .max = 1e9, .min_open = true, .def = "1",
+     .unit = "dump length/time^2",
+     .doc = "gravity in the dumps' units (9.81 in SI): their times are read in tau = sqrt(dump.diameter / dump.gravity)"},
+
     {"spot", "radius", GF_KEY_DOUBLE, GF_OFF(spot_radius), .min = 0, .max = 20, .min_open = true,
      .def = "2.6", .unit = "d", .doc = "spot radius r_s"},
     {"spot", "w", GF_KEY_DOUBLE, GF_OFF(spot_w), GF_POSITIVE, .def = "399", .unit = "",
