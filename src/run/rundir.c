@@ -345,9 +345,13 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
     // already falling through the orifice: dropped, and said so.
     if (st == GF_OK && cfg->packing_file[0] && opts->progress) {
         char note[GF_PATH_MAX + 256];
+        char units[96] = "";
+        if (cfg->dump_diameter != 1.0)
+            snprintf(units, sizeof units, ", lengths / %g (dump.diameter)", cfg->dump_diameter);
         snprintf(note, sizeof note,
-                 "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types dropped)",
-                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types);
+                 "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types "
+                 "dropped%s)",
+                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types, units);
         gf_run_progress p = {.phase = "imported", .until = cfg->run_duration, .initial = pk->n, .note = note};
         opts->progress(opts->ctx, &p);
     }
