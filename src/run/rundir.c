@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "core/json.h"
+#include "core/limits.h"
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
@@ -166,10 +167,6 @@ static gf_status gf_find_vtus(gf_rundir *rd)
     return st;
 }
 
-// Rewriting snapshots.pvd at every snapshot costs the square of their
-// number: past this many it is rewritten at checkpoints and at the end only.
-#define GF_PVD_EVERY_SNAPSHOT 1000
-
 static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
 {
     gf_rundir *rd = ctx;
@@ -197,6 +194,7 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
         st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->cfg->output_vtk_encoding);
         if (st == GF_OK) st = gf_add_vtu(rd, index, time);
+        // Rewriting the .pvd at every snapshot costs the square of their number (core/limits.h).
         if (st == GF_OK && rd->nvtu <= GF_PVD_EVERY_SNAPSHOT) st = gf_write_pvd(rd);
     }
     if (st == GF_OK) st = gf_save_progress(rd, sim);
