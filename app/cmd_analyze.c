@@ -113,6 +113,7 @@ int gf_cmd_analyze(int argc, char **argv)
         fprintf(stderr, "granflow analyze: %zu snapshots from t = %g to %g tau, %zu exits%s; window %g..%g tau: %s\n",
                 info.nframes, info.t_first, info.t_last, info.nexits, from, info.window.t0, info.window.t1,
                 info.window.reason);
+        fprintf(stderr, "granflow analyze: %s\n", info.container);
         fprintf(stderr, "granflow analyze: results in %s (summary.json, *.csv, *.png)\n", info.outdir);
     }
     return GF_EXIT_OK;

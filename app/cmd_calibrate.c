@@ -80,17 +80,11 @@ gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path
     if (!a->quiet) fprintf(stderr, "granflow %s: reading %s...\n", cmd, path);
     gf_status st = gf_dem_series_load(path, &src, s, &rep);
     if (st != GF_OK || a->quiet) return st;
-    char box[128];
-    if (s->cfg.container_shape == GF_SHAPE_CYLINDER)
-        snprintf(box, sizeof box, "cylinder of radius %g, outlet %g", s->cfg.container_radius, s->cfg.outlet_diameter);
-    else
-        snprintf(box, sizeof box, "container %g x %g, orifice %g", s->cfg.container_width, s->cfg.container_depth,
-                 s->cfg.orifice_diameter);
     fprintf(stderr,
             "granflow %s: %zu snapshots, t = %g..%g tau, %zu particles at first (%zu particle-frames below the "
             "base counted as exited, %zu of other atom types dropped); %s\n",
             cmd, s->nframes, s->nframes ? s->frames[0].time : 0.0, s->nframes ? s->frames[s->nframes - 1].time : 0.0,
-            s->n_initial, rep.below_base, rep.other_types, box);
+            s->n_initial, rep.below_base, rep.other_types, rep.container);
     return st;
 }
 

@@ -327,8 +327,10 @@ static void series_scaled_steps_types(void **state)
     // Without a time step the frames cannot be placed in time.
     assert_int_equal(gf_dem_series_load(f, NULL, &s, NULL), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "dump.dt"));
-    const char *sets[] = {"packing.types=1", "container.orifice_diameter=4"};
-    gf_dem_source src = {.dump_dt = 1e-4, .sets = sets, .nsets = 2};
+    // Two particles span 3 d: the walls (the box's here) are given.
+    const char *sets[] = {"packing.types=1", "container.orifice_diameter=4", "container.width=10",
+                          "container.depth=6"};
+    gf_dem_source src = {.dump_dt = 1e-4, .sets = sets, .nsets = 4};
     gf_dem_load_report rep;
     assert_int_equal(gf_dem_series_load(f, &src, &s, &rep), GF_OK);
     assert_true(rep.have_type);
@@ -373,7 +375,7 @@ static void series_scaled_steps_types(void **state)
     const char *t = wdump("timed.dump", "ITEM: TIME\n0.5\nITEM: TIMESTEP\n5000\nITEM: NUMBER OF ATOMS\n1\n" BOX
                                         "ITEM: ATOMS id x y z\n1 0 0 3\n");
     assert_int_equal(gf_dem_series_load(t, &src, &s, NULL), GF_ERR_PARAM); // types need a type column
-    src.nsets = 1 + 0;
+    src.nsets = 3; // the orifice and the walls, without packing.types
     src.sets = sets + 1;
     assert_int_equal(gf_dem_series_load(t, &src, &s, NULL), GF_OK);
     gf_assert_near(s.frames[0].time, 0.5, 1e-12);
@@ -407,7 +409,8 @@ static void dem_far_new_particle_layer(void **state)
                                       "1 1 0 0 10\nITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\n" BOX
                                       "ITEM: ATOMS id type x y z\n2 1 0 0 1e300\n");
     gf_series s;
-    gf_dem_source src = {.dump_dt = 0.5};
+    const char *sets[] = {"container.width=10", "container.depth=6"}; // one particle's extent is no silo
+    gf_dem_source src = {.dump_dt = 0.5, .sets = sets, .nsets = 2};
     assert_int_equal(gf_dem_series_load(f, &src, &s, NULL), GF_OK);
     assert_int_equal(s.nframes, 2);
     assert_int_equal(s.frames[1].pk.n, 1);

@@ -264,8 +264,32 @@ static void checkpoint_of_an_older_version_resumes(void **state)
     assert_non_null(strstr(gf_last_error(), "container.orifice_x differs"));
 }
 
+// A checkpoint of a version without a whole section (here [dump], its
+// header and keys turned into comments) resumes while its keys are at their
+// defaults, and is refused, naming the key, once one is not.
+static void checkpoint_without_a_new_section_resumes(void **state)
+{
+    (void)state;
+    gf_config c = gf_test_silo_config(10, 300, 3);
+    gf_sim *sim = gf_test_generated_sim(&c);
+    char path[600];
+    snprintf(path, sizeof path, "%s/ck_nosection.bin", gf_test_tmpdir());
+    assert_int_equal(gf_sim_save(sim, path), GF_OK);
+    gf_sim_destroy(sim);
+    patch_checkpoint(path, "\n[dump]\n", "\n;dump]\n");
+    patch_checkpoint(path, "\ndiameter = 1\n", "\n;iameter = 1\n");
+    patch_checkpoint(path, "\ngravity = 1\n", "\n;ravity = 1\n");
+    gf_sim *back = NULL;
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_OK);
+    gf_sim_destroy(back);
+    c.dump_diameter = 0.004;
+    assert_int_equal(gf_sim_load(&c, path, &back), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "dump.diameter differs"));
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(checkpoint_compares_settings_not_comments),
+    cmocka_unit_test(checkpoint_without_a_new_section_resumes),
     cmocka_unit_test(checkpoint_of_an_older_version_resumes),
     cmocka_unit_test(alloc_refuses_wrapping_sizes),
     cmocka_unit_test(poisson_of_a_huge_mean_is_huge),

@@ -144,7 +144,13 @@ static void dump_directory_needs_dt(void **state)
         assert_int_equal(p->layer[i], 1);
         assert_int_equal(p->layer[find_id(p, 8)], 1);
     }
-    assert_true(s.cfg.container_width == 20 && s.cfg.container_depth == 6);
+    // The walls where the particles end, about the box's centre: the widest
+    // |x - 10| + r is 9.5 (x = 1), |y - 3| + r is 2.5 (not the box's 20 x 6).
+    assert_true(s.cfg.container_width == 19 && s.cfg.container_depth == 5);
+    char where[64];
+    assert_int_equal(gf_config_where(&s.cfg, "container.width", where, sizeof where), GF_OK);
+    assert_string_equal(where, "particle extent");
+    assert_false(s.has_config);
     assert_false(s.has_exits);
     assert_null(s.exits);
     assert_int_equal(s.n_initial, 2);
@@ -178,7 +184,9 @@ static void multiframe_dump(void **state)
     assert_int_equal(p->layer[find_id(p, 1)], 2);
     assert_int_equal(p->layer[find_id(p, 2)], 3);
     assert_true(p->r[find_id(p, 1)] == 0.4 && p->r[find_id(p, 2)] == 0.6);
-    assert_true(s.cfg.container_width == 10 && s.cfg.container_depth == 4);
+    // Walls at the particles' extent over every frame: |x| + r up to 1.6, |y| + r 0.6.
+    gf_assert_near(s.cfg.container_width, 3.2, 1e-12);
+    gf_assert_near(s.cfg.container_depth, 1.2, 1e-12);
     assert_true(p->x[find_id(p, 2)] == 1.0); // a centred box is not shifted
     assert_false(s.has_exits);
     gf_series_free(&s);
@@ -314,7 +322,62 @@ static void far_new_particle_layer(void **state)
     gf_series_free(&s);
 }
 
+// Dumps in SI units (gf_series_load_in): metres and seconds become d and
+// tau (d = 4 mm, g = 9.81: tau = sqrt(d / g)), positions, radii, the box and
+// exits.csv alike, and TIMESTEP x dump_dt is in seconds; the walls are where
+// the particles end, marked so, not the wider box.
+static void si_units_are_converted(void **state)
+{
+    (void)state;
+    const char *dir = subdir("si");
+    const double d = 0.004, tau = sqrt(0.004 / 9.81);
+    char buf[1024];
+    for (int k = 0; k < 2; k++) {
+        // Box -0.024..0.024 x -0.016..0.016 m (12 x 8 d), walls at +-5 and +-3 d.
+        snprintf(buf, sizeof buf,
+                 "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS ff ff ff\n-0.024 0.024\n-0.016 0.016\n"
+                 "0 0.04\nITEM: ATOMS id type x y z radius\n1 1 -0.018 0.010 %.17g 0.002\n2 1 0.018 -0.010 0.006 0.002\n",
+                 1000 * k, 0.002 + 0.004 * k);
+        char name[32];
+        snprintf(name, sizeof name, "dump.%d", 1000 * k);
+        gf_test_write_file(dir, name, buf);
+    }
+    gf_test_write_file(dir, "exits.csv", "id,time,x,y\n3,0.004,0.002,-0.004\n");
+    gf_series s;
+    const gf_series_units si = {d, 9.81};
+    assert_int_equal(gf_series_load_in(dir, 1e-5, &si, NULL, &s), GF_OK);
+    assert_int_equal(s.nframes, 2);
+    gf_assert_near(s.frames[1].time, 1000 * 1e-5 / tau, 1e-12); // 1000 steps of 10 us
+    const gf_packing *p = &s.frames[0].pk;
+    size_t i = find_id(p, 1);
+    gf_assert_near(p->x[i], -4.5, 1e-12);
+    gf_assert_near(p->y[i], 2.5, 1e-12);
+    gf_assert_near(p->z[i], 0.5, 1e-12);
+    gf_assert_near(p->r[i], 0.5, 1e-12);
+    gf_assert_near(s.frames[1].pk.z[find_id(&s.frames[1].pk, 1)], 1.5, 1e-12);
+    assert_int_equal(s.nexits, 1);
+    gf_assert_near(s.exits[0].time, 0.004 / tau, 1e-12);
+    gf_assert_near(s.exits[0].x, 0.5, 1e-12);
+    gf_assert_near(s.exits[0].y, -1.0, 1e-12);
+    // Walls at the particles' extent, |x| + r = 5, |y| + r = 3: not the box's 12 x 8.
+    gf_assert_near(s.cfg.container_width, 10.0, 1e-12);
+    gf_assert_near(s.cfg.container_depth, 6.0, 1e-12);
+    char where[64];
+    assert_int_equal(gf_config_where(&s.cfg, "container.depth", where, sizeof where), GF_OK);
+    assert_string_equal(where, "particle extent");
+    // A width given is kept.
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_set(&c, "container.width=20", "--set"), GF_OK);
+    assert_int_equal(gf_series_fit_walls(&s, &c), GF_OK);
+    assert_true(c.container_width == 20.0);
+    gf_assert_near(c.container_depth, 6.0, 1e-12);
+    gf_series_free(&s);
+    const gf_series_units bad = {0, 9.81};
+    expect_error(gf_series_load_in(dir, 1e-5, &bad, NULL, &s), GF_ERR_PARAM, "dump.diameter = 0", NULL);
+}
+
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(si_units_are_converted),
     cmocka_unit_test(run_directory),
     cmocka_unit_test(dump_directory_needs_dt),
     cmocka_unit_test(multiframe_dump),

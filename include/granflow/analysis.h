@@ -41,9 +41,18 @@ typedef struct gf_series {
     double exit_resolution; ///< tau: a derived exit time is within +- this of the true one (half the
                             ///< longest frame interval an exit was found in); 0 for exits.csv
     size_t n_initial;   ///< particles in the first frame
-    gf_config cfg;      ///< the run's config.ini when there is one, else defaults
-                        ///< with the container fitted to the first frame's box
+    gf_config cfg;      ///< the run's config.ini when there is one, else defaults with the
+                        ///< container centred on the first frame's box and fitted to the
+                        ///< particles (gf_series_fit_walls)
+    bool has_config;    ///< cfg is the run's config.ini (a run of granflow: its dumps are in d and tau)
 } gf_series;
+
+/// The units of dumps granflow did not write (the keys dump.diameter and
+/// dump.gravity): lengths are read in d, times in tau = sqrt(diameter / gravity).
+typedef struct gf_series_units {
+    double diameter; ///< the particle diameter in the dumps' length unit (1: they are in d; 0.004: 4 mm in metres)
+    double gravity;  ///< gravity in the dumps' units (1 with diameter 1: times in tau; 9.81 in SI)
+} gf_series_units;
 
 /// Loads a run directory (config.ini, snapshots/*.dump, exits.csv), a
 /// directory of LAMMPS dumps, or one (multi-frame) LAMMPS dump. Frames come in
@@ -54,6 +63,19 @@ GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out
 /// non-zero, GF_ERR_INTERRUPTED with nothing loaded.
 GF_API gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop,
                                           gf_series *out);
+/// gf_series_load_stoppable of dumps in `units` (NULL: d and tau): positions,
+/// radii, the box and exits.csv are divided by units->diameter, times (ITEM:
+/// TIME, TIMESTEP x dump_dt, exits.csv) by sqrt(diameter / gravity); dump_dt
+/// is then in the dumps' time unit (seconds for an SI dump).
+GF_API gf_status gf_series_load_in(const char *path, double dump_dt, const gf_series_units *units,
+                                   volatile sig_atomic_t *stop, gf_series *out);
+/// The walls of a box container (`cfg` with container.shape = box) where the
+/// particles of `s` end: container.width (depth) = twice the largest |x| (|y|)
+/// + radius of a particle at or above the exit plane in any frame, each only
+/// when `cfg` does not have it from a file or an assignment
+/// (gf_config_is_set), and then marked as set by "particle extent"
+/// (gf_config_where). A cylinder, or a series without particles, is left as it is.
+GF_API gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg);
 GF_API void gf_series_free(gf_series *s);
 /// Exits of a series without exits.csv (the dumps of a DEM drain), read off
 /// its frames: a particle in frame k and not in frame k + 1 exited at the

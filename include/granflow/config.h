@@ -94,6 +94,12 @@ typedef enum gf_output_format {
     GF_OUTPUT_BOTH = 2, ///< both
 } gf_output_format;
 
+/// How the VTK XML files of a run store their arrays (output.vtk_encoding).
+typedef enum gf_vtk_encoding {
+    GF_VTK_BINARY = 0, ///< zlib-compressed, raw appended (default)
+    GF_VTK_ASCII = 1,  ///< inline text
+} gf_vtk_encoding;
+
 #define GF_PATH_MAX 1024
 /// Room for this many keys in a gf_config's record of where each was set.
 #define GF_CONFIG_MAX_KEYS 128
@@ -127,6 +133,10 @@ typedef struct gf_config {
     char packing_types[GF_PATH_MAX];   ///< atom types to import from a LAMMPS dump, "1,3" (empty: all)
     double packing_radius2;            ///< radius of the second species of a generated packing, d; default 0.5
     double packing_fraction2;          ///< number fraction of the second species; default 0 (monodisperse)
+
+    // [dump] the units of the dumps granflow reads but did not write (packing.file, DEM runs)
+    double dump_diameter;              ///< the particle diameter in their length unit; default 1 (they are in d)
+    double dump_gravity;               ///< gravity in their units; default 1 (times in tau = sqrt(diameter / gravity))
 
     // [spot] the five fitted parameters and the walk (2009 paper Fig. 2)
     double spot_radius;                ///< r_s, d; default 2.6
@@ -174,6 +184,7 @@ typedef struct gf_config {
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
     gf_output_format output_format;    ///< dump (default), vtk or both
+    gf_vtk_encoding output_vtk_encoding; ///< binary (default) or ascii
 
     // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:
     // nearest-neighbour distance 1 (one particle diameter), time in iterations.

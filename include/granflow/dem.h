@@ -102,8 +102,8 @@ GF_API gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *opts);
 
 /// Where a DEM run comes from and how to read it.
 typedef struct gf_dem_source {
-    double dump_dt;           ///< tau per TIMESTEP for dumps without ITEM: TIME (0: TIME is required)
-    const char *config;       ///< INI file with the container (NULL: DIR/config.ini, else the dump's box)
+    double dump_dt;           ///< time per TIMESTEP for dumps without ITEM: TIME, in the dumps' unit (0: TIME is required)
+    const char *config;       ///< INI file with the container and the dumps' units (NULL: DIR/config.ini, else fitted)
     const char *const *sets;  ///< `section.key=value` overrides of that config (e.g. container.width=50)
     size_t nsets;
     volatile sig_atomic_t *stop; ///< polled at every frame read: GF_ERR_INTERRUPTED once non-zero (NULL: never)
@@ -118,14 +118,21 @@ typedef struct gf_dem_load_report {
     bool have_type;          ///< the first dump has a `type` column
     size_t other_types;      ///< particle-frames of atom types not in packing.types
     size_t below_base;       ///< particle-frames whose centre was below container.exit_z (exited)
+    double diameter, gravity; ///< the dumps' units they were read in (dump.diameter, dump.gravity)
+    char container[2 * GF_PATH_MAX + 256]; ///< the container and where each size came from, and the units
 } gf_dem_load_report;
 
-/// Loads a DEM run (or any run) like gf_series_load, then applies the config
-/// (src->config, src->sets: the container, packing.types, exit_z), keeps only
-/// the atom types of packing.types (re-tagging the layers by the first
-/// frame's heights), and removes from every frame the particles below
+/// Loads a DEM run (or any run) like gf_series_load, in the units
+/// dump.diameter and dump.gravity of src->config and src->sets
+/// (gf_series_load_in; a run of granflow, with config.ini, is in d and tau
+/// and any other units are an error), then applies the config (src->config,
+/// else DIR/config.ini, and src->sets: the container, packing.types, exit_z),
+/// keeps only the atom types of packing.types (re-tagging the layers by the
+/// first frame's heights), and removes from every frame the particles below
 /// container.exit_z: DEM keeps them until they fall to its deletion height,
-/// granflow counts them as exited. `rep` may be NULL.
+/// granflow counts them as exited. Without DIR/config.ini the walls no config
+/// gives are fitted to the particles left (gf_series_fit_walls). The series'
+/// cfg has dump.diameter = dump.gravity = 1: it is in d and tau. `rep` may be NULL.
 GF_API gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_series *out,
                                     gf_dem_load_report *rep);
 
@@ -137,6 +144,7 @@ typedef struct gf_dem_analysis {
     double t_first, t_last;  ///< times of the first and last snapshot, tau
     gf_steady window;        ///< the window measured over (t0, t1) and why
     char outdir[GF_PATH_MAX + 16]; ///< where the results went
+    char container[2 * GF_PATH_MAX + 256]; ///< the container, where each size came from, the units (gf_dem_load_report)
 } gf_dem_analysis;
 
 /// `granflow analyze` (SPEC 1.6): loads `path` (a run directory, a directory

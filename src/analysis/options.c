@@ -24,7 +24,8 @@ static const gf_key gf_analysis_key_list[] = {
     {"window", "t1", GF_KEY_AUTO, GF_AOFF(t1), GF_IN(0, 1e12), .def = "auto", .unit = "tau",
      .doc = "end of the averaging window (auto: the end of the steady flow, else the last snapshot)"},
     {"dump", "dt", GF_KEY_DOUBLE, GF_AOFF(dump_dt), GF_IN(0, 1e6), .def = "0", .unit = "tau",
-     .doc = "tau per TIMESTEP, for dumps without ITEM: TIME (0: such dumps are an error)"},
+     .doc = "time per TIMESTEP, for dumps without ITEM: TIME (0: such dumps are an error); in the dumps' time unit "
+            "when dump.diameter and dump.gravity are set (seconds in SI)"},
     {"velocity", "bin", GF_KEY_DOUBLE, GF_AOFF(vel_bin), GF_IN(0.05, 100), .def = "1", .unit = "d",
      .doc = "edge of the square (x, z) bins of the mean velocity field and of the v_z(x) profiles"},
     {"velocity", "heights", GF_KEY_LIST, GF_AOFF(vel_heights), GF_Z, .def = "10,20,30,40,50,60", .unit = "d",

@@ -10,10 +10,13 @@
 // present. Frames are sorted by time (ITEM: TIME, else TIMESTEP x dump_dt);
 // two frames at the same time are an error.
 //
-// Without config.ini the container is fitted to the first frame's BOX BOUNDS
-// (x range -> width, y range -> depth). granflow's container is centred on
-// x = y = 0, so a box that is not (a DEM box 0..50, say) is moved there: every
-// frame's x and y, and the exits', are shifted by minus the box centre.
+// Without config.ini the container is fitted to the particles: granflow's
+// container is centred on x = y = 0, so a BOX BOUNDS not centred there (a DEM
+// box 0..50, say) is moved there (every frame's x and y, and the exits', are
+// shifted by minus the box centre); then the walls are put where the
+// particles end (gf_series_fit_walls): a DEM box is the simulation's domain,
+// often wider than the silo's walls. Dumps in other units than d and tau are
+// converted as they are read (gf_series_load_in: dump.diameter, dump.gravity).
 // Without a `type` column the layer tags are made from the first frame
 // (1 + floor(z / packing.layer_thickness)) and carried to later frames by id.
 #include <dirent.h>
@@ -60,7 +63,9 @@ typedef struct gf_loader {
     gf_load_frame *fr;
     size_t nfr, cap_fr;
     size_t cur; ///< file being read
-    double dump_dt;
+    double dump_dt;     ///< the dumps' time per TIMESTEP, in their time unit
+    double length_unit; ///< the particle diameter in the dumps' length unit
+    double time_unit;   ///< tau in the dumps' time unit
     volatile sig_atomic_t *stop; ///< polled at every frame (may be NULL)
 } gf_loader;
 
@@ -99,10 +104,12 @@ static gf_status gf_loader_on_frame(void *ctx, const gf_packing_frame *f, gf_pac
         if (!(L->dump_dt > 0))
             return gf_error_set(GF_ERR_PARAM,
                                 "%s:%ld: the frame at timestep %lld has no ITEM: TIME; pass dump.dt "
-                                "(tau per TIMESTEP) to turn its TIMESTEP into a time",
+                                "(the time per TIMESTEP in the dump's unit: tau, or seconds with "
+                                "dump.diameter and dump.gravity in SI) to turn its TIMESTEP into a time",
                                 path, f->line, f->timestep);
         t = (double)f->timestep * L->dump_dt;
     }
+    t /= L->time_unit;
     if (L->nfr == L->cap_fr) {
         size_t nc = L->cap_fr ? 2 * L->cap_fr : 16;
         gf_load_frame *p = gf_realloc(L->fr, sizeof *p * L->cap_fr, sizeof *p * nc);
@@ -224,29 +231,50 @@ static gf_status gf_series_fill_layers(gf_series *s, const gf_load_frame *src)
     return GF_OK;
 }
 
-/// No config.ini: the papers' defaults with the container fitted to the first frame.
-static void gf_series_fit_container(gf_series *s, const gf_packing_frame *h)
+/// The widest |coordinate| + radius of the particles of `s` at or above
+/// the base `zmin`, along x (axis 0) or y (1); 0 when there is none.
+static double gf_series_reach(const gf_series *s, int axis, double zmin)
+{
+    double m = 0.0;
+    for (size_t k = 0; k < s->nframes; k++) {
+        const gf_packing *p = &s->frames[k].pk;
+        const double *c = axis ? p->y : p->x;
+        for (size_t i = 0; i < p->n; i++)
+            if (p->z[i] >= zmin) m = fmax(m, fabs(c[i]) + p->r[i]);
+    }
+    return m;
+}
+
+gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg)
+{
+    if (!s || !cfg) return gf_error_set(GF_ERR_PARAM, "gf_series_fit_walls: NULL series or config");
+    if (cfg->container_shape != GF_SHAPE_BOX) return GF_OK;
+    static const char *const keys[2] = {"container.width", "container.depth"};
+    for (int axis = 0; axis < 2; axis++) {
+        if (gf_config_is_set(cfg, keys[axis])) continue;
+        double half = gf_series_reach(s, axis, gf_config_exit_plane(cfg));
+        if (!(half > 0)) continue;
+        char kv[96];
+        snprintf(kv, sizeof kv, "%s=%.17g", keys[axis], 2.0 * half);
+        gf_status st = gf_config_set(cfg, kv, "particle extent");
+        if (st != GF_OK) return st;
+    }
+    return GF_OK;
+}
+
+/// No config.ini: the papers' defaults, centred on the first frame's box,
+/// with the walls where the particles end (or, with no particle above the
+/// base in any frame, the box's).
+static gf_status gf_series_fit_container(gf_series *s, const gf_packing_frame *h)
 {
     gf_config c = gf_config_default();
-    const gf_packing *p0 = &s->frames[0].pk;
     double cx = 0.0, cy = 0.0;
     if (h->have_box) {
-        double w = h->hi[0] - h->lo[0], dp = h->hi[1] - h->lo[1];
-        if (w > 0) c.container_width = w;
-        if (dp > 0) c.container_depth = dp;
         cx = 0.5 * (h->lo[0] + h->hi[0]);
         cy = 0.5 * (h->lo[1] + h->hi[1]);
-    } else if (p0->n > 0) { // no box: the particles' extent about 0
-        double mx = 0.0, my = 0.0;
-        for (size_t i = 0; i < p0->n; i++) {
-            mx = fmax(mx, fabs(p0->x[i]) + p0->r[i]);
-            my = fmax(my, fabs(p0->y[i]) + p0->r[i]);
-        }
-        c.container_width = 2.0 * mx;
-        c.container_depth = 2.0 * my;
     }
     // Shift a box not centred on x = y = 0 there (rounding-level offsets are left alone).
-    double tol = 1e-9 * fmax(1.0, fmax(c.container_width, c.container_depth));
+    double tol = 1e-9 * fmax(1.0, fmax(fabs(h->hi[0] - h->lo[0]), fabs(h->hi[1] - h->lo[1])));
     if (fabs(cx) > tol || fabs(cy) > tol) {
         for (size_t k = 0; k < s->nframes; k++) {
             gf_packing *p = &s->frames[k].pk;
@@ -260,12 +288,23 @@ static void gf_series_fit_container(gf_series *s, const gf_packing_frame *h)
             s->exits[k].y -= cy;
         }
     }
+    gf_status st = gf_series_fit_walls(s, &c);
+    if (st != GF_OK) return st;
+    static const char *const keys[2] = {"container.width", "container.depth"};
+    for (int axis = 0; axis < 2 && h->have_box; axis++) {
+        double w = h->hi[axis] - h->lo[axis];
+        if (gf_config_is_set(&c, keys[axis]) || !(w > 0)) continue;
+        char kv[96];
+        snprintf(kv, sizeof kv, "%s=%.17g", keys[axis], w);
+        if ((st = gf_config_set(&c, kv, "dump box")) != GF_OK) return st;
+    }
     // Resolve derived defaults when the fitted box allows; a box too small for
     // the papers' orifice is still measurable, so its config is kept as it is.
     gf_config v = c;
     if (gf_config_validate(&v) == GF_OK) c = v;
     else gf_error_clear();
     s->cfg = c;
+    return GF_OK;
 }
 
 // ---------------------------------------------------------------------------
@@ -289,7 +328,7 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
     if (dir) {
         snprintf(path, sizeof path, "%s/config.ini", dir);
         if (gf_is_file(path)) {
-            have_cfg = true;
+            have_cfg = s->has_config = true;
             st = gf_config_load(&s->cfg, path);
             if (st == GF_OK) st = gf_config_validate(&s->cfg);
             if (st != GF_OK) return st;
@@ -299,6 +338,14 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
             st = gf_exits_read(path, &s->exits, &s->nexits);
             if (st != GF_OK) return st;
             s->has_exits = true;
+            for (size_t k = 0; k < s->nexits; k++) { // in the dumps' units, as they are
+                gf_exit *e = &s->exits[k];
+                e->time /= L->time_unit;
+                e->entry_time /= L->time_unit;
+                e->x /= L->length_unit;
+                e->y /= L->length_unit;
+                e->entry_r /= L->length_unit;
+            }
         }
     }
     s->frames = GF_NEW(gf_frame, L->nfr);
@@ -310,7 +357,7 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
         memset(&L->fr[k].pk, 0, sizeof L->fr[k].pk);
     }
     s->n_initial = s->frames[0].pk.n;
-    if (!have_cfg) gf_series_fit_container(s, &L->fr[0].hdr);
+    if (!have_cfg && (st = gf_series_fit_container(s, &L->fr[0].hdr)) != GF_OK) return st;
     return gf_series_fill_layers(s, L->fr);
 }
 
@@ -321,11 +368,22 @@ gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)
 
 gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop, gf_series *out)
 {
+    return gf_series_load_in(path, dump_dt, NULL, stop, out);
+}
+
+gf_status gf_series_load_in(const char *path, double dump_dt, const gf_series_units *units,
+                            volatile sig_atomic_t *stop, gf_series *out)
+{
     memset(out, 0, sizeof *out);
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_series_load: no path");
     if (!(dump_dt >= 0) || !isfinite(dump_dt))
         return gf_error_set(GF_ERR_PARAM, "dump.dt = %g must be a finite number >= 0", dump_dt);
-    gf_loader L = {.dump_dt = dump_dt, .stop = stop};
+    const gf_series_units u = units ? *units : (gf_series_units){1.0, 1.0};
+    if (!(u.diameter > 0 && u.gravity > 0 && isfinite(u.diameter) && isfinite(u.gravity)))
+        return gf_error_set(GF_ERR_PARAM, "dump.diameter = %g and dump.gravity = %g must be positive numbers",
+                            u.diameter, u.gravity);
+    gf_loader L = {.dump_dt = dump_dt, .stop = stop, .length_unit = u.diameter,
+                   .time_unit = sqrt(u.diameter / u.gravity)};
     gf_status st = GF_OK;
     const char *dir = NULL;
     struct stat sb;
@@ -340,7 +398,7 @@ gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile si
         st = gf_loader_add_file(&L, NULL, path);
     }
     for (L.cur = 0; st == GF_OK && L.cur < L.nfiles; L.cur++)
-        st = gf_packing_read_frames(L.files[L.cur], gf_loader_on_frame, &L);
+        st = gf_packing_read_frames_in(L.files[L.cur], L.length_unit, gf_loader_on_frame, &L);
     if (st == GF_OK) st = gf_series_build(&L, dir, out);
     gf_loader_free(&L);
     if (st != GF_OK) gf_series_free(out);

@@ -15,7 +15,8 @@ _Static_assert(sizeof(gf_ball_centre) == sizeof(int), "enum keys are stored as i
 _Static_assert(sizeof(gf_lga_scenario) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_lga_flow) == sizeof(int), "enum keys are stored as int");
 _Static_assert(sizeof(gf_dem_fill) == sizeof(int), "enum keys are stored as int");
-_Static_assert(sizeof(gf_reinsert) == sizeof(int) && sizeof(gf_output_format) == sizeof(int),
+_Static_assert(sizeof(gf_reinsert) == sizeof(int) && sizeof(gf_output_format) == sizeof(int) &&
+                   sizeof(gf_vtk_encoding) == sizeof(int),
                "enum keys are stored as int");
 _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == sizeof(int) &&
                    sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int),
@@ -33,6 +34,7 @@ static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
 static const char *const gf_keys_format_names[] = {"dump", "vtk", "both", NULL};
+static const char *const gf_keys_vtk_encoding_names[] = {"binary", "ascii", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
 #define GF_OFF(field) offsetof(gf_config, field)
@@ -86,6 +88,14 @@ const gf_key gf_keys[] = {
      .unit = "d", .doc = "radius of the second species of a generated packing (the first has radius 0.5; a larger one is imported)"},
     {"packing", "fraction2", GF_KEY_DOUBLE, GF_OFF(packing_fraction2), .min = 0, .max = 1, .def = "0",
      .unit = "", .doc = "number fraction of the second species (0: monodisperse)"},
+
+    {"dump", "diameter", GF_KEY_DOUBLE, GF_OFF(dump_diameter), .min = 0, .max = 1e6, .min_open = true, .def = "1",
+     .unit = "dump length",
+     .doc = "the particle diameter in the length unit of the dumps read (packing.file; analyze, calibrate, compare): "
+            "1 for dumps in d, 0.004 for 4 mm spheres in metres"},
+    {"dump", "gravity", GF_KEY_DOUBLE, GF_OFF(dump_gravity), .min = 0, .max = 1e9, .min_open = true, .def = "1",
+     .unit = "dump length/time^2",
+     .doc = "gravity in the dumps' units (9.81 in SI): their times are read in tau = sqrt(dump.diameter / dump.gravity)"},
 
     {"spot", "radius", GF_KEY_DOUBLE, GF_OFF(spot_radius), .min = 0, .max = 20, .min_open = true,
      .def = "2.6", .unit = "d", .doc = "spot radius r_s"},
@@ -176,7 +186,10 @@ const gf_key gf_keys[] = {
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long; at most 10^5 per run.duration"},
     {"output", "format", GF_KEY_ENUM, GF_OFF(output_format), .names = gf_keys_format_names, .def = "dump",
-     .unit = "", .doc = "snapshot files: dump (LAMMPS text), vtk (VTK XML .vtu for ParaView) or both"},
+     .unit = "", .doc = "snapshot files: dump (LAMMPS text), vtk (VTK XML .vtu and snapshots.pvd for ParaView) or both"},
+    {"output", "vtk_encoding", GF_KEY_ENUM, GF_OFF(output_vtk_encoding), .names = gf_keys_vtk_encoding_names,
+     .def = "binary", .unit = "",
+     .doc = "arrays of the VTK XML files: binary (zlib-compressed, appended) or ascii (inline text)"},
 
     {"lga", "scenario", GF_KEY_ENUM, GF_OFF(lga_scenario), .names = gf_keys_lga_scenario_names,
      .def = "silo", .unit = "",

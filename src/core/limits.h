@@ -96,4 +96,10 @@
 /// spots per step, and beyond it memory grows without bound.
 #define GF_MAX_SPOTS_PER_MOVE 10000.0
 
+/// snapshots.pvd is rewritten whole at every snapshot while it lists at most
+/// this many (about 70 bytes each), then only at checkpoints and at the end:
+/// rewriting it at every one of GF_MAX_OUTPUTS snapshots would write
+/// hundreds of GB in all.
+#define GF_PVD_EVERY_SNAPSHOT 1000
+
 #endif

@@ -45,8 +45,10 @@ gf_status gf_dem_analyze(const char *path, const gf_dem_source *src, const gf_an
     source.dump_dt = o->dump_dt;
     if (!source.stop) source.stop = o->stop;
     gf_series s = {0};
-    gf_status st = gf_dem_series_load(path, &source, &s, NULL);
+    gf_dem_load_report rep;
+    gf_status st = gf_dem_series_load(path, &source, &s, &rep);
     if (st != GF_OK) return st;
+    snprintf(a->container, sizeof a->container, "%s", rep.container);
     a->nframes = s.nframes;
     a->nexits = s.nexits;
     a->exits_derived = s.exits_derived;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// A DEM run (LAMMPS dumps) as a series: the container from a config or
-// --set, the atom types of packing.types, the particles below the base
-// counted as exited, and without exits.csv the exits read off the frames
-// (SPEC 1.8).
+// A DEM run (LAMMPS dumps) as a series: read in d and tau (dump.diameter,
+// dump.gravity), the container from a config or --set and, for the walls
+// none gives, from the particles' extent, the atom types of packing.types,
+// the particles below the base counted as exited, and without exits.csv the
+// exits read off the frames (SPEC 1.8).
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -103,27 +104,102 @@ static gf_status gf_dem_retag(gf_series *s)
     return GF_OK;
 }
 
+/// The dumps' units: dump.diameter and dump.gravity of src->config and
+/// src->sets only. A run directory's own config.ini may hold them too, for
+/// its packing.file; its snapshots granflow wrote in d and tau.
+static gf_status gf_dem_units(const gf_dem_source *src, gf_config *ucfg)
+{
+    *ucfg = gf_config_default();
+    gf_status st = src->config ? gf_config_load(ucfg, src->config) : GF_OK;
+    for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(ucfg, src->sets[k], "--set");
+    return st;
+}
+
+/// "container.width = 50 (particle extent)"-style text of the container and
+/// the units, for the report of gf_dem_series_load.
+static void gf_dem_describe(const gf_config *cfg, const gf_series_units *u, char *buf, size_t n)
+{
+    char w[3][GF_PATH_MAX + 32];
+    const bool cyl = cfg->container_shape == GF_SHAPE_CYLINDER;
+    const char *keys[3] = {cyl ? "container.radius" : "container.width", cyl ? "container.hopper_angle" : "container.depth",
+                           cyl ? "container.outlet_diameter" : "container.orifice_diameter"};
+    for (int k = 0; k < 3; k++) gf_config_where(cfg, keys[k], w[k], sizeof w[k]);
+    int len = cyl ? snprintf(buf, n, "cylinder of radius %g d (%s), funnel %g deg (%s), outlet %g d (%s)",
+                             cfg->container_radius, w[0], cfg->hopper_angle, w[1], cfg->outlet_diameter, w[2])
+                  : snprintf(buf, n, "container %g x %g d (width: %s; depth: %s), orifice %g d (%s)",
+                             cfg->container_width, cfg->container_depth, w[0], w[1], cfg->orifice_diameter, w[2]);
+    if (len >= 0 && (size_t)len < n && (u->diameter != 1.0 || u->gravity != 1.0))
+        snprintf(buf + len, n - (size_t)len, "; the dumps read with d = %g and tau = %.6g in their units "
+                 "(dump.diameter = %g, dump.gravity = %g)", u->diameter, sqrt(u->diameter / u->gravity),
+                 u->diameter, u->gravity);
+}
+
+/// A dump in other units than d read as if in d: particles a few thousandths
+/// of a d across (a radius column), or (without one) two or more centres all
+/// within one d of each other, which no packing of unit spheres has. Said
+/// so, with the keys that fix it.
+static gf_status gf_dem_check_scale(const char *path, const gf_series *s, const gf_series_units *u)
+{
+    const gf_packing *p = s->nframes ? &s->frames[0].pk : NULL;
+    if (!p || p->n == 0) return GF_OK;
+    double r = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < p->n; i++) {
+        const double c[3] = {p->x[i], p->y[i], p->z[i]};
+        r += p->r[i];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], c[k]);
+            hi[k] = fmax(hi[k], c[k]);
+        }
+    }
+    r /= (double)p->n;
+    const double span = hypot(hypot(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+    if (2.0 * r >= 0.2 && 2.0 * r <= 10.0 && (p->n < 2 || span >= 1.0)) return GF_OK;
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s: read with dump.diameter = %g, its first frame's %zu particles have a mean diameter "
+                        "of %g d and their centres span %g d: dumps in another length unit than d need "
+                        "dump.diameter = the particle diameter in that unit (0.004 for 4 mm spheres in metres) "
+                        "and dump.gravity = gravity in their units (9.81 in SI; times are read in tau = "
+                        "sqrt(dump.diameter / dump.gravity)), e.g. --set dump.diameter=0.004 --set dump.gravity=9.81",
+                        path, u->diameter, p->n, 2.0 * r, span);
+}
+
 gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_series *out, gf_dem_load_report *rep)
 {
     gf_dem_source none = {0};
     if (!src) src = &none;
     gf_dem_load_report r = {0};
     if (rep) *rep = r;
-    gf_status st = gf_series_load_stoppable(path, src->dump_dt, src->stop, out);
+    memset(out, 0, sizeof *out);
+    gf_config cfg;
+    gf_status st = gf_dem_units(src, &cfg);
+    if (st != GF_OK) return st;
+    const gf_series_units u = {cfg.dump_diameter, cfg.dump_gravity};
+    const bool converted = u.diameter != 1.0 || u.gravity != 1.0;
+    st = gf_series_load_in(path, src->dump_dt, &u, src->stop, out);
     if (st != GF_OK) return st;
     char mark[GF_PATH_MAX + 32];
     struct stat sb;
     if (snprintf(mark, sizeof mark, "%s/%s", path, GF_DEM_INTERRUPTED) < (int)sizeof mark && stat(mark, &sb) == 0)
         gf_warn("%s: its LAMMPS run was stopped before the end (%s says where): the snapshots stop early", path, mark);
-    gf_config cfg = out->cfg;
-    if (src->config) {
-        cfg = gf_config_default();
-        st = gf_config_load(&cfg, src->config);
+    if (converted && out->has_config) {
+        char at[GF_PATH_MAX + 40];
+        st = gf_error_set(GF_ERR_PARAM,
+                          "%sdump.diameter = %g, dump.gravity = %g: %s is a run of granflow (it has config.ini), "
+                          "whose snapshots are in d and tau already; the two keys describe the dumps of other "
+                          "programs (a LIGGGHTS or LAMMPS run in SI units)",
+                          gf_config_where_lead(&cfg, converted && u.diameter != 1.0 ? "dump.diameter" : "dump.gravity",
+                                               at, sizeof at),
+                          u.diameter, u.gravity, path);
+        goto fail;
     }
-    for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&cfg, src->sets[k], "--set");
-    if (st == GF_OK) st = gf_config_validate(&cfg);
-    if (st != GF_OK) goto fail;
-    out->cfg = cfg;
+    // The container: from --config, else the run's config.ini, else the
+    // defaults; --set over it; walls no file gave fitted to the particles
+    // once the other atom types and the exited are gone (below).
+    if (!src->config) {
+        cfg = out->has_config ? out->cfg : gf_config_default();
+        for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&cfg, src->sets[k], "--set");
+        if (st != GF_OK) goto fail;
+    }
 
     char first[GF_PATH_MAX + 300];
     r.have_type = gf_dem_first_dump(path, first, sizeof first) && gf_dem_has_type(first);
@@ -153,6 +229,28 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
         gf_dem_compact(p, keep);
         if (keep) GF_DELETE(keep, n0);
     }
+    if (!out->has_config || src->config) {
+        // A frozen floor or wall beads of other types are not the packing:
+        // the walls are fitted to what is left (the loader's fit included them).
+        gf_config fresh = cfg;
+        if (!src->config) { // the loader's "particle extent" is no setting of the user's
+            fresh = gf_config_default();
+            for (size_t k = 0; st == GF_OK && k < src->nsets; k++) st = gf_config_set(&fresh, src->sets[k], "--set");
+        }
+        if (st == GF_OK) st = gf_dem_check_scale(path, out, &u);
+        if (st == GF_OK) st = gf_series_fit_walls(out, &fresh);
+        if (st != GF_OK) goto fail;
+        cfg = fresh;
+    }
+    if ((st = gf_config_validate(&cfg)) != GF_OK) goto fail;
+    // The series is in d and tau now: a config made from it (calibrate's
+    // params.ini, with the first frame as its packing) must not convert again.
+    cfg.dump_diameter = 1.0;
+    cfg.dump_gravity = 1.0;
+    out->cfg = cfg;
+    r.diameter = u.diameter;
+    r.gravity = u.gravity;
+    gf_dem_describe(&cfg, &u, r.container, sizeof r.container);
     // A `type` column was read into the layer tags: tag them by height again.
     if (r.have_type && (st = gf_dem_retag(out)) != GF_OK) goto fail;
     out->n_initial = out->nframes ? out->frames[0].pk.n : 0;

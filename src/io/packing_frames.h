@@ -11,9 +11,9 @@
 typedef struct gf_packing_frame {
     long long timestep;  ///< ITEM: TIMESTEP (always present)
     int have_time;       ///< the frame has ITEM: TIME
-    double time;         ///< its value, tau (0 without it)
+    double time;         ///< its value, in the file's time unit (0 without it)
     int have_box;        ///< the frame has ITEM: BOX BOUNDS
-    double lo[3], hi[3]; ///< the box, d
+    double lo[3], hi[3]; ///< the box, d (divided by the length unit of gf_packing_read_frames_in)
     int have_type;       ///< the ATOMS have a `type` column, read into pk->layer (else layer = 0)
     const int32_t *pass; ///< gf_packing_read_frames_pass only: granflow's `pass` column, one per
                          ///< particle of pk (NULL: no such column); valid during the callback only
@@ -31,6 +31,15 @@ typedef gf_status (*gf_packing_frame_fn)(void *ctx, const gf_packing_frame *f, g
 /// have 0 atoms (a drained silo), ITEM: TIME is converted (a malformed value
 /// is an error) and the `type` column becomes the layer tag.
 gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx);
+/// gf_packing_read_frames of a file whose particle diameter is `unit` in its
+/// own length unit: positions, the radius or diameter column and the box are
+/// divided by it, so they come out in d; a radius without a column stays
+/// 0.5 d. Times are left in the file's unit.
+gf_status gf_packing_read_frames_in(const char *path, double unit, gf_packing_frame_fn fn, void *ctx);
+
+/// gf_packing_read of a file whose particle diameter is `unit` in its own
+/// length unit, converted to d as gf_packing_read_frames_in does.
+gf_status gf_packing_read_in(const char *path, gf_packing_format format, double unit, gf_packing *out);
 
 /// gf_packing_read_frames that also reads granflow's `pass` column (a
 /// positive integer, else GF_ERR_FORMAT naming file and line) into f->pass.

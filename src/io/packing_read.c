@@ -13,6 +13,7 @@
 // column; gf_packing_read itself ignores both, as it always has.
 #include "granflow/particles.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -138,6 +139,7 @@ typedef struct gf_reader {
     int want_pass;            // with `each`: read granflow's pass column (gf_packing_read_frames_pass)
     int32_t *pass;            // its values in the frame being converted
     size_t pass_cap;
+    double unit;              // the file's length unit is this many d: lengths read are divided by it (0: 1)
 } gf_reader;
 
 static gf_status gf_read_bad_number(const gf_textscan *ts, const char *col, const char *tok,
@@ -158,6 +160,7 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
         int code = gf_textscan_double(tok[c->pos[k]], &v[k]);
         if (code) return gf_read_bad_number(ts, c->pos_name[k], tok[c->pos[k]], code);
         if (c->scaled) v[k] = lo[k] + v[k] * (hi[k] - lo[k]);
+        if (rd->unit > 0) v[k] /= rd->unit;
     }
     double r = 0.5;
     if (c->radius >= 0 || c->diameter >= 0) {
@@ -170,6 +173,7 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
                                 "%s:%ld: column '%s': %s must be positive, got '%.64s'", ts->path,
                                 ts->line, name, c->radius >= 0 ? "radius" : "diameter", tok[col]);
         if (c->radius < 0) r *= 0.5;
+        if (rd->unit > 0) r /= rd->unit; // a radius without a column is 0.5 d whatever the unit
     }
     int64_t id = (int64_t)rd->out->n + 1;
     if (c->id >= 0) {
@@ -563,8 +567,10 @@ static gf_status gf_read_lammps(gf_reader *rd)
                                          .have_type = cur.cols.type >= 0,
                                          .pass = rd->want_pass && cur.cols.pass >= 0 ? rd->pass : NULL,
                                          .line = f.start_line};
-                memcpy(info.lo, f.lo, sizeof info.lo);
-                memcpy(info.hi, f.hi, sizeof info.hi);
+                for (int k = 0; k < 3; k++) {
+                    info.lo[k] = rd->unit > 0 ? f.lo[k] / rd->unit : f.lo[k];
+                    info.hi[k] = rd->unit > 0 ? f.hi[k] / rd->unit : f.hi[k];
+                }
                 st = rd->each(rd->each_ctx, &info, rd->out);
                 if (st != GF_OK) return st;
             }
@@ -779,7 +785,7 @@ static gf_status gf_read_csv(gf_reader *rd)
 // ---------------------------------------------------------------------------
 
 // gf_packing_read, noting in *line (when find_id > 0) the line of particle find_id.
-static gf_status gf_packing_read_finding(const char *path, gf_packing_format format, gf_packing *out,
+static gf_status gf_packing_read_finding(const char *path, gf_packing_format format, double unit, gf_packing *out,
                                          int64_t find_id, long *line)
 {
     if (!out) return gf_error_set(GF_ERR_PARAM, "gf_packing_read: no output packing");
@@ -798,7 +804,7 @@ static gf_status gf_packing_read_finding(const char *path, gf_packing_format for
     }
     // Build into a private packing so that `out` never holds half a result.
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp, .find_id = find_id};
+    gf_reader rd = {.out = &tmp, .find_id = find_id, .unit = unit};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) {
         switch (format) {
@@ -821,24 +827,33 @@ static gf_status gf_packing_read_finding(const char *path, gf_packing_format for
 
 gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out)
 {
-    return gf_packing_read_finding(path, format, out, 0, NULL);
+    return gf_packing_read_finding(path, format, 1.0, out, 0, NULL);
+}
+
+gf_status gf_packing_read_in(const char *path, gf_packing_format format, double unit, gf_packing *out)
+{
+    if (!(unit > 0) || !isfinite(unit))
+        return gf_error_set(GF_ERR_PARAM, "%s: length unit %g: must be a positive number", path ? path : "?", unit);
+    return gf_packing_read_finding(path, format, unit, out, 0, NULL);
 }
 
 long gf_packing_line_of(const char *path, int64_t id)
 {
     gf_packing pk = {0};
     long line = 0;
-    if (gf_packing_read_finding(path, GF_FORMAT_AUTO, &pk, id, &line) != GF_OK) line = 0;
+    if (gf_packing_read_finding(path, GF_FORMAT_AUTO, 1.0, &pk, id, &line) != GF_OK) line = 0;
     gf_packing_free(&pk);
     return line;
 }
 
-static gf_status gf_packing_read_each(const char *path, gf_packing_frame_fn fn, void *ctx, int want_pass)
+static gf_status gf_packing_read_each(const char *path, double unit, gf_packing_frame_fn fn, void *ctx, int want_pass)
 {
+    if (!(unit > 0) || !isfinite(unit))
+        return gf_error_set(GF_ERR_PARAM, "%s: length unit %g: must be a positive number", path ? path : "?", unit);
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no file name");
     if (!fn) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no frame callback");
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx, .want_pass = want_pass};
+    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx, .want_pass = want_pass, .unit = unit};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) st = gf_read_lammps(&rd);
     gf_textscan_close(&rd.ts);
@@ -850,10 +865,15 @@ static gf_status gf_packing_read_each(const char *path, gf_packing_frame_fn fn, 
 
 gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
 {
-    return gf_packing_read_each(path, fn, ctx, 0);
+    return gf_packing_read_each(path, 1.0, fn, ctx, 0);
+}
+
+gf_status gf_packing_read_frames_in(const char *path, double unit, gf_packing_frame_fn fn, void *ctx)
+{
+    return gf_packing_read_each(path, unit, fn, ctx, 0);
 }
 
 gf_status gf_packing_read_frames_pass(const char *path, gf_packing_frame_fn fn, void *ctx)
 {
-    return gf_packing_read_each(path, fn, ctx, 1);
+    return gf_packing_read_each(path, 1.0, fn, ctx, 1);
 }

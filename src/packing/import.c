@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Importing packing.file as a run's initial packing: atom-type filter
-// (packing.types) and particles already below the base (SPEC 1.2, 1.8).
+// Importing packing.file as a run's initial packing: its lengths converted
+// to d (dump.diameter), atom-type filter (packing.types) and particles
+// already below the base (SPEC 1.2, 1.8).
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,14 +64,22 @@ static void gf_sort_centres(size_t *a, size_t *tmp, size_t n, const gf_packing *
 // What the engine cannot simulate: radii outside its range, and two
 // particles on one centre (relax() has no direction to part them along, so
 // they would stay together for the whole run).
-static gf_status gf_import_check(const char *path, const gf_packing *p)
+static gf_status gf_import_check(const gf_config *cfg, const gf_packing *p)
 {
+    const char *path = cfg->packing_file;
     for (size_t i = 0; i < p->n; i++)
-        if (!(p->r[i] >= GF_IMPORT_RMIN && p->r[i] <= GF_IMPORT_RMAX))
+        if (!(p->r[i] >= GF_IMPORT_RMIN && p->r[i] <= GF_IMPORT_RMAX)) {
+            // A file in other units (metres, say) shows here first: say which key converts it.
+            char where[GF_PATH_MAX + 32];
+            gf_config_where(cfg, "dump.diameter", where, sizeof where);
             return gf_error_set(GF_ERR_FORMAT,
                                 "%s: particle id %lld has radius %g d: the engine takes radii in [%g, %g] d "
-                                "(its unit is the mean diameter)",
-                                path, (long long)p->id[i], p->r[i], GF_IMPORT_RMIN, GF_IMPORT_RMAX);
+                                "(its unit is the mean diameter); a file in another length unit needs "
+                                "dump.diameter = the particle diameter in that unit (this one's is %g; "
+                                "dump.diameter = %g, %s)",
+                                path, (long long)p->id[i], p->r[i], GF_IMPORT_RMIN, GF_IMPORT_RMAX,
+                                2.0 * p->r[i] * cfg->dump_diameter, cfg->dump_diameter, where);
+        }
     size_t *a = GF_NEW(size_t, p->n), *tmp = GF_NEW(size_t, p->n);
     gf_status st = GF_OK;
     if (!a || !tmp) st = gf_error_set(GF_ERR_NOMEM, "%s: out of memory checking %zu centres", path, p->n);
@@ -112,13 +121,13 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     }
     gf_packing pk = {0};
     if (ntypes == 0) {
-        st = gf_packing_read(path, GF_FORMAT_AUTO, &pk);
+        st = gf_packing_read_in(path, GF_FORMAT_AUTO, cfg->dump_diameter, &pk);
     } else if (!gf_import_is_lammps(path)) {
         st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s needs a LAMMPS dump with a type column, not %s",
                           at, cfg->packing_types, path);
     } else {
         gf_import_last last = {0};
-        st = gf_packing_read_frames(path, gf_import_keep_last, &last);
+        st = gf_packing_read_frames_in(path, cfg->dump_diameter, gf_import_keep_last, &last);
         if (st == GF_OK && last.frames == 0) st = gf_error_set(GF_ERR_FORMAT, "%s: no frame in the file", path);
         else if (st == GF_OK && !last.have_type)
             st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s: %s has no `type` column in its ITEM: ATOMS line",
@@ -151,7 +160,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     }
     pk.n = keep;
     if (rep) *rep = r;
-    if (keep > 0 && (st = gf_import_check(path, &pk)) != GF_OK) {
+    if (keep > 0 && (st = gf_import_check(cfg, &pk)) != GF_OK) {
         gf_packing_free(&pk);
         return st;
     }

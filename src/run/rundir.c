@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "core/json.h"
+#include "core/limits.h"
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
@@ -40,6 +41,9 @@ typedef struct gf_rundir {
     double flow_t0;       // when this invocation began (stall clock without exits)
     bool stalled;         // the snapshot hook saw no exit for run.stall_time
     int lock_fd;          // holds the lock on dir/.lock
+    uint64_t *vtu_index;  // the .vtu snapshots of snapshots.pvd: their indices and times
+    double *vtu_time;
+    size_t nvtu, vtu_cap;
 } gf_rundir;
 
 // A fresh run starts from an empty run directory: everything an earlier run
@@ -50,7 +54,8 @@ static gf_status gf_clear_run(const char *dir)
 {
     static const char *const files[] = {"checkpoint.bin", "checkpoint.bin.tmp", "summary.json", "summary.json.tmp",
                                         "exits.csv",      "exits.csv.tmp",      "config.ini",   "config.ini.tmp",
-                                        "container.vtk",  "container.vtk.tmp"};
+                                        "container.vtk",  "container.vtk.tmp",  "container.vtp",
+                                        "container.vtp.tmp", "snapshots.pvd", "snapshots.pvd.tmp"};
     static const char *const trees[] = {"analysis", "render"};
     char path[GF_PATH_MAX + 32];
     gf_status st = GF_OK;
@@ -106,6 +111,62 @@ static void gf_path(char *out, size_t n, const char *dir, const char *name)
 
 static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim);
 
+// snapshots.pvd: the .vtu series with its times in tau, for ParaView (which
+// otherwise plays the numbered files against their numbers).
+static gf_status gf_write_pvd(const gf_rundir *rd)
+{
+    enum { NAME = 40 };
+    char path[GF_PATH_MAX + 32];
+    gf_path(path, sizeof path, rd->dir, "snapshots.pvd");
+    char *names = rd->nvtu ? GF_NEW(char, rd->nvtu * NAME) : NULL;
+    const char **files = rd->nvtu ? GF_NEW(const char *, rd->nvtu) : NULL;
+    gf_status st = GF_OK;
+    if (rd->nvtu && (!names || !files)) st = gf_error_set(GF_ERR_NOMEM, "out of memory for %s", path);
+    for (size_t k = 0; st == GF_OK && k < rd->nvtu; k++) {
+        snprintf(names + k * NAME, NAME, "snapshots/snap_%06" PRIu64 ".vtu", rd->vtu_index[k]);
+        files[k] = names + k * NAME;
+    }
+    if (st == GF_OK) st = gf_vtk_write_collection(path, files, rd->vtu_time, rd->nvtu);
+    if (names) GF_DELETE(names, rd->nvtu * NAME);
+    if (files) GF_DELETE(files, rd->nvtu);
+    return st;
+}
+
+// Snapshot `index` at `time` enters the series, replacing those from index
+// on (a resumed run writes again the snapshots past its checkpoint).
+static gf_status gf_add_vtu(gf_rundir *rd, uint64_t index, double time)
+{
+    while (rd->nvtu && rd->vtu_index[rd->nvtu - 1] >= index) rd->nvtu--;
+    if (rd->nvtu == rd->vtu_cap) {
+        size_t nc = rd->vtu_cap ? 2 * rd->vtu_cap : 64;
+        uint64_t *i = gf_realloc(rd->vtu_index, rd->vtu_cap * sizeof *i, nc * sizeof *i);
+        if (i) rd->vtu_index = i;
+        double *t = i ? gf_realloc(rd->vtu_time, rd->vtu_cap * sizeof *t, nc * sizeof *t) : NULL;
+        if (t) rd->vtu_time = t;
+        if (!i || !t) return gf_error_set(GF_ERR_NOMEM, "out of memory for the list of snapshots");
+        rd->vtu_cap = nc;
+    }
+    rd->vtu_index[rd->nvtu] = index;
+    rd->vtu_time[rd->nvtu++] = time;
+    return GF_OK;
+}
+
+// A resumed run's series starts with the .vtu already there: snap_000000,
+// snap_000001, ... up to the first missing one, each with its own time.
+static gf_status gf_find_vtus(gf_rundir *rd)
+{
+    char path[GF_PATH_MAX + 64];
+    gf_status st = GF_OK;
+    for (uint64_t k = 0; st == GF_OK; k++) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, k);
+        if (access(path, F_OK) != 0) break;
+        double t;
+        st = gf_vtk_read_time(path, &t);
+        if (st == GF_OK) st = gf_add_vtu(rd, k, t);
+    }
+    return st;
+}
+
 static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
 {
     gf_rundir *rd = ctx;
@@ -131,7 +192,10 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     }
     if (st == GF_OK && fmt != GF_OUTPUT_DUMP) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
-        st = gf_vtk_write_particles(path, &rd->scratch, pass, time);
+        st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->cfg->output_vtk_encoding);
+        if (st == GF_OK) st = gf_add_vtu(rd, index, time);
+        // Rewriting the .pvd at every snapshot costs the square of their number (core/limits.h).
+        if (st == GF_OK && rd->nvtu <= GF_PVD_EVERY_SNAPSHOT) st = gf_write_pvd(rd);
     }
     if (st == GF_OK) st = gf_save_progress(rd, sim);
     if (st != GF_OK) return st;
@@ -233,6 +297,7 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
     gf_status st = gf_sim_save(sim, path);
+    if (st == GF_OK && rd->cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_pvd(rd);
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
 }
 
@@ -248,7 +313,8 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     rd->opts->progress(rd->opts->ctx, &p);
 }
 
-// container.vtk: the walls up to a diameter above the packing, for ParaView.
+// container.vtp (ParaView, meshio) and container.vtk (OVITO, legacy
+// readers): the walls up to a diameter above the packing.
 static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
 {
     gf_status st = gf_sim_particles(sim, &rd->scratch);
@@ -259,8 +325,10 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
     gf_mesh m;
     if ((st = gf_container_mesh(&box, top, 96, &m)) != GF_OK) return st;
     char path[GF_PATH_MAX + 32];
+    gf_path(path, sizeof path, rd->dir, "container.vtp");
+    st = gf_vtk_write_surface(path, &m, rd->cfg->output_vtk_encoding);
     gf_path(path, sizeof path, rd->dir, "container.vtk");
-    st = gf_vtk_write_mesh(path, &m, "granflow container");
+    if (st == GF_OK) st = gf_vtk_write_mesh(path, &m, "granflow container");
     gf_mesh_free(&m);
     return st;
 }
@@ -275,9 +343,13 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
     // already falling through the orifice: dropped, and said so.
     if (st == GF_OK && cfg->packing_file[0] && opts->progress) {
         char note[GF_PATH_MAX + 256];
+        char units[96] = "";
+        if (cfg->dump_diameter != 1.0)
+            snprintf(units, sizeof units, ", lengths / %g (dump.diameter)", cfg->dump_diameter);
         snprintf(note, sizeof note,
-                 "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types dropped)",
-                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types);
+                 "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types "
+                 "dropped%s)",
+                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types, units);
         gf_run_progress p = {.phase = "imported", .until = cfg->run_duration, .initial = pk->n, .note = note};
         opts->progress(opts->ctx, &p);
     }
@@ -341,9 +413,13 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     }
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
     if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
+    if (st == GF_OK && opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
+        gf_packing_free(&rd.scratch);
+        if (rd.vtu_index) GF_DELETE(rd.vtu_index, rd.vtu_cap);
+        if (rd.vtu_time) GF_DELETE(rd.vtu_time, rd.vtu_cap);
         gf_sim_destroy(sim);
         return st;
     }
@@ -413,6 +489,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
     GF_DELETE(rd.pass, rd.pass_cap);
+    if (rd.vtu_index) GF_DELETE(rd.vtu_index, rd.vtu_cap);
+    if (rd.vtu_time) GF_DELETE(rd.vtu_time, rd.vtu_cap);
     gf_sim_destroy(sim);
     return st;
 }

@@ -369,9 +369,9 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     bool ok = !r.bad && plen <= r.len - r.pos;
     // The two INI texts are compared setting by setting: comments and blank
     // lines are skipped, so a key's documentation may change between
-    // versions without stranding checkpoints, and a key this version added
-    // is passed over where the checkpoint's text does not have it and it is
-    // at its default; the first key that differs is named.
+    // versions without stranding checkpoints, and a key (or a section) this
+    // version added is passed over where the checkpoint's text does not have
+    // it and it is at its default; the first key that differs is named.
     char key[160] = "", section[64] = "";
     const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
     const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
@@ -380,6 +380,10 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
         a = gf_ckpt_setting(a, ae, &al);
         b = gf_ckpt_setting(b, be, &bl);
         if (b && b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
+        if (b && b[0] == '[' && (!a || al != bl || memcmp(a, b, bl) != 0)) {
+            b += bl; // a section the checkpoint's version did not have: its keys are checked one by one below
+            continue;
+        }
         const size_t kl = b ? gf_ckpt_key_len(b, bl) : 0;
         if (b && b[0] != '[' && (!a || a[0] == '[' || gf_ckpt_key_len(a, al) != kl || memcmp(a, b, kl) != 0) &&
             gf_ckpt_is_default(b, bl, section, def, dlen)) {
