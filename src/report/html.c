@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/json_read.h"
 
 void gf_html_text(FILE *out, const char *s)
 {
@@ -74,28 +75,44 @@ static char *gf_html_trim(char *s, bool json)
     return s;
 }
 
-bool gf_html_json_table(FILE *out, const char *path)
+typedef struct gf_html_kv {
+    FILE *out;
+    bool open; // <table> written
+} gf_html_kv;
+
+static gf_status gf_html_json_row(void *ctx, const gf_json_member *m)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
-    fputs("<table class=\"kv\">\n", out);
-    char *line = NULL;
-    size_t cap = 0;
-    while (gf_getline(&line, &cap, f) > 0) {
-        char *colon = strstr(line, "\":");
-        if (!colon) continue; // the braces
-        colon[1] = '\0';
-        char *key = gf_html_trim(line, true), *value = gf_html_trim(colon + 2, true);
-        fputs("<tr><th>", out);
-        gf_html_text(out, key);
-        fputs("</th><td>", out);
-        gf_html_text(out, strcmp(value, "null") ? value : "—");
-        fputs("</td></tr>\n", out);
+    gf_html_kv *t = ctx;
+    if (!t->open) fputs("<table class=\"kv\">\n", t->out);
+    t->open = true;
+    fputs("<tr><th>", t->out);
+    gf_html_text(t->out, m->key);
+    fputs("</th><td>", t->out);
+    char num[64];
+    switch (m->kind) {
+    case GF_JSON_NULL: fputs("—", t->out); break; // a number that was not finite
+    case GF_JSON_BOOL: fputs(m->number != 0 ? "true" : "false", t->out); break;
+    case GF_JSON_INT:
+        snprintf(num, sizeof num, "%lld", m->integer);
+        fputs(num, t->out);
+        break;
+    case GF_JSON_REAL: // summary.json's numbers have at most 10 significant digits
+        snprintf(num, sizeof num, "%.10g", m->number);
+        fputs(num, t->out);
+        break;
+    default: gf_html_text(t->out, m->text); break; // a string; an array or object as compact JSON
     }
-    gf_free(line, cap);
-    fclose(f);
-    fputs("</table>\n", out);
-    return true;
+    fputs("</td></tr>\n", t->out);
+    return GF_OK;
+}
+
+gf_status gf_html_json_table(FILE *out, const char *path)
+{
+    gf_html_kv t = {out, false};
+    gf_status st = gf_json_read_members(path, gf_html_json_row, &t);
+    if (st != GF_OK) return st; // jansson reads the whole file first: nothing written
+    fputs(t.open ? "</table>\n" : "<table class=\"kv\">\n</table>\n", out);
+    return GF_OK;
 }
 
 bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)

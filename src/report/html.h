@@ -18,9 +18,11 @@ gf_status gf_html_base64_file(FILE *out, const char *path);
 /// Writes <img src="data:MIME;base64,..." alt="ALT">. MIME from the suffix (.png, .svg).
 gf_status gf_html_image(FILE *out, const char *path, const char *alt);
 
-/// A two-column table of a flat JSON object written one `"key": value` per
-/// line (summary.json). Returns false (writes nothing) when the file is absent.
-bool gf_html_json_table(FILE *out, const char *path);
+/// A two-column table of the members of a JSON object (summary.json, in any
+/// layout: pretty or compact). Writes nothing and returns GF_ERR_IO when the
+/// file cannot be read (errno ENOENT when absent), GF_ERR_FORMAT (file, line,
+/// column) when it is not a JSON object.
+gf_status gf_html_json_table(FILE *out, const char *path);
 
 /// A table of a CSV file (header row, then rows), at most `max_rows` rows;
 /// every field is a cell, empty ones too; blank lines are skipped.

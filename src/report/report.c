@@ -37,7 +37,7 @@ static const char gf_report_css[] =
 typedef struct gf_report {
     FILE *out;
     gf_report_info info;
-    gf_status st; // first image failure
+    gf_status st; // first failure (an image, a summary.json); the page is not written
 } gf_report;
 
 // dir/name into out; false (out truncated) when it does not fit. gf_report_write
@@ -63,6 +63,15 @@ static void gf_report_figure(gf_report *r, const char *path, const char *caption
     gf_html_text(r->out, caption);
     fputs("</figcaption></figure>\n", r->out);
     r->info.images++;
+}
+
+// The table of a summary.json, if there is one; one that cannot be read
+// fails the report (r->st), naming the file and line.
+static void gf_report_json_table(gf_report *r, const char *path)
+{
+    if (!gf_report_exists(path)) return;
+    gf_status st = gf_html_json_table(r->out, path);
+    if (st != GF_OK && r->st == GF_OK) r->st = st;
 }
 
 static bool gf_report_is_picture(const char *name)
@@ -121,7 +130,7 @@ static void gf_report_analysis(gf_report *r, const char *dir)
         return;
     }
     fputs("<h2>Analysis</h2>\n", r->out);
-    gf_html_json_table(r->out, path);
+    gf_report_json_table(r, path);
     fputs("<div class=\"figs\">\n", r->out);
     size_t nm;
     const gf_measure_def *m = gf_measures(&nm);
@@ -210,7 +219,8 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     fputs(".</p>\n", r.out);
 
     fputs("<h2>Run</h2>\n", r.out);
-    if (!gf_html_json_table(r.out, sum)) fputs("<p>No summary.json.</p>\n", r.out);
+    if (!gf_report_exists(sum)) fputs("<p>No summary.json.</p>\n", r.out);
+    else gf_report_json_table(&r, sum);
     gf_report_analysis(&r, dir);
     // Pictures: render/ of a spot run; sheet.png and maps/ of an LGA run.
     size_t before = r.info.images;
