@@ -19,14 +19,16 @@ static void gf_bench_on_packed(void *ctx, const gf_bench_spot *b, const gf_sim *
 int gf_cmd_bench(int argc, char **argv)
 {
     // --lga-only: time only the lattice-gas automaton (no packing, no spots).
-    // --event: the event-driven engine (one thread) instead of the spatial
-    // fixed step. --no-large: skip the silo ten times larger.
+    // --event: the event-driven engine (one thread), --spatial: the spatial
+    // fixed step, instead of the domain engine. --no-large: skip the silo ten
+    // times larger.
     gf_bench_opts o = gf_bench_opts_default();
     gf_cli cli;
     int rc = gf_cli_parse(argc, argv, "bench", &cli);
     if (rc != GF_CLI_GO) return rc;
     o.lga_only = cli.lga_only;
     o.event = cli.event;
+    o.spatial = cli.spatial;
     if (cli.no_large) o.large = false;
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;

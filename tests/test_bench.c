@@ -109,7 +109,7 @@ static void packing_types_give_the_bidisperse_packing(void **state)
     assert_int_equal(s.small, n[2]);
     assert_int_equal(s.other, 0);
     assert_true(s.max_id <= NX * NY * NZ);
-    assert_string_equal(r.engine, "spatial");
+    assert_string_equal(r.engine, "domains");
     assert_false(r.large);
     assert_true(r.silo.threads >= 1);
     assert_int_equal(r.lga.iterations, 1);

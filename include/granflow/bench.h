@@ -35,7 +35,7 @@ typedef struct gf_bench_spot {
     double bytes_per_particle; ///< the library's allocations / particles
     double drain_s;            ///< projected wall seconds to drain what is left, all threads
     size_t remaining;          ///< particles left at the end
-    gf_par_profile prof;       ///< the spatial step's blocks, over the timed one-thread window
+    gf_par_profile prof;       ///< the parallel engine's blocks (sectors), over the timed one-thread window
 } gf_bench_spot;
 
 /// The lattice-gas automaton's speed: the paper's channel (the lga.* keys of
@@ -50,7 +50,8 @@ typedef struct gf_bench_opts {
     double warmup;      ///< tau of flow before the timed windows (default 40: spots reach the top of the papers' packing)
     double window;      ///< tau of each timed window (default 1)
     size_t particles;   ///< packing.particles of the silo; 0 (default): the config's
-    bool event;         ///< the event-driven engine (one thread) instead of the spatial fixed step (default false)
+    bool event;         ///< the event-driven engine (one thread) instead of the domain engine (default false)
+    bool spatial;       ///< the spatial fixed step instead of the domain engine (default false)
     bool large;         ///< also the silo ten times larger (default true)
     bool lga_only;      ///< only the lattice-gas automaton (default false)
     int64_t lga_iterations; ///< timed LGA iterations (default 1000)
@@ -70,7 +71,7 @@ GF_API gf_bench_opts gf_bench_opts_default(void);
 typedef struct gf_bench_report {
     bool lga_only;             ///< only `lga` holds figures
     bool large;                ///< `big` holds figures
-    const char *engine;        ///< "spatial" or "event"
+    const char *engine;        ///< "domains", "spatial" or "event"
     double warmup, window;     ///< tau
     gf_bench_spot silo, big;   ///< the silo of the config, and the one ten times larger
     double peak_rss_bytes;     ///< peak resident set of the process after the silo, bytes

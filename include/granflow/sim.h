@@ -128,14 +128,17 @@ GF_API double gf_sim_stat(const gf_sim *sim, const char *name);
 /// Number of counters; counter i is named gf_sim_stat_name(i) (NULL when out of range).
 GF_API size_t gf_sim_stat_count(void);
 GF_API const char *gf_sim_stat_name(size_t i);
-/// Thread counts the spatial step's speedup is projected for: 2, 8, 16, 64.
-#define GF_PAR_NPROJ 4
+/// Thread counts the parallel engines' speedup is projected for: 2, 8, 16, 64, 256.
+#define GF_PAR_NPROJ 5
 
-/// The spatial fixed step's decomposition and, while profiling, the work of
+/// The parallel engines' decomposition and, while profiling, the work of
 /// its blocks: each block's run of each colour phase is timed (thread CPU
 /// time, so preemption on a shared machine does not count), and the
 /// phase is scheduled on T threads (blocks heaviest first, each to the
-/// thread that frees first) to project the speedup work / makespan.
+/// thread that frees first) to project the speedup work / makespan. For the
+/// domain engine (run.order = domains) a block is a sector of a domain, a
+/// colour a sector index, and each phase's makespan on T > 1 workers adds
+/// the halo exchange modelled at 2 us per message plus 10 GB/s.
 typedef struct gf_par_profile {
     size_t blocks;          ///< blocks of the decomposition
     int colours;            ///< colours (blocks of one colour run side by side)
@@ -146,8 +149,14 @@ typedef struct gf_par_profile {
     uint64_t blocks_run;    ///< block runs in them (blocks with spots)
     double work_seconds;    ///< sum of the blocks' times
     double span_seconds;    ///< sum over the phases of the longest block
-    int proj_threads[GF_PAR_NPROJ];              ///< 2, 8, 16, 64
+    int proj_threads[GF_PAR_NPROJ];              ///< 2, 8, 16, 64, 256
     double makespan_seconds[GF_PAR_NPROJ];       ///< sum of the phases' makespans on that many threads
+    size_t domains;         ///< domain engine: domains (each owns one block of every colour)
+    double window;          ///< domain engine: parallel.window, tau
+    double profiled_tau;    ///< simulated time covered while profiling
+    uint64_t barriers;      ///< phase barriers while profiling (barriers per tau = barriers / profiled_tau)
+    double exchange_bytes;  ///< domain engine: modelled halo bytes sent, all blocks, while profiling
+    uint64_t exchange_messages; ///< domain engine: modelled halo messages, all blocks, while profiling
 } gf_par_profile;
 
 /// Starts (on != 0, counters reset) or stops profiling the spatial step's blocks.

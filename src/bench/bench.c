@@ -78,7 +78,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
     out->pack_s = gf_clock_now() - t0;
-    bool spatial = cfg->run_mode == GF_MODE_FIXED && cfg->run_order == GF_ORDER_SPATIAL;
+    bool spatial = cfg->run_mode == GF_MODE_FIXED && (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS);
     out->threads = spatial ? (cfg->run_threads > 0 ? (int)cfg->run_threads : gf_cpu_count()) : 1;
     if (o->packed) o->packed(o->ctx, out, sim, o->warmup);
     t0 = gf_clock_now();
@@ -128,7 +128,7 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
     if (o->lga_iterations < 1)
         return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iterations);
     *out = (gf_bench_report){.lga_only = o->lga_only, .large = o->large && !o->lga_only,
-                             .engine = o->event ? "event" : "spatial", .warmup = o->warmup, .window = o->window};
+                             .engine = o->event ? "event" : o->spatial ? "spatial" : "domains", .warmup = o->warmup, .window = o->window};
     gf_config cfg = *cfg_in;
     if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
     if (o->particles > 0) cfg.packing_particles = (int64_t)o->particles;
@@ -136,7 +136,7 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
         cfg.run_mode = GF_MODE_EVENT;
     } else {
         cfg.run_mode = GF_MODE_FIXED;
-        cfg.run_order = GF_ORDER_SPATIAL;
+        cfg.run_order = o->spatial ? GF_ORDER_SPATIAL : GF_ORDER_DOMAINS;
     }
     cfg.run_checkpoint_interval = 0;
     gf_status st = gf_bench_silo(&cfg, o, &out->silo);

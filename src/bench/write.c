@@ -29,6 +29,16 @@ static void gf_bench_blocks_json(gf_json *j, const char *prefix, const gf_par_pr
     gf_json_fixed(j, GF_KEY("blocks_per_colour"), (double)f->blocks / f->colours, 2);
     gf_json_fixed(j, GF_KEY("busy_blocks_per_colour_phase"), gf_bench_busy(f), 2);
     gf_json_fixed(j, GF_KEY("work_over_span"), gf_bench_ratio(f->work_seconds, f->span_seconds), 2);
+    if (f->domains > 0) { // the domain engine
+        gf_json_uint(j, GF_KEY("domains"), f->domains);
+        gf_json_int(j, GF_KEY("sectors"), f->colours);
+        gf_json_general(j, GF_KEY("parallel_window_tau"), f->window, 6);
+        gf_json_fixed(j, GF_KEY("barriers_per_tau"), gf_bench_ratio((double)f->barriers, f->profiled_tau), 1);
+        gf_json_fixed(j, GF_KEY("exchange_bytes_per_phase_per_domain"),
+                      gf_bench_ratio(f->exchange_bytes, (double)f->blocks_run), 0);
+        gf_json_fixed(j, GF_KEY("exchange_messages_per_phase_per_domain"),
+                      gf_bench_ratio((double)f->exchange_messages, (double)f->blocks_run), 1);
+    }
     for (int i = 0; i < GF_PAR_NPROJ; i++) {
         char name[48];
         snprintf(name, sizeof name, "projected_speedup_%d", f->proj_threads[i]);
@@ -68,6 +78,7 @@ static void gf_bench_json(FILE *out, const gf_bench_report *r)
     gf_json_fixed(&j, "moves_per_tau", s->moves_per_tau, 0);
     gf_json_fixed(&j, "memory_bytes_per_particle", s->bytes_per_particle, 1);
     gf_json_fixed(&j, "peak_rss_bytes_per_particle", r->peak_rss_bytes / (double)s->particles, 1);
+    gf_json_fixed(&j, "peak_rss_bytes", r->peak_rss_bytes, 0);
     gf_json_fixed(&j, "projected_drain_seconds", s->drain_s, 0);
     gf_json_fixed(&j, "pack_seconds", s->pack_s, 2);
     gf_json_fixed(&j, "warmup_seconds", s->warm_s, 2);
@@ -98,6 +109,11 @@ static void gf_bench_blocks_text(FILE *out, const char *what, const gf_par_profi
         fprintf(out, " %.1fx on %d threads%s", gf_bench_ratio(f->work_seconds, f->makespan_seconds[i]),
                 f->proj_threads[i], i + 1 < GF_PAR_NPROJ ? "," : "");
     fprintf(out, " (work/span %.1f)\n", gf_bench_ratio(f->work_seconds, f->span_seconds));
+    if (f->domains > 0)
+        fprintf(out, "  domains  %8zu, %d sectors, window %.3g tau: %.1f barriers per tau, %.0f bytes exchanged per "
+                     "phase per domain (modelled)\n",
+                f->domains, f->colours, f->window, gf_bench_ratio((double)f->barriers, f->profiled_tau),
+                gf_bench_ratio(f->exchange_bytes, (double)f->blocks_run));
 }
 
 static void gf_bench_lga_text(FILE *out, const gf_bench_lga *b)

@@ -15,6 +15,8 @@
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
+/// Marks the domain engine's spot clocks at the end of the payload.
+#define GF_CKPT_CLOCKS "GFCLOCKS"
 #define GF_CKPT_VERSION 4u
 #define GF_CKPT_BOM 0x01020304u
 
@@ -160,6 +162,12 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     gf_put(&b, sim->grid.count, sizeof(uint32_t) * ncell);
     for (size_t c = 0; c < ncell; c++) // only the used slots, so unused ones cannot make files differ
         gf_put(&b, sim->grid.slot + c * GF_CELL_CAP, sizeof(uint32_t) * sim->grid.count[c]);
+    // The domain engine's spot clocks, last (a checkpoint of another engine
+    // ends before them, as those of earlier versions do).
+    if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+        gf_put(&b, GF_CKPT_CLOCKS, 8);
+        gf_put(&b, sim->snext, sizeof(double) * sim->ns);
+    }
     if (b.oom) {
         gf_free(b.data, b.cap);
         return gf_error_set(GF_ERR_NOMEM, "out of memory writing checkpoint %s", path);
@@ -452,7 +460,8 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     sim->sz = GF_NEW(double, sim->ns_cap);
     sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
     sim->scount = GF_NEW(uint32_t, sim->ns_cap);
-    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount))
+    sim->snext = GF_NEW(double, sim->ns_cap);
+    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount || !sim->snext))
         return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
     gf_get(&r, sim->p, sizeof(gf_pos) * n);
     gf_get(&r, sim->p0, sizeof(gf_ref) * n);
@@ -487,6 +496,16 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     for (size_t c = 0; !r.bad && c < ncell; c++) {
         if (cnt[c] > GF_CELL_CAP) r.bad = true;
         else gf_get(&r, slot + c * GF_CELL_CAP, sizeof(uint32_t) * cnt[c]);
+    }
+    bool clocks = !r.bad && r.len - r.pos == 8 + sizeof(double) * sim->ns && !memcmp(r.data + r.pos, GF_CKPT_CLOCKS, 8);
+    if (clocks) {
+        r.pos += 8;
+        gf_get(&r, sim->snext, sizeof(double) * sim->ns);
+        for (size_t k = 0; k < sim->ns; k++)
+            if (!isfinite(sim->snext[k])) r.bad = true;
+    } else if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+        // Resumed by the domain engine from another's checkpoint: fresh clocks.
+        for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->cfg.spot_move_rate);
     }
     st = r.bad || r.pos != r.len ? gf_error_set(GF_ERR_FORMAT, "%s: checkpoint payload has the wrong size", path)
                                  : gf_grid_restore(&sim->grid, cnt, slot, n);

@@ -81,7 +81,9 @@ static uint64_t gf_sim_work(const gf_sim *sim)
 static gf_status gf_sim_action(gf_sim *sim)
 {
     if (sim->cfg.run_mode == GF_MODE_FIXED)
-        return sim->cfg.run_order == GF_ORDER_SPATIAL ? gf_sim_spatial_step(sim) : gf_sim_fixed_step(sim);
+        return sim->cfg.run_order == GF_ORDER_SPATIAL   ? gf_sim_spatial_step(sim)
+               : sim->cfg.run_order == GF_ORDER_DOMAINS ? gf_sim_domains_cycle(sim)
+                                                        : gf_sim_fixed_step(sim);
     if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
         double tg = gf_sim_global_time(sim);
         if (tg <= sim->t_pending) {
@@ -116,7 +118,9 @@ static gf_status gf_sim_event(gf_sim *sim)
 static void gf_sim_draw_pending(gf_sim *sim)
 {
     if (sim->pending) return;
-    if (sim->cfg.run_mode == GF_MODE_FIXED) {
+    if (sim->cfg.run_mode == GF_MODE_FIXED && sim->cfg.run_order == GF_ORDER_DOMAINS) {
+        sim->t_pending = (double)(sim->fstep + 1) * sim->cfg.parallel_window; // cycles of one window
+    } else if (sim->cfg.run_mode == GF_MODE_FIXED) {
         sim->t_pending = (double)(sim->fstep + 1) / sim->cfg.spot_move_rate;
     } else {
         double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;

@@ -57,7 +57,7 @@
 /// work (~16 us a move) would not pay for waking the others and the barrier.
 #define GF_PAR_MIN_SHARED 32
 /// Thread counts the step projects its speedup for (gf_par_profile).
-static const int gf_par_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64};
+static const int gf_par_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
 
 typedef struct gf_block {
     gf_sim_stats st;   ///< the block's counters this step (summed in block order)
@@ -86,6 +86,7 @@ typedef struct gf_par {
     size_t spot_cap;
     uint32_t *run;                  ///< blocks of the current colour, heaviest first
     uint32_t *runload;              ///< their moves in the current phase
+    double *secs;                   ///< their CPU times (profiling)
     uint8_t *mine;                  ///< per run[] entry: this rank runs it (gf_mpi_assign)
     uint64_t *rankload;             ///< scratch of gf_mpi_assign
     double *coltop;                 ///< per grid column: its top z at the step start
@@ -100,7 +101,7 @@ typedef struct gf_par {
 // gathered particles and the cells a list refresh searches, a box of half-width
 // r_i + r_max + h_i + 2 h_max + slack around p0 (its diagonal). Distances are
 // to the nearest point of a cell touched: the blocks add a cell diagonal.
-static double gf_par_reach(const gf_sim *sim)
+double gf_par_reach(const gf_sim *sim)
 {
     const gf_config *c = &sim->cfg;
     double step = sqrt(2.0 * c->spot_step_xy * c->spot_step_xy + c->spot_step_z * c->spot_step_z);
@@ -127,6 +128,7 @@ void gf_par_free(gf_sim *sim)
     GF_DELETE(q->phase, q->spot_cap);
     GF_DELETE(q->run, q->nblock);
     GF_DELETE(q->runload, q->nblock);
+    GF_DELETE(q->secs, q->nblock);
     GF_DELETE(q->mine, q->nblock);
     GF_DELETE(q->rankload, q->nblock);
     GF_DELETE(q->coltop, q->ncol);
@@ -134,7 +136,7 @@ void gf_par_free(gf_sim *sim)
     sim->par = NULL;
 }
 
-static int gf_par_threads(const gf_config *c)
+int gf_par_threads(const gf_config *c)
 {
 #ifdef _OPENMP
     if (c->run_threads > 0) return (int)c->run_threads;
@@ -183,9 +185,10 @@ static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
     q->pstart = GF_NEW(uint32_t, q->nblock * (GF_PAR_PHASES + 1));
     q->run = GF_NEW(uint32_t, q->nblock);
     q->runload = GF_NEW(uint32_t, q->nblock);
+    q->secs = GF_NEW(double, q->nblock);
     q->mine = GF_NEW(uint8_t, q->nblock);
     q->rankload = GF_NEW(uint64_t, q->nblock);
-    if (!q->block || !q->blockof || !q->pstart || !q->run || !q->runload || !q->mine || !q->rankload)
+    if (!q->block || !q->blockof || !q->pstart || !q->run || !q->runload || !q->secs || !q->mine || !q->rankload)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
     gf_status st = gf_celllist_keys(&q->colours, (size_t)q->ncolour, q->nblock);
     if (st != GF_OK) return st;
@@ -255,8 +258,7 @@ static gf_status gf_par_spots(gf_par *q, size_t ns)
     return GF_OK;
 }
 
-// The removal test's column tops, as gf_grid_column_top would answer now.
-static void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol)
+void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol)
 {
     for (size_t col = 0; col < ncol; col++)
         coltop[col] = gf_grid_column_top_at(&sim->grid, (uint32_t)col, &sim->p[0].z, 4);
@@ -358,7 +360,7 @@ static void gf_par_block(gf_sim *sim, gf_par *q, gf_work *w, size_t b, int p)
 
 // Adds the counters a block's moves changed, block by block (fixed order:
 // the floating-point sums do not depend on the threads either).
-static void gf_par_add(gf_sim_stats *to, const gf_sim_stats *a)
+void gf_par_add(gf_sim_stats *to, const gf_sim_stats *a)
 {
     to->spot_moves += a->spot_moves;
     to->relax_calls += a->relax_calls;
@@ -408,21 +410,22 @@ static int gf_par_phase_count(void)
     return p < 1 ? 1 : p > GF_PAR_PHASES ? GF_PAR_PHASES : p;
 }
 
-uint64_t gf_par_shared_phases(const gf_sim *sim) { return sim->par ? sim->par->shared_phases : 0; }
-
-// A colour phase's blocks (run[0, nrun), heaviest first, their times in
-// block[].seconds) scheduled on T threads as the OpenMP loop would, each
-// block to the thread that frees first: the phase's makespan.
-static double gf_par_makespan(const gf_par *q, size_t nrun, int T)
+uint64_t gf_par_shared_phases(const gf_sim *sim)
 {
-    double busy[64] = {0};
-    if (T > 64) T = 64;
+    if (sim->cfg.run_order == GF_ORDER_DOMAINS) return gf_dom_shared_phases(sim);
+    return sim->par ? sim->par->shared_phases : 0;
+}
+
+double gf_par_makespan(const double *secs, size_t n, int T)
+{
+    double busy[256] = {0};
+    if (T > 256) T = 256;
     double span = 0.0;
-    for (size_t r = 0; r < nrun; r++) {
+    for (size_t r = 0; r < n; r++) {
         int best = 0;
         for (int t = 1; t < T; t++)
             if (busy[t] < busy[best]) best = t;
-        busy[best] += q->block[q->run[r]].seconds;
+        busy[best] += secs[r];
         if (busy[best] > span) span = busy[best];
     }
     return span;
@@ -432,20 +435,27 @@ static void gf_par_record(gf_par *q, size_t nrun)
 {
     gf_par_profile *f = &q->prof;
     f->colour_phases++;
+    f->barriers++;
     f->blocks_run += nrun;
     double work = 0.0, longest = 0.0;
     for (size_t r = 0; r < nrun; r++) {
         double s = q->block[q->run[r]].seconds;
+        q->secs[r] = s;
         work += s;
         if (s > longest) longest = s;
     }
     f->work_seconds += work;
     f->span_seconds += longest;
-    for (int i = 0; i < GF_PAR_NPROJ; i++) f->makespan_seconds[i] += gf_par_makespan(q, nrun, gf_par_proj_threads[i]);
+    for (int i = 0; i < GF_PAR_NPROJ; i++)
+        f->makespan_seconds[i] += gf_par_makespan(q->secs, nrun, gf_par_proj_threads[i]);
 }
 
 void gf_sim_set_par_profiling(gf_sim *sim, int on)
 {
+    if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+        gf_dom_set_profiling(sim, on);
+        return;
+    }
     if (gf_par_make(sim) != GF_OK) return;
     sim->par->profiling = on != 0;
     sim->par->prof = (gf_par_profile){0};
@@ -453,6 +463,7 @@ void gf_sim_set_par_profiling(gf_sim *sim, int on)
 
 gf_par_profile gf_sim_par_profile(const gf_sim *sim)
 {
+    if (sim->cfg.run_order == GF_ORDER_DOMAINS) return gf_dom_profile(sim);
     gf_par_profile f = {0};
     const gf_par *q = sim->par;
     if (!q) return f;

@@ -56,7 +56,7 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
     gf_pos *q = &sim->p[i];
     if (!gf_container_exited(&sim->box, q->x, q->y, q->z)) return false;
     const gf_hist *h = &sim->hist[i];
-    gf_exit e = {sim->id[i], sim->t, q->x, q->y, h->pass, h->t_entry, h->r_entry};
+    gf_exit e = {sim->id[i], w->timed ? w->t : sim->t, q->x, q->y, h->pass, h->t_entry, h->r_entry};
     const bool back = gf_sim_recirculates(sim, h->pass);
     if (w->defer_exits) {
         // The parallel step: kept by the worker, merged (sorted by id) after the phase.

@@ -73,8 +73,10 @@ static void gf_sim_free_all(gf_sim *sim)
     GF_DELETE(sim->sz, sim->ns_cap);
     GF_DELETE(sim->sbirth, sim->ns_cap);
     GF_DELETE(sim->scount, sim->ns_cap);
+    GF_DELETE(sim->snext, sim->ns_cap);
     gf_work_free(&sim->w0);
     gf_par_free(sim);
+    gf_dom_free(sim);
     gf_grid_free(&sim->grid);
     gf_free(sim, sizeof *sim);
 }

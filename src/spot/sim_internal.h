@@ -71,6 +71,8 @@ typedef struct gf_work {
     gf_exit *exits;
     uint32_t *exit_slot; ///< per exits[] entry: the particle's index, when it is to be put back (else UINT32_MAX)
     size_t nexit, exit_cap;
+    bool timed;      ///< exits take the time t below (the domain engine's moves each have their own)
+    double t;        ///< time of the move being made, when timed
     bool log;        ///< log what the moves change into touched[] (MPI ranks)
     bool log_failed; ///< a log could not grow (out of memory)
     gf_touch touched[GF_TOUCH_KINDS];
@@ -131,6 +133,7 @@ struct gf_sim {
     double *sx, *sy, *sz;
     uint64_t *sbirth; ///< insertion serial number
     uint32_t *scount; ///< moves since the spot's last relax() (relax.method = counter)
+    double *snext;    ///< time of the spot's next move (run.order = domains; unused by the other engines)
     uint64_t next_birth;
     uint64_t fstep;     ///< fixed mode: steps done (time = fstep / mu)
 
@@ -157,6 +160,8 @@ struct gf_sim {
     uint32_t *mark;     ///< per particle: 1 + its position in its worker's inside[], 0 if in none
     // The spatial fixed step's state (parallel.c), made on its first step.
     struct gf_par *par;
+    // The domain engine's state (domains.c), made on its first cycle.
+    struct gf_dom *dom;
 
     // Derived parameters.
     double rs, rs2, re, re2, alpha, inv_w, ball_frac;
@@ -255,6 +260,39 @@ gf_status gf_sim_alloc_scratch(gf_sim *sim);
 /// colour, the blocks of one colour on run.threads threads. The result does
 /// not depend on the thread count.
 gf_status gf_sim_spatial_step(gf_sim *sim);
+/// One cycle of the domain engine (run.order = domains, domains.c): the
+/// insertions of a window of parallel.window tau, then every sector of every
+/// domain in turn, each moving its spots at their own rate over the window,
+/// the domains of one sector side by side on run.threads threads.
+gf_status gf_sim_domains_cycle(gf_sim *sim);
+/// Frees the domain engine's state.
+void gf_dom_free(gf_sim *sim);
+/// The domain engine's decomposition and profile (gf_sim_par_profile).
+gf_par_profile gf_dom_profile(const gf_sim *sim);
+/// Phases so far that had two or more sectors to run side by side.
+uint64_t gf_dom_shared_phases(const gf_sim *sim);
+/// Tests only: makes the engine wrong on purpose (a spot whose move leaves
+/// its sector is lost, with all its later moves, as a domain engine that
+/// cannot hand spots over would lose them), to show that the flow test sees it.
+gf_status gf_dom_test_drop_crossing(gf_sim *sim);
+/// Starts or stops profiling the domain engine's sectors.
+void gf_dom_set_profiling(gf_sim *sim, int on);
+
+/// Everything a step of a spot at s touches lies within this distance of s
+/// (parallel.c): regions that run side by side are two reaches and a cell
+/// diagonal apart.
+double gf_par_reach(const gf_sim *sim);
+/// Threads of the parallel engines: run.threads, or every core (a machine's
+/// cores shared between its MPI ranks).
+int gf_par_threads(const gf_config *c);
+/// The removal test's column tops, as gf_grid_column_top would answer now.
+void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol);
+/// Adds a region's counters (fixed order: the sums do not depend on threads).
+void gf_par_add(gf_sim_stats *to, const gf_sim_stats *a);
+/// Makespan of jobs of seconds secs[0, n) (heaviest first) on T threads,
+/// each to the thread that frees first.
+double gf_par_makespan(const double *secs, size_t n, int T);
+
 /// Colour phases so far (this process) that had two or more blocks to run side by side.
 uint64_t gf_par_shared_phases(const gf_sim *sim);
 /// Frees the parallel step's state.

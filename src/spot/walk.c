@@ -75,7 +75,9 @@ gf_status gf_spot_insert(gf_sim *sim)
         if (b) sim->sbirth = b;
         uint32_t *n = gf_realloc(sim->scount, old * sizeof(uint32_t), cap * sizeof(uint32_t));
         if (n) sim->scount = n;
-        if (!x || !y || !z || !b || !n) return gf_error_set(GF_ERR_NOMEM, "out of memory for spots");
+        double *tn = gf_realloc(sim->snext, old * sizeof(double), cap * sizeof(double));
+        if (tn) sim->snext = tn;
+        if (!x || !y || !z || !b || !n || !tn) return gf_error_set(GF_ERR_NOMEM, "out of memory for spots");
         sim->ns_cap = cap;
     }
     // SPEC 1.3 insertion: uniform on the orifice shrunk by the margin.
@@ -97,6 +99,7 @@ gf_status gf_spot_insert(gf_sim *sim)
     sim->sz[k] = sim->spot_birth_z;
     sim->sbirth[k] = sim->next_birth++;
     sim->scount[k] = 0;
+    sim->snext[k] = 0.0;
     sim->st.spots_inserted++;
     return GF_OK;
 }
@@ -109,6 +112,7 @@ static void gf_spot_delete(gf_sim *sim, size_t k)
     sim->sz[k] = sim->sz[last];
     sim->sbirth[k] = sim->sbirth[last];
     sim->scount[k] = sim->scount[last];
+    sim->snext[k] = sim->snext[last];
     sim->st.spots_deleted++;
 }
 
@@ -285,6 +289,7 @@ void gf_spots_compact(gf_sim *sim, const uint8_t *dead)
         sim->sz[w] = sim->sz[k];
         sim->sbirth[w] = sim->sbirth[k];
         sim->scount[w] = sim->scount[k];
+        sim->snext[w] = sim->snext[k];
         w++;
     }
     sim->st.spots_deleted += ns - w;

@@ -38,13 +38,19 @@ ok "bench --json reports all its keys"
 python3 - "$T/out" <<'EOF' || fail "bench figures out of range: $(cat "$T/out")"
 import json, sys
 d = json.load(open(sys.argv[1]))
-assert d["engine"] == "spatial" and d["particles"] == 2000 and d["large_particles"] == 20000
+assert d["engine"] == "domains" and d["particles"] == 2000 and d["large_particles"] == 20000
+assert d["domains"] >= 1 and d["barriers_per_tau"] > 0 and d["peak_rss_bytes"] > 0
+assert "projected_speedup_256" in d and "exchange_bytes_per_phase_per_domain" in d
 assert d["steps_per_second"] > 0 and d["steps_per_second_1thread"] > 0 and d["step_us"] > 0
 assert 0 < d["parallel_efficiency"] <= 1.5
 assert 50 < d["memory_bytes_per_particle"] < 5000
 assert d["projected_drain_seconds"] > 0
 EOF
 ok "bench figures are positive and in range"
+gf bench --json --particles 2000 --set container.width=14 --warmup 1 --window 0.2 --spatial --no-large
+expect_rc 0 "bench --spatial --no-large"
+grep -q '"engine": "spatial"' out || fail "bench --spatial did not time the spatial engine"
+ok "bench --spatial times the spatial fixed step"
 gf bench --json --particles 2000 --set container.width=14 --warmup 1 --window 0.2 --event --no-large
 expect_rc 0 "bench --event --no-large"
 grep -q '"engine": "event"' out || fail "bench --event did not time the event engine"

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+// The domain engine (run.order = domains, src/spot/domains.c): its result
+// depends on the seed and the parallel keys, never on the number of threads
+// (bit for bit, resume included); sectors of one index really run side by
+// side; the decomposition follows parallel.domain_size and parallel.sectors
+// and refuses domains too small to keep sectors independent.
+#include "support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "granflow/granflow.h"
+#include "spot/sim_internal.h"
+
+// A 12 x 6 silo of 4000 spheres (~50 d tall). Spots climb twice as fast as
+// the papers' (step_z = 0.2) so that within 6 tau they fill the column; with
+// 4 sectors per axis (sectors ~6 d) the column holds several sectors of one
+// index, so phases run two or more side by side.
+static gf_config tall_silo(int64_t threads)
+{
+    gf_config c = gf_test_silo_config(12, 4000, 5);
+    c.container_depth = 6;
+    c.spot_step_z = 0.2;
+    c.spot_insertion_rate = 150;
+    c.run_mode = GF_MODE_FIXED;
+    c.run_order = GF_ORDER_DOMAINS;
+    c.parallel_sectors = 4;
+    c.parallel_window = 0.1;
+    c.run_threads = threads;
+    c.run_duration = 6.0;
+    c.output_snapshot_interval = 3.0;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    return c;
+}
+
+typedef struct outcome {
+    gf_packing pk;
+    gf_exit *ex;
+    size_t nex;
+    gf_sim_stats st;
+    uint64_t shared_phases;
+    gf_par_profile prof;
+} outcome;
+
+static outcome run_config(gf_config c)
+{
+    gf_sim *sim = gf_test_generated_sim(&c);
+    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
+    outcome o = {.st = gf_sim_get_stats(sim), .shared_phases = gf_par_shared_phases(sim), .prof = gf_sim_par_profile(sim)};
+    assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
+    const gf_exit *e = gf_sim_exits(sim, &o.nex);
+    o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
+    assert_non_null(o.ex);
+    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    gf_sim_destroy(sim);
+    return o;
+}
+
+static void same_outcome(const outcome *a, const outcome *b)
+{
+    assert_int_equal(a->pk.n, b->pk.n);
+    assert_memory_equal(a->pk.id, b->pk.id, sizeof(int64_t) * a->pk.n);
+    assert_memory_equal(a->pk.x, b->pk.x, sizeof(double) * a->pk.n);
+    assert_memory_equal(a->pk.y, b->pk.y, sizeof(double) * a->pk.n);
+    assert_memory_equal(a->pk.z, b->pk.z, sizeof(double) * a->pk.n);
+    assert_int_equal(a->nex, b->nex);
+    assert_memory_equal(a->ex, b->ex, sizeof(gf_exit) * a->nex);
+    assert_int_equal(a->st.spot_moves, b->st.spot_moves);
+    assert_int_equal(a->st.relax_calls, b->st.relax_calls);
+    assert_int_equal(a->st.spots_deleted, b->st.spots_deleted);
+    assert_memory_equal(&a->st.spot_dz, &b->st.spot_dz, sizeof(double));
+    assert_memory_equal(&a->st.relax_dz, &b->st.relax_dz, sizeof(double));
+}
+
+static void free_outcome(outcome *o)
+{
+    gf_packing_free(&o->pk);
+    free(o->ex);
+}
+
+// 1, 2 and 3 threads (3 on a 2-core machine: oversubscribed) give the same
+// particles, exits and counters to the last bit; the run did flow, and many
+// phases had two or more sectors with spots, run side by side.
+static void thread_count_does_not_change_the_result(void **state)
+{
+    (void)state;
+    outcome o1 = run_config(tall_silo(1)), o2 = run_config(tall_silo(2)), o3 = run_config(tall_silo(3));
+    print_message("domains: %d x %d x %d sectors, %d indices, %zu domains; %zu exited, %llu moves, %llu shared phases\n",
+                  o1.prof.blocks_along[0], o1.prof.blocks_along[1], o1.prof.blocks_along[2], o1.prof.colours,
+                  o1.prof.domains, o1.nex, (unsigned long long)o1.st.spot_moves,
+                  (unsigned long long)o2.shared_phases);
+    assert_true(o1.nex > 50);
+    assert_true(o2.shared_phases > 50);
+    assert_true(o1.prof.blocks_along[2] > 4); // more sectors up the column than indices
+    same_outcome(&o1, &o2);
+    same_outcome(&o1, &o3);
+    free_outcome(&o1);
+    free_outcome(&o2);
+    free_outcome(&o3);
+}
+
+// Exits carry the time of the move that let them out, within the run, in
+// time order; every spot move made falls inside the cycles run.
+static void exits_are_timed_and_ordered(void **state)
+{
+    (void)state;
+    outcome o = run_config(tall_silo(2));
+    assert_true(o.nex > 50);
+    for (size_t k = 0; k < o.nex; k++) {
+        assert_true(o.ex[k].time > 0.0 && o.ex[k].time <= 6.0 + 1e-12);
+        if (k > 0) assert_true(o.ex[k].time >= o.ex[k - 1].time);
+    }
+    // Not all on the cycle boundaries (each exit has its move's own time).
+    size_t off = 0;
+    for (size_t k = 0; k < o.nex; k++) {
+        double c = o.ex[k].time / 0.1;
+        off += fabs(c - (double)llround(c)) > 1e-6;
+    }
+    assert_true(off > o.nex / 2);
+    free_outcome(&o);
+}
+
+// Recirculation: exits are put back after the cycle in id order, so 1 and 2
+// threads still agree to the last bit, and every exit went back.
+static void recirculation_does_not_depend_on_threads(void **state)
+{
+    (void)state;
+    gf_config c1 = tall_silo(1), c2 = tall_silo(2);
+    c1.run_recirculate = c2.run_recirculate = 1;
+    outcome o1 = run_config(c1), o2 = run_config(c2);
+    assert_true(o1.nex > 50);
+    assert_int_equal(o1.pk.n, 4000);
+    assert_int_equal(o1.st.particles_reinserted, o1.nex);
+    same_outcome(&o1, &o2);
+    free_outcome(&o1);
+    free_outcome(&o2);
+}
+
+// The decomposition depends on the keys: another window or sector count
+// gives another (valid) result; a domain smaller than two reaches per sector
+// is refused with a message naming the key and the smallest size.
+static void keys_set_the_decomposition(void **state)
+{
+    (void)state;
+    gf_config a = tall_silo(2), b = tall_silo(2);
+    b.parallel_sectors = 2;
+    a.run_duration = b.run_duration = 3.0;
+    outcome oa = run_config(a), ob = run_config(b);
+    assert_int_equal(oa.prof.colours, 4 * 4); // cut in y? no: 6 d deep holds one sector; x and z cut
+    assert_true(ob.prof.colours <= 4);
+    assert_true(oa.nex > 0 && ob.nex > 0);
+    free_outcome(&oa);
+    free_outcome(&ob);
+
+    gf_config c = tall_silo(1);
+    c.parallel_domain_size = 4.0;
+    gf_sim *sim = gf_test_generated_sim(&c);
+    gf_status st = gf_sim_run(sim, 0.5, NULL);
+    assert_int_equal(st, GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "parallel.domain_size = 4"));
+    assert_non_null(strstr(gf_last_error(), "smallest domain"));
+    gf_sim_destroy(sim);
+}
+
+// A run stopped at 4.1 tau with 1 thread and resumed with 2 writes the same
+// snapshots (byte for byte) as one run straight through with 3.
+static void resume_under_another_thread_count(void **state)
+{
+    (void)state;
+    char whole[512], part[512];
+    snprintf(whole, sizeof whole, "%s/dom_whole", gf_test_tmpdir());
+    snprintf(part, sizeof part, "%s/dom_part", gf_test_tmpdir());
+    gf_config c3 = tall_silo(3), c1 = tall_silo(1), c2 = tall_silo(2);
+    gf_run_opts o = {.dir = whole, .force = 1};
+    assert_int_equal(gf_run_dir(&c3, &o, NULL), GF_OK);
+    c1.run_duration = 4.1;
+    o.dir = part;
+    assert_int_equal(gf_run_dir(&c1, &o, NULL), GF_OK);
+    gf_run_opts r = {.dir = part, .resume = 1, .force = 1};
+    assert_int_equal(gf_run_dir(&c2, &r, NULL), GF_OK);
+    assert_true(gf_test_same_snapshot(whole, part, 1));
+    assert_true(gf_test_same_snapshot(whole, part, 2));
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(thread_count_does_not_change_the_result),
+    cmocka_unit_test(exits_are_timed_and_ordered),
+    cmocka_unit_test(recirculation_does_not_depend_on_threads),
+    cmocka_unit_test(keys_set_the_decomposition),
+    cmocka_unit_test(resume_under_another_thread_count),
+};
+
+GF_TEST_MAIN("domains", tests)
