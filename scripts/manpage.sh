@@ -12,6 +12,16 @@ inc=$(mktemp)
 trap 'rm -f "$inc"' EXIT
 roff() { sed -e 's/\\/\\e/g' -e 's/^\([.'"'"']\)/\\\&\1/'; }
 {
+    # help2man finds no synopsis in a lowercase "usage:"; the usage lines of `granflow --help`.
+    echo "[SYNOPSIS]"
+    echo ".B granflow"
+    echo "\\fICOMMAND\\fR [\\fIARGUMENTS\\fR] [\\fIOPTIONS\\fR]"
+    echo ".br"
+    echo ".B granflow"
+    echo "\\fICOMMAND\\fR \\fB\\-\\-help\\fR"
+    echo ".br"
+    echo ".B granflow help"
+    echo "\\fR[\\fICOMMAND\\fR]" # (a line opening with [ would start a section)
     echo "[COMMANDS]"
     for c in $("$gf" help | sed -n '/^commands:/,/^$/s/^  \([a-z]\+\) .*/\1/p'); do
         echo ".SS $c"
