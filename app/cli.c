@@ -59,6 +59,9 @@ int gf_cli_getopt_error(const char *cmd, int c, char **argv)
 {
     const char *arg = argv[optind - 1];
     if (c == ':') fprintf(stderr, "granflow %s: error: %s needs a value (see granflow %s --help)\n", cmd, arg, cmd);
+    else if (optopt && !strncmp(arg, "--", 2)) // --force=1
+        fprintf(stderr, "granflow %s: error: %.*s takes no value (see granflow %s --help)\n", cmd,
+                (int)strcspn(arg, "="), arg, cmd);
     else if (optopt && optopt < 256 && arg[0] == '-' && arg[1] != '-')
         fprintf(stderr, "granflow %s: error: unknown option '-%c' (see granflow %s --help)\n", cmd, optopt, cmd);
     else fprintf(stderr, "granflow %s: error: unknown option '%s' (see granflow %s --help)\n", cmd, arg, cmd);

@@ -66,6 +66,9 @@ done
 gf run -o
 expect_rc 2 "run -o without a value"
 expect_err "-o needs a value"
+gf run --force=yes
+expect_rc 2 "run --force=yes"
+expect_err "--force takes no value"
 ok "every option in a help text is known to its parser; unknown ones exit 2 naming them"
 
 # `--` ends the options: a run directory and a config file named like options.
