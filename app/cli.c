@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static bool gf_cli_number(const char *cmd, const char *opt, const char *s, double *out)
 {
@@ -182,10 +183,14 @@ int gf_cli_interrupted(const char *cmd, const char *left)
 }
 
 static volatile sig_atomic_t gf_cli_stop;
+static unsigned gf_cli_grace;
+
+void gf_cli_stop_grace(unsigned seconds) { gf_cli_grace = seconds; }
 
 static void gf_cli_on_signal(int sig)
 {
     (void)sig;
+    if (!gf_cli_stop && gf_cli_grace > 0) alarm(gf_cli_grace); // async-signal-safe
     gf_cli_stop = 1;
 }
 

@@ -55,6 +55,11 @@ bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg);
 /// Makes SIGINT, SIGTERM and SIGHUP set a flag instead of killing the process; the
 /// returned flag is what a run polls to stop cleanly (writing a checkpoint).
 volatile sig_atomic_t *gf_cli_catch_stop(void);
+/// Seconds a caught signal leaves the process to stop cleanly before
+/// SIGALRM ends it (0, the default: no limit). With several MPI ranks a rank
+/// that died leaves the others blocked in a collective, and mpirun's SIGTERM
+/// would only set the flag: the limit makes them exit within seconds.
+void gf_cli_stop_grace(unsigned seconds);
 
 /// After GF_ERR_INTERRUPTED (the flag of gf_cli_catch_stop): prints one line,
 /// `granflow CMD: stopped by a signal (WHAT STOPPED); LEFT`, and returns

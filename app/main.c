@@ -102,6 +102,10 @@ int main(int argc, char **argv)
 {
 #ifdef GF_MPI
     gf_mpi_app_init(&argc, &argv);
+    // A rank that dies leaves the others blocked in a collective: mpirun's
+    // SIGTERM then gives them this long to stop cleanly (a checkpoint is
+    // written in well under it), and SIGALRM ends them after that.
+    if (gf_mpi_app_ranks() > 1) gf_cli_stop_grace(GF_MPI_STOP_GRACE);
     return gf_mpi_app_end(gf_main(argc, argv));
 #else
     return gf_main(argc, argv);

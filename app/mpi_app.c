@@ -30,6 +30,8 @@ static int gf_mpi_app_size(void)
     return n;
 }
 
+int gf_mpi_app_ranks(void) { return gf_mpi_app_size(); }
+
 int gf_mpi_app_end(int rc)
 {
     if (rc != 0 && rc != 130 && gf_mpi_app_size() > 1) MPI_Abort(MPI_COMM_WORLD, rc);
@@ -39,10 +41,12 @@ int gf_mpi_app_end(int rc)
 
 int gf_mpi_app_check(const gf_config *cfg)
 {
-    if (gf_mpi_app_size() < 2 || (cfg->run_mode == GF_MODE_FIXED && cfg->run_order == GF_ORDER_SPATIAL)) return 0;
+    if (gf_mpi_app_size() < 2 ||
+        (cfg->run_mode == GF_MODE_FIXED && (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS)))
+        return 0;
     if (gf_mpi_app_rank() == 0)
-        fprintf(stderr, "granflow run: error: %d MPI ranks need run.mode = fixed and run.order = spatial "
-                        "(the only engine split between ranks); run the others as one process\n",
+        fprintf(stderr, "granflow run: error: %d MPI ranks need run.mode = fixed and run.order = spatial or "
+                        "domains (the engines split between ranks); run the others as one process\n",
                 gf_mpi_app_size());
     return 2;
 }

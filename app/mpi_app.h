@@ -17,6 +17,11 @@ int gf_mpi_app_init(int *argc, char ***argv);
 /// more than one rank, so that no rank waits for one that is gone).
 int gf_mpi_app_end(int rc);
 int gf_mpi_app_rank(void);
+/// The number of ranks (1 without mpirun).
+int gf_mpi_app_ranks(void);
+/// Seconds a signalled rank has to stop cleanly when there are several
+/// (gf_cli_stop_grace).
+#define GF_MPI_STOP_GRACE 15
 /// 0 when cfg can run on the ranks there are; else prints why (run.order =
 /// spatial, run.mode = fixed are needed for more than one rank) and returns 2.
 int gf_mpi_app_check(const gf_config *cfg);

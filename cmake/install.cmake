@@ -35,6 +35,17 @@ install(FILES ${CMAKE_BINARY_DIR}/granflowConfig.cmake ${CMAKE_BINARY_DIR}/granf
 if(GF_OPENMP)
   set(GF_PC_OPENMP "-fopenmp")
 endif()
+# Relocatable: the prefix is ${pcfiledir} (the directory of granflow.pc,
+# <prefix>/<libdir>/pkgconfig) and as many `..` as that path has parts, so
+# `cmake --install BUILD --prefix P` anywhere, or a moved tree, needs no
+# --define-variable. (The CMake package is relocatable by itself: its
+# PACKAGE_PREFIX_DIR and _IMPORT_PREFIX are computed from its own place.)
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(GF_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH GF_PC_UP "/gf/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/gf")
+  set(GF_PC_PREFIX "\${pcfiledir}/${GF_PC_UP}")
+endif()
 configure_file(cmake/granflow.pc.in ${CMAKE_BINARY_DIR}/granflow.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/granflow.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 

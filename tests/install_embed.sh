@@ -1,14 +1,24 @@
 #!/usr/bin/env bash
-# Installs the build into a prefix inside the build directory, then builds
-# examples/embed against the INSTALLED library (find_package: shared and
-# static; pkg-config) and runs each; then imports the installed Python
-# package with PYTHON. Usage: install_embed.sh BUILD_DIR SOURCE_DIR PYTHON
+# Installs the build into a prefix inside the build directory (not
+# /usr/local) and MOVES the tree elsewhere, so nothing may hold the path it was
+# installed to; then builds examples/embed against the INSTALLED library
+# (find_package: shared and static; plain `pkg-config --cflags --libs`, no
+# --define-variable) and runs each; then imports the installed Python package
+# with PYTHON. Usage: install_embed.sh BUILD_DIR SOURCE_DIR PYTHON
 set -euo pipefail
 build=$1 src=$2 py=$3
 work=$build/install-test
 rm -rf "$work"
-prefix=$work/prefix
-cmake --install "$build" --prefix "$prefix" >/dev/null
+mkdir -p "$work"
+staged=$work/staged
+cmake --install "$build" --prefix "$staged" >/dev/null
+# The package files must not name the install prefix: they find it from their own place.
+if grep -rlF "$staged" "$staged/lib/pkgconfig" "$staged/lib/cmake"; then
+  echo "the files above hold the install prefix $staged: not relocatable"; exit 1
+fi
+prefix=$work/moved/prefix
+mkdir -p "$work/moved"
+mv "$staged" "$prefix"
 for f in lib/libgranflow.so lib/libgranflow.a bin/granflow include/granflow/granflow.h include/granflow/version.h \
          lib/pkgconfig/granflow.pc lib/cmake/granflow/granflowConfig.cmake share/granflow/python/granflow/sim.py; do
   [ -e "$prefix/$f" ] || { echo "install: $f missing under $prefix"; find "$prefix" -type f; exit 1; }
@@ -32,12 +42,14 @@ libs=$(ldd "$work/cmake-build/embed")
 grep -q "$prefix/lib/libgranflow.so" <<<"$libs" ||
   { echo "embed (cmake) is not linked to the installed library:"; ldd "$work/cmake-build/embed"; exit 1; }
 
-# 2. pkg-config, as a Makefile would.
+# 2. pkg-config, as a Makefile would: plain --cflags --libs (granflow.pc
+# finds its prefix through ${pcfiledir}).
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
-# The .pc file holds the configured prefix; tell pkg-config where it really is.
-pc="pkg-config --define-variable=prefix=$prefix"
-cc -std=c17 -Wall -Wextra -Werror $($pc --cflags granflow) "$src/examples/embed/embed.c" -o "$work/embed-pc" \
-   $($pc --libs granflow) -Wl,-rpath,"$prefix/lib"
+got=$(pkg-config --variable=libdir granflow)
+[ "$(realpath "$got")" = "$(realpath "$prefix/lib")" ] ||
+  { echo "pkg-config: libdir is $got, expected $prefix/lib"; exit 1; }
+cc -std=c17 -Wall -Wextra -Werror $(pkg-config --cflags granflow) "$src/examples/embed/embed.c" -o "$work/embed-pc" \
+   $(pkg-config --libs granflow) -Wl,-rpath,"$prefix/lib"
 out2=$("$work/embed-pc")
 [ "$out" = "$out2" ] || { echo "pkg-config build prints differently:"; echo "$out"; echo "---"; echo "$out2"; exit 1; }
 echo "$out2" | tail -1

@@ -139,7 +139,7 @@ static void report_as_json(void **state)
                        "\"spot_us\": 1.2500, \"relax_us\": 0.0000, \"step_us\": 2.5000, \"steps_per_second\": 400000.0, "
                        "\"steps_per_second_1thread\": 400000.0, \"parallel_efficiency\": 1.000, \"spots_active\": 0, "
                        "\"flow_rate\": 0.00, \"moves_per_tau\": 0, \"memory_bytes_per_particle\": 0.0, "
-                       "\"peak_rss_bytes_per_particle\": 2000.0, \"projected_drain_seconds\": 0, \"pack_seconds\": 0.00, "
+                       "\"peak_rss_bytes_per_particle\": 2000.0, \"peak_rss_bytes\": 4000, \"projected_drain_seconds\": 0, \"pack_seconds\": 0.00, "
                        "\"warmup_seconds\": 0.00, \"lga_site_updates_per_second\": 15000000, \"lga_sites\": 50000, "
                        "\"lga_iterations\": 1000}\n";
     if (strcmp(buf, want)) fail_msg("wrote\n%s\nexpected\n%s", buf, want);

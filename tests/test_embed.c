@@ -47,8 +47,8 @@ static void other_value(const gf_key *k, char *buf, size_t n)
     else v = -3.125;
     if (k->type == GF_KEY_INT64 || k->type == GF_KEY_SIZE) {
         v = floor(v) + (v == floor(v) ? 1 : 0);
-        if (!strcmp(k->def, "1") && v == 1) v = 2;
         snprintf(buf, n, "%.0f", v);
+        if (!strcmp(buf, k->def)) snprintf(buf, n, "%.0f", v + 1); // a value other than the default
     } else {
         gf_keys_format_double(v, buf, n);
     }

@@ -353,6 +353,7 @@ static void run_dir_writes_everything(void **state)
     assert_non_null(strstr(js, "\"slope_angle\": "));
     assert_non_null(strstr(js, "\"particles_added\": 200"));
     assert_non_null(strstr(js, "\"iterations_to_empty\": null"));
+    assert_non_null(strstr(js, "\"t50\": ")); // a pile's outflow (over the floor's edge) has its times too
     free(js);
     snprintf(path, sizeof path, "%s/outflow.csv", dir);
     char *csv = gf_test_read_file(path, NULL);
@@ -369,6 +370,85 @@ static void run_dir_writes_everything(void **state)
     c.lga_iterations = 40;
     assert_int_equal(gf_lga_run_dir(&c, &o, NULL), GF_OK);
     assert_false(file_exists(dir, "maps/map_000250.png")); // the old maps are gone
+}
+
+// When the outflow left: the first iteration by which a fraction of all that
+// left had left, counted in whole particles (0.9 of 10 is the 9th, not the
+// 10th through rounding); fraction 1 is the last outflow; nothing is -1.
+static void outflow_times_by_fraction(void **state)
+{
+    (void)state;
+    const int64_t it[] = {3, 7, 8, 20}, n[] = {4, 1, 4, 1}; // 10 particles
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 0.5), 7);  // 5 by iteration 7
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 0.4), 3);  // 4 by iteration 3
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 0.9), 8);  // 9 by iteration 8
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 0.99), 20); // 9.9: the 10th
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 1.0), 20);
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 1e-9), 3);
+    const int64_t it100[] = {1, 2}, n100[] = {99, 1}; // 0.99 x 100 is the 99th whatever its last bit
+    assert_int_equal(gf_lga_outflow_time(it100, n100, 2, 0.99), 1);
+    assert_int_equal(gf_lga_outflow_time(it, n, 0, 0.5), -1);
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 0.0), -1);
+    assert_int_equal(gf_lga_outflow_time(it, n, 4, 1.5), -1);
+}
+
+// A funnel silo that never empties (a hopper at 75 degrees from the vertical,
+// past the repose angle, over a 2 d outlet) still reports when its outflow
+// happened: iterations_to_empty is null, iterations_to_stop the last outflow
+// (outflow.csv's last non-zero row), t50 <= t90 <= t99 <= it, and each is the
+// iteration by which that share of the outflow had left, from outflow.csv.
+static void funnel_silo_that_never_empties_reports_outflow_times(void **state)
+{
+    (void)state;
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/stuck", gf_test_tmpdir());
+    gf_config c = scenario(GF_LGA_SILO);
+    c.lga_silo_flow = GF_LGA_FUNNEL;
+    c.lga_hopper_angle = 75;
+    c.lga_width = 30;
+    c.lga_height = 20;
+    c.lga_outlet_width = 2;
+    c.lga_particles = 400;
+    gf_lga_run_opts o = {.dir = dir};
+    gf_lga_summary s;
+    assert_int_equal(gf_lga_run_dir(&c, &o, &s), GF_OK);
+    assert_true(s.particles_final > 0);
+    assert_true(s.particles_removed > 0);
+    assert_int_equal(s.iterations_to_empty, -1);
+    assert_true(s.t50 > 0 && s.t50 <= s.t90 && s.t90 <= s.t99 && s.t99 <= s.iterations_to_stop);
+    assert_true(s.iterations_to_stop < s.iterations); // it stalled, then the run gave up
+    // the same times from outflow.csv
+    char path[1200];
+    snprintf(path, sizeof path, "%s/outflow.csv", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, f)); // header
+    long long i, out, parts, added, sum = 0, last = -1, t[3] = {-1, -1, -1};
+    const double frac[3] = {0.5, 0.9, 0.99};
+    while (fscanf(f, "%lld,%lld,%lld,%lld\n", &i, &out, &parts, &added) == 4) {
+        sum += out;
+        if (out > 0) last = i;
+        for (int k = 0; k < 3; k++)
+            if (t[k] < 0 && (double)sum >= frac[k] * (double)s.particles_removed - 1e-9) t[k] = i;
+    }
+    fclose(f);
+    assert_int_equal(sum, s.particles_removed);
+    assert_int_equal(last, s.iterations_to_stop);
+    assert_int_equal(t[0], s.t50);
+    assert_int_equal(t[1], s.t90);
+    assert_int_equal(t[2], s.t99);
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    char *js = gf_test_read_file(path, NULL);
+    assert_non_null(js);
+    char want[128];
+    assert_non_null(strstr(js, "\"iterations_to_empty\": null,\n"));
+    snprintf(want, sizeof want, "\"iterations_to_stop\": %lld,\n", (long long)s.iterations_to_stop);
+    assert_non_null(strstr(js, want));
+    snprintf(want, sizeof want, "\"t50\": %lld,\n  \"t90\": %lld,\n  \"t99\": %lld,\n", (long long)s.t50,
+             (long long)s.t90, (long long)s.t99);
+    assert_non_null(strstr(js, want));
+    free(js);
 }
 
 // Pictures bound the lattice: a channel 17,000 rows tall has maps 34,041
@@ -409,6 +489,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(silo_flow_types),
     cmocka_unit_test(density_map_pixels),
     cmocka_unit_test(run_dir_writes_everything),
+    cmocka_unit_test(outflow_times_by_fraction),
+    cmocka_unit_test(funnel_silo_that_never_empties_reports_outflow_times),
     cmocka_unit_test(run_dir_refuses_lattices_too_large_to_draw),
 };
 

@@ -116,6 +116,14 @@ GF_API void gf_lga_profile(const gf_lga *lga, double *out);
 GF_API double gf_lga_slope_angle(const double *profile, int width, double lo, double hi, double *left,
                                  double *right);
 
+/// When the outflow of a run had left: the first iteration by which at least
+/// `fraction` (0 < fraction <= 1) of all the particles that left had left.
+/// `iteration[k]` (increasing) is an iteration in which `count[k]` > 0
+/// particles left, k < n; iterations without outflow may be omitted.
+/// fraction 1 gives the last iteration with outflow. -1 when nothing left or
+/// `fraction` is outside (0, 1].
+GF_API int64_t gf_lga_outflow_time(const int64_t *iteration, const int64_t *count, size_t n, double fraction);
+
 /// Density along the height: mean particles per fluid site of each row (height values).
 GF_API void gf_lga_row_density(const gf_lga *lga, double *out);
 
@@ -144,6 +152,8 @@ typedef struct gf_lga_summary {
     int64_t particles_removed;  ///< left through sinks
     int64_t particles_final;    ///< in the system at the end
     int64_t iterations_to_empty; ///< silo: first iteration with no particle left; -1 if never
+    int64_t iterations_to_stop; ///< last iteration in which a particle left; -1 if none did
+    int64_t t50, t90, t99;      ///< iterations by which 50, 90, 99% of what left had left; -1 if none did
     double slope_angle;         ///< pile: mean flank angle, degrees (NaN otherwise)
     double slope_left, slope_right; ///< pile: each flank, degrees
     double wave_variance_initial;   ///< channel: gf_lga_wave_variance at iteration 0

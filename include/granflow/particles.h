@@ -60,6 +60,41 @@ GF_API gf_status gf_packing_write(const gf_packing *p, const char *path, gf_pack
 GF_API gf_status gf_run_write_snapshot(const char *path, const gf_config *cfg, const gf_packing *p, const int32_t *pass,
                                        double time, uint64_t step);
 
+// ---- one frame of a dump as flat arrays: what bindings use ------------------
+
+/// One frame of a LAMMPS text dump read into memory (opaque: bindings read
+/// it through the functions below, not through a struct layout).
+typedef struct gf_snapshot gf_snapshot;
+
+/// Reads frame `frame` (0 = first; -1 = last) of the LAMMPS text dump
+/// `path`, plain or gzip-compressed (any name), with the checks and messages
+/// of gf_packing_read (file and line). Besides x y z (or unwrapped/scaled
+/// forms) it keeps the id, type, radius (or diameter) and granflow's pass
+/// columns. A frame may hold 0 particles. GF_ERR_IO when the file cannot be
+/// opened, GF_ERR_FORMAT when it is malformed, GF_ERR_PARAM when it has no
+/// frame `frame`.
+GF_API gf_status gf_snapshot_read(const char *path, long frame, gf_snapshot **out);
+GF_API void gf_snapshot_destroy(gf_snapshot *s);
+
+/// Particles in the frame.
+GF_API size_t gf_snapshot_count(const gf_snapshot *s);
+/// Frames in the file the snapshot was read from.
+GF_API size_t gf_snapshot_frames(const gf_snapshot *s);
+/// ITEM: TIME (tau for granflow's snapshots), or NaN when the frame has none.
+GF_API double gf_snapshot_time(const gf_snapshot *s);
+/// ITEM: TIMESTEP.
+GF_API int64_t gf_snapshot_step(const gf_snapshot *s);
+/// The box (ITEM: BOX BOUNDS) into lo[3], hi[3]; returns 0 (arrays left
+/// alone) when the frame has none, 1 otherwise.
+GF_API int gf_snapshot_box(const gf_snapshot *s, double lo[3], double hi[3]);
+/// Copies the particles in file order: `id[i]`, `type[i]` (the `type`
+/// column, granflow's layer tag; 0 without one), `xyz[3i..3i+2]`,
+/// `radius[i]` (0.5 without a radius or diameter column), `pass[i]` (1
+/// without a pass column); any array may be NULL. GF_ERR_PARAM when more
+/// than `cap` particles; `*n` (may be NULL) receives the count.
+GF_API gf_status gf_snapshot_copy(const gf_snapshot *s, int64_t *id, int32_t *type, double *xyz, double *radius,
+                                  int32_t *pass, size_t cap, size_t *n);
+
 #ifdef __cplusplus
 }
 #endif

@@ -58,6 +58,26 @@ GF_API gf_status gf_run_dir(const gf_config *cfg, const gf_run_opts *opts, gf_si
 /// gf_run_write_snapshot (one snapshot frame as a LAMMPS dump) is a file
 /// format: it is declared in granflow/particles.h, included above.
 
+// ---- the state of a simulation driven by hand (bindings, notebooks) --------
+
+/// Writes the particles of `sim` as one snapshot frame (gf_run_write_snapshot:
+/// the time, the events as TIMESTEP, the pass column under run.recirculate)
+/// to `path`, atomically; granflow analyze, render and gf_snapshot_read read it.
+GF_API gf_status gf_sim_write_snapshot(const gf_sim *sim, const char *path);
+
+/// Writes the particles of `sim` as a VTK XML unstructured grid (.vtu, as
+/// the run directory's output.format = vtk snapshots) to `path`, atomically.
+GF_API gf_status gf_sim_write_vtk(const gf_sim *sim, const char *path);
+
+/// Writes the state of `sim` as a run directory `dir`, as if `granflow run`
+/// had stopped there: config.ini, checkpoint.bin (`granflow run --resume`
+/// goes on from it), exits.csv, summary.json (status "saved") and the
+/// snapshot of the current time in snapshots/ (with container.vtk and a .vtu
+/// under output.format = vtk or both). A directory that already holds a run
+/// (checkpoint.bin) is GF_ERR_EXISTS unless `force`; a fresh write first
+/// removes what an earlier run left there, as gf_run_dir does.
+GF_API gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force);
+
 #ifdef __cplusplus
 }
 #endif

@@ -104,6 +104,16 @@ GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out);
 /// GF_ERR_INTERRUPTED and no simulation.
 GF_API gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_sim **out);
 
+/// Creates a simulation of `n` particles given as flat arrays under `cfg`
+/// (validated on a copy; its packing.* keys other than layer_thickness are
+/// not used): centres `xyz[3i..3i+2]` (d), `radius[i]` (d; NULL: 0.5 each),
+/// `id[i]` (unique, >= 1; NULL: 1..n). Layers are tagged from z
+/// (packing.layer_thickness). GF_ERR_PARAM naming the index of the first
+/// bad value (not finite, radius <= 0, id < 1 or repeated, centre outside
+/// the container).
+GF_API gf_status gf_sim_create_from_arrays(const gf_config *cfg, size_t n, const double *xyz, const double *radius,
+                                           const int64_t *id, gf_sim **out);
+
 /// Particles still in the container.
 GF_API size_t gf_sim_particle_count(const gf_sim *sim);
 

@@ -6,6 +6,7 @@ import ctypes
 import os
 
 from ._lib import check, enc, lib
+from .errors import GranflowKeyError, GranflowMemoryError, GranflowValueError
 
 
 def key_names(prefix):
@@ -56,7 +57,7 @@ class Keyed:
     def __init__(self, values=None):
         self._ptr = self._fn("_create")()
         if not self._ptr:
-            raise MemoryError(self.PREFIX + "_create")
+            raise GranflowMemoryError(self.PREFIX + "_create: out of memory")
         for key, value in (values or {}).items():
             self[key] = value
 
@@ -88,7 +89,7 @@ class Keyed:
         """The value of `key` as the library writes it (KeyError naming an unknown key)."""
         buf = ctypes.create_string_buffer(1024 + 64)
         if self._get(enc(key), buf, len(buf)) != 0:
-            raise KeyError(lib.gf_last_error().decode())
+            raise GranflowKeyError(lib.gf_last_error().decode())
         return buf.value.decode()
 
     def _parse(self, text):
@@ -98,9 +99,9 @@ class Keyed:
         return self._parse(self.get_text(key))
 
     def __setitem__(self, key, value):
-        """Checked as in a file: ValueError naming the key (an unknown key too), the value unchanged."""
+        """Checked as in a file: GranflowValueError (a ValueError) naming the key (an unknown key too), the value unchanged."""
         if self._set(enc(key), enc(to_text(value))) != 0:
-            raise ValueError(lib.gf_last_error().decode())
+            raise GranflowValueError(lib.gf_last_error().decode(), "invalid parameter")
 
     def __contains__(self, key):
         return key in self.keys()

@@ -9,16 +9,9 @@ import ctypes.util
 import os
 from pathlib import Path
 
+from .errors import GranflowError, from_status  # noqa: F401 (GranflowError: importable from here, as before)
+
 _HERE = Path(__file__).resolve().parent
-
-
-class GranflowError(RuntimeError):
-    """A granflow call failed; `status` is the gf_status name, the text is gf_last_error()."""
-
-    def __init__(self, status, message):
-        super().__init__(f"{status}: {message}")
-        self.status = status
-        self.message = message
 
 
 def _candidates():
@@ -26,6 +19,8 @@ def _candidates():
     if env:
         yield env
         return
+    # An installed wheel or pip install: the library built with the package, beside it.
+    yield str(_HERE / "libgranflow.so")
     # A source checkout: python/granflow -> ../../build/libgranflow.so
     yield str(_HERE.parent.parent / "build" / "libgranflow.so")
     # An installed prefix: <prefix>/lib/pythonX/... or <prefix>/share/granflow/python/granflow
@@ -108,6 +103,22 @@ _SIGNATURES = {
     "gf_sim_stat_name": (c_char_p, [c_size_t]),
     "gf_sim_set_threads": (None, [c_void_p, c_int]),
     "gf_sim_save": (c_int, [c_void_p, c_char_p]),
+    # notebooks: a simulation from arrays or a checkpoint, its state as files
+    "gf_sim_create_from_arrays": (c_int, [c_void_p, c_size_t, _pd, _pd, _pi64, ctypes.POINTER(c_void_p)]),
+    "gf_sim_load": (c_int, [c_void_p, c_char_p, ctypes.POINTER(c_void_p)]),
+    "gf_sim_passes": (c_int, [c_void_p, _pi32, c_size_t]),
+    "gf_sim_write_snapshot": (c_int, [c_void_p, c_char_p]),
+    "gf_sim_write_vtk": (c_int, [c_void_p, c_char_p]),
+    "gf_sim_write_run_dir": (c_int, [c_void_p, c_char_p, c_int]),
+    # one frame of a dump (the C reader: plain or .gz, radius, pass)
+    "gf_snapshot_read": (c_int, [c_char_p, ctypes.c_long, ctypes.POINTER(c_void_p)]),
+    "gf_snapshot_destroy": (None, [c_void_p]),
+    "gf_snapshot_count": (c_size_t, [c_void_p]),
+    "gf_snapshot_frames": (c_size_t, [c_void_p]),
+    "gf_snapshot_time": (c_double, [c_void_p]),
+    "gf_snapshot_step": (ctypes.c_int64, [c_void_p]),
+    "gf_snapshot_box": (c_int, [c_void_p, _pd, _pd]),
+    "gf_snapshot_copy": (c_int, [c_void_p, _pi64, _pi32, _pd, _pd, _pi32, c_size_t, _psize]),
 }
 
 for _name, (_res, _args) in _SIGNATURES.items():
@@ -117,9 +128,9 @@ for _name, (_res, _args) in _SIGNATURES.items():
 
 
 def check(status):
-    """Raises GranflowError for a non-zero gf_status."""
+    """Raises the GranflowError subclass of a non-zero gf_status (granflow.errors)."""
     if status != 0:
-        raise GranflowError(lib.gf_status_str(status).decode(), lib.gf_last_error().decode())
+        raise from_status(status, lib.gf_status_str(status).decode(), lib.gf_last_error().decode())
 
 
 def enc(text):

@@ -4,6 +4,7 @@ import ctypes
 
 from ._keyed import Keyed, key_names
 from ._lib import check, enc, lib
+from .errors import GranflowKeyError
 
 
 def keys():
@@ -37,9 +38,10 @@ class Config(Keyed):
         return lib.gf_config_set_key(self._ptr, key, text)
 
     def load(self, path):
-        """Reads an INI file over the current values (error names file, line, key)."""
-        if lib.gf_config_load(self._ptr, enc(path)) != 0:
-            raise ValueError(lib.gf_last_error().decode())
+        """Reads an INI file over the current values: a bad value raises
+        GranflowValueError (a ValueError) naming file, line and key; a missing
+        file GranflowFileNotFoundError (a FileNotFoundError)."""
+        check(lib.gf_config_load(self._ptr, enc(path)))
         return self
 
     def where(self, key):
@@ -47,14 +49,13 @@ class Config(Keyed):
         Python), or "default"; validation errors quote the same places."""
         buf = ctypes.create_string_buffer(4200)
         if lib.gf_config_where(self._ptr, enc(key), buf, len(buf)) != 0:
-            raise KeyError(lib.gf_last_error().decode())
+            raise GranflowKeyError(lib.gf_last_error().decode())
         return buf.value.decode()
 
     def save(self, path):
         check(lib.gf_config_save(self._ptr, enc(path)))
 
     def validate(self):
-        """Resolves the `auto` keys and checks cross-key constraints."""
-        if lib.gf_config_validate(self._ptr) != 0:
-            raise ValueError(lib.gf_last_error().decode())
+        """Resolves the `auto` keys and checks cross-key constraints (GranflowValueError)."""
+        check(lib.gf_config_validate(self._ptr))
         return self

@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 
 from .config import Config
+from .errors import GranflowFileNotFoundError
+from .snapshot import read_snapshot
 
 
 def read_csv(path):
@@ -28,42 +30,6 @@ def read_json(path):
         return json.load(f)
 
 
-def read_snapshot(path):
-    """One LAMMPS text dump as written by granflow: dict time (tau), step, box
-    (3 x 2, d), id (int64), type (int64; the layer tag) and xyz (n x 3, d)."""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    out = {"time": None, "step": None}
-    i = 0
-    while i < len(lines):
-        item = lines[i]
-        if item.startswith("ITEM: TIMESTEP"):
-            out["step"] = int(lines[i + 1])
-            i += 2
-        elif item.startswith("ITEM: TIME"):
-            out["time"] = float(lines[i + 1])
-            i += 2
-        elif item.startswith("ITEM: NUMBER OF ATOMS"):
-            n = int(lines[i + 1])
-            i += 2
-        elif item.startswith("ITEM: BOX BOUNDS"):
-            out["box"] = np.array([[float(v) for v in lines[i + k].split()[:2]] for k in (1, 2, 3)])
-            i += 4
-        elif item.startswith("ITEM: ATOMS"):
-            cols = item.split()[2:]
-            rows = np.array([ln.split() for ln in lines[i + 1:i + 1 + n]], dtype=np.float64).reshape(n, len(cols))
-            col = {c: rows[:, k] for k, c in enumerate(cols)}
-            out["id"] = col["id"].astype(np.int64)
-            out["type"] = col["type"].astype(np.int64) if "type" in col else np.ones(n, np.int64)
-            out["xyz"] = np.column_stack([col["x"], col["y"], col["z"]])
-            break
-        else:
-            i += 1
-    if "xyz" not in out:
-        raise ValueError(f"{path}: no ITEM: ATOMS section")
-    return out
-
-
 class RunDir:
     """A run directory: config.ini, summary.json, exits.csv, snapshots/, and,
     when made, analysis/ (summary.json, CSV), render/ (PNG) and report.html."""
@@ -71,7 +37,8 @@ class RunDir:
     def __init__(self, path):
         self.path = Path(path)
         if not (self.path / "config.ini").exists():
-            raise FileNotFoundError(f"{self.path}: not a granflow run directory (no config.ini)")
+            raise GranflowFileNotFoundError(f"{self.path}: not a granflow run directory (no config.ini)", None,
+                                            self.path / "config.ini")
 
     @property
     def config(self):
@@ -89,11 +56,12 @@ class RunDir:
         return t
 
     def snapshots(self):
-        """Paths of the snapshots, in time order."""
-        return sorted((self.path / "snapshots").glob("snap_*.dump"))
+        """Paths of the snapshots (snap_*.dump, or .dump.gz when compressed), in time order."""
+        d = self.path / "snapshots"
+        return sorted(list(d.glob("snap_*.dump")) + list(d.glob("snap_*.dump.gz")))
 
     def snapshot(self, k):
-        """Snapshot k (index in snapshots()) as read_snapshot returns it."""
+        """Snapshot k (index in snapshots()) as read_snapshot returns it (a Snapshot)."""
         return read_snapshot(self.snapshots()[k])
 
     @property

@@ -1,12 +1,17 @@
 # SPDX-License-Identifier: MIT
 """A spot-model simulation driven step by step; particles and exits as numpy arrays."""
 import ctypes
+import os
 import time
+from pathlib import Path
 
 import numpy as np
 
 from ._lib import c_void_p, check, enc, lib
 from .config import Config
+from .errors import GranflowValueError, missing_file
+from .rundir import RunDir
+from .snapshot import table
 
 
 def _ptr(array, ctype):
@@ -19,13 +24,18 @@ class Simulation:
     >>> sim = Simulation({"container.width": 12, "packing.particles": 1500})
     >>> sim.run(until=2.0)      # simulated time, tau
     >>> sim.positions().shape   # (particles left, 3), d
+
+    With `positions` (n x 3, d) the particles are those, not a packing of
+    the config: `radii` (n; default 0.5) and `ids` (n, unique, >= 1;
+    default 1..n) may go with them. With `checkpoint` (a file gf_sim_save
+    wrote) the simulation goes on from it; see load().
     """
 
-    def __init__(self, config=None):
+    def __init__(self, config=None, *, positions=None, radii=None, ids=None, checkpoint=None):
         cfg = config if isinstance(config, Config) else Config(config)
         self.config = cfg.copy()
         handle = c_void_p()
-        check(lib.gf_sim_create_from_config(cfg.handle, ctypes.byref(handle)))
+        _create(cfg, handle, positions, radii, ids, checkpoint)
         self._ptr = handle
 
     def close(self):
@@ -43,7 +53,7 @@ class Simulation:
 
     def _live(self):
         if not self._ptr:
-            raise ValueError("the simulation is closed")
+            raise GranflowValueError("the simulation is closed")  # as a closed file: ValueError
         return self._ptr
 
     # ---- running -------------------------------------------------------------
@@ -120,3 +130,98 @@ class Simulation:
         check(lib.gf_sim_copy_exits(self._live(), _ptr(ids, ctypes.c_int64), _ptr(txy, ctypes.c_double), n,
                                     ctypes.byref(got)))
         return {"id": ids, "time": txy[:, 0].copy(), "x": txy[:, 1].copy(), "y": txy[:, 2].copy()}
+
+    # ---- notebooks: tables and files -----------------------------------------
+    def passes(self):
+        """The pass each particle left is on (1 + times it went round; always 1
+        without run.recirculate), sorted by id as particles()."""
+        n = len(self)
+        out = np.empty(n, np.int32)
+        check(lib.gf_sim_passes(self._live(), _ptr(out, ctypes.c_int32), n))
+        return out
+
+    def particle_table(self):
+        """The particles left as one structured array (PARTICLE_DTYPE: id, layer,
+        pass, x, y, z, radius), sorted by id; `pandas.DataFrame(t)` takes it as
+        it is, and t["z"] is a column."""
+        p = self.particles()
+        return table("layer", p["id"], p["layer"], self.passes(), p["xyz"], p["radius"])
+
+    def write_snapshot(self, path):
+        """Writes the particles left as a snapshot frame (a LAMMPS text dump, as
+        snapshots/snap_*.dump of a run): read_snapshot, `granflow analyze` and
+        `render` read it."""
+        check(lib.gf_sim_write_snapshot(self._live(), enc(path)))
+
+    def write_vtk(self, path):
+        """Writes the particles left as a VTK XML unstructured grid (.vtu) for
+        ParaView: point data id, radius, pass, layer; the time as field data."""
+        check(lib.gf_sim_write_vtk(self._live(), enc(path)))
+
+    def write_run_dir(self, path, force=False):
+        """Writes the state as a run directory, as if `granflow run` had stopped
+        here: config.ini, checkpoint.bin, exits.csv, summary.json (status
+        "saved") and the snapshot of now; RunDir, load(), `granflow analyze`,
+        `render` and `run --resume` read it. A directory holding a run raises
+        GranflowFileExistsError (a FileExistsError) unless `force`. Returns a
+        RunDir."""
+        check(lib.gf_sim_write_run_dir(self._live(), enc(path), 1 if force else 0))
+        return RunDir(path)
+
+
+def _create(cfg, handle, positions, radii, ids, checkpoint):
+    """Makes the C simulation for Simulation.__init__ into `handle`."""
+    if checkpoint is not None:
+        if positions is not None:
+            raise GranflowValueError("give positions or a checkpoint, not both")
+        if not os.path.exists(checkpoint):
+            raise missing_file(checkpoint)
+        check(lib.gf_sim_load(cfg.handle, enc(checkpoint), ctypes.byref(handle)))
+        return
+    if positions is None:
+        if radii is not None or ids is not None:
+            raise GranflowValueError("radii and ids go with positions")
+        check(lib.gf_sim_create_from_config(cfg.handle, ctypes.byref(handle)))
+        return
+    xyz = np.ascontiguousarray(positions, dtype=np.float64)
+    if xyz.ndim != 2 or xyz.shape[1] != 3:
+        raise GranflowValueError(f"positions must be an (n, 3) array of particle centres, got shape {xyz.shape}")
+    n = len(xyz)
+    r = None if radii is None else np.ascontiguousarray(np.broadcast_to(np.asarray(radii, np.float64), (n,)))
+    if ids is not None:
+        raw = np.asarray(ids)
+        if raw.shape != (n,) or not np.issubdtype(raw.dtype, np.integer):
+            raise GranflowValueError(f"ids must be {n} integers, got shape {raw.shape} of {raw.dtype}")
+        ids = np.ascontiguousarray(raw, dtype=np.int64)
+    check(lib.gf_sim_create_from_arrays(cfg.handle, n, _ptr(xyz, ctypes.c_double),
+                                        None if r is None else _ptr(r, ctypes.c_double),
+                                        None if ids is None else _ptr(ids, ctypes.c_int64), ctypes.byref(handle)))
+
+
+def load(path, config=None):
+    """The simulation saved in a run directory (its config.ini and
+    checkpoint.bin, as `granflow run` or write_run_dir left them), or in a
+    checkpoint file `path`: then with `config` (a Config, a dict or an INI
+    path; default: config.ini beside the file). `config` may change only the
+    [run] and [output] keys of the saved run. Missing files raise
+    GranflowFileNotFoundError (a FileNotFoundError), a corrupt checkpoint
+    GranflowStateError."""
+    path = Path(path)
+    if path.is_dir():
+        ini, ckpt = path / "config.ini", path / "checkpoint.bin"
+    else:
+        ini, ckpt = path.parent / "config.ini", path
+    if not ckpt.exists():
+        raise missing_file(ckpt, "checkpoint (a run directory holds checkpoint.bin)")
+    if isinstance(config, Config):
+        cfg = config
+    elif isinstance(config, dict):
+        if not ini.exists():
+            raise missing_file(ini)
+        cfg = Config(config, path=ini)
+    else:
+        ini = Path(config) if config is not None else ini
+        if not ini.exists():
+            raise missing_file(ini)
+        cfg = Config(path=ini)
+    return Simulation(cfg, checkpoint=ckpt)

@@ -15,6 +15,8 @@ typedef struct gf_packing_frame {
     int have_box;        ///< the frame has ITEM: BOX BOUNDS
     double lo[3], hi[3]; ///< the box, d
     int have_type;       ///< the ATOMS have a `type` column, read into pk->layer (else layer = 0)
+    const int32_t *pass; ///< gf_packing_read_frames_pass only: granflow's `pass` column, one per
+                         ///< particle of pk (NULL: no such column); valid during the callback only
     long line;           ///< line of the frame's first ITEM
 } gf_packing_frame;
 
@@ -29,6 +31,12 @@ typedef gf_status (*gf_packing_frame_fn)(void *ctx, const gf_packing_frame *f, g
 /// have 0 atoms (a drained silo), ITEM: TIME is converted (a malformed value
 /// is an error) and the `type` column becomes the layer tag.
 gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx);
+
+/// gf_packing_read_frames that also reads granflow's `pass` column (a
+/// positive integer, else GF_ERR_FORMAT naming file and line) into f->pass.
+/// Only the snapshot reader asks for it: the series loaders ignore a DEM
+/// dump's columns they do not use, whatever their values.
+gf_status gf_packing_read_frames_pass(const char *path, gf_packing_frame_fn fn, void *ctx);
 
 /// Line of the particle with id `id` in the packing file `path` as
 /// gf_packing_read reads it (a dump's last complete frame; without an id

@@ -123,6 +123,7 @@ typedef struct gf_columns {
     int scaled;               // positions are fractions of the box (xs ys zs, xsu ysu zsu)
     int id, radius, diameter; // column index or -1
     int type;                 // LAMMPS `type` column or -1 (read only by gf_packing_read_frames)
+    int pass;                 // granflow's `pass` column (recirculation) or -1 (gf_packing_read_frames_pass only)
     const char *radius_name, *diameter_name;
 } gf_columns;
 
@@ -134,6 +135,9 @@ typedef struct gf_reader {
     void *each_ctx;
     int64_t find_id;          // > 0: note the line of the particle with this id
     long found_line;          // its line in the last frame converted, 0: not seen
+    int want_pass;            // with `each`: read granflow's pass column (gf_packing_read_frames_pass)
+    int32_t *pass;            // its values in the frame being converted
+    size_t pass_cap;
 } gf_reader;
 
 static gf_status gf_read_bad_number(const gf_textscan *ts, const char *col, const char *tok,
@@ -193,6 +197,23 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
                                 ts->path, ts->line, tok[c->type]);
         layer = (int32_t)t;
     }
+    if (rd->want_pass && c->pass >= 0) {
+        long long t;
+        if (gf_textscan_int(tok[c->pass], &t) != 0 || t < 1 || t > INT32_MAX)
+            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: column 'pass': '%.64s' is not a positive integer",
+                                ts->path, ts->line, tok[c->pass]);
+        size_t i = rd->out->n;
+        if (i >= rd->pass_cap) {
+            size_t cap = rd->pass_cap ? 2 * rd->pass_cap : 1024;
+            int32_t *grown = GF_NEW(int32_t, cap);
+            if (!grown) return gf_error_set(GF_ERR_NOMEM, "out of memory for the pass column");
+            if (rd->pass) memcpy(grown, rd->pass, sizeof *grown * i);
+            GF_DELETE(rd->pass, rd->pass_cap);
+            rd->pass = grown;
+            rd->pass_cap = cap;
+        }
+        rd->pass[i] = (int32_t)t;
+    }
     return gf_packing_push(rd->out, id, layer, v[0], v[1], v[2], r);
 }
 
@@ -204,7 +225,7 @@ static int gf_columns_resolve(gf_columns *c, char **names, int n, int lammps)
         {"x", "y", "z"}, {"xu", "yu", "zu"}, {"xs", "ys", "zs"}, {"xsu", "ysu", "zsu"}};
     memset(c, 0, sizeof *c);
     c->ncols = n;
-    c->id = c->radius = c->diameter = c->type = -1;
+    c->id = c->radius = c->diameter = c->type = c->pass = -1;
     int found = 0;
     for (int t = 0; t < (lammps ? 4 : 1) && !found; t++) {
         int idx[3] = {-1, -1, -1};
@@ -226,6 +247,8 @@ static int gf_columns_resolve(gf_columns *c, char **names, int n, int lammps)
             c->id = i;
         } else if (lammps && strcasecmp(s, "type") == 0) {
             c->type = i;
+        } else if (lammps && strcasecmp(s, "pass") == 0) {
+            c->pass = i;
         } else if (strcasecmp(s, "radius") == 0 || (!lammps && strcasecmp(s, "r") == 0)) {
             c->radius = i;
             c->radius_name = strcasecmp(s, "r") == 0 ? "r" : "radius";
@@ -538,6 +561,7 @@ static gf_status gf_read_lammps(gf_reader *rd)
                                          .time = f.time,
                                          .have_box = f.have_box,
                                          .have_type = cur.cols.type >= 0,
+                                         .pass = rd->want_pass && cur.cols.pass >= 0 ? rd->pass : NULL,
                                          .line = f.start_line};
                 memcpy(info.lo, f.lo, sizeof info.lo);
                 memcpy(info.hi, f.hi, sizeof info.hi);
@@ -593,7 +617,9 @@ static gf_status gf_read_xyz(gf_reader *rd)
                              .pos_name = {"x", "y", "z"},
                              .id = -1,
                              .radius = -1,
-                             .diameter = -1};
+                             .diameter = -1,
+                             .type = -1,
+                             .pass = -1};
     int nframes = 0;
     long count_line = 0;
     for (;;) {
@@ -807,16 +833,27 @@ long gf_packing_line_of(const char *path, int64_t id)
     return line;
 }
 
-gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
+static gf_status gf_packing_read_each(const char *path, gf_packing_frame_fn fn, void *ctx, int want_pass)
 {
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no file name");
     if (!fn) return gf_error_set(GF_ERR_PARAM, "gf_packing_read_frames: no frame callback");
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx};
+    gf_reader rd = {.out = &tmp, .each = fn, .each_ctx = ctx, .want_pass = want_pass};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) st = gf_read_lammps(&rd);
     gf_textscan_close(&rd.ts);
     gf_idset_free(&rd.ids);
+    GF_DELETE(rd.pass, rd.pass_cap);
     gf_packing_free(&tmp);
     return st;
+}
+
+gf_status gf_packing_read_frames(const char *path, gf_packing_frame_fn fn, void *ctx)
+{
+    return gf_packing_read_each(path, fn, ctx, 0);
+}
+
+gf_status gf_packing_read_frames_pass(const char *path, gf_packing_frame_fn fn, void *ctx)
+{
+    return gf_packing_read_each(path, fn, ctx, 1);
 }

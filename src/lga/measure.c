@@ -2,6 +2,7 @@
 // What the LGA runs measure: density fields, the heap profile and its slope
 // (paper Sec. 3.1), density waves along a channel (Sec. 3.2).
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "core/alloc.h"
@@ -134,6 +135,22 @@ double gf_lga_slope_angle(const double *profile, int width, double lo, double hi
     if (right) *right = ang[1];
     if (isnan(ang[0]) || isnan(ang[1])) return NAN;
     return 0.5 * (ang[0] + ang[1]);
+}
+
+int64_t gf_lga_outflow_time(const int64_t *iteration, const int64_t *count, size_t n, double fraction)
+{
+    if (!(fraction > 0 && fraction <= 1)) return -1;
+    int64_t total = 0;
+    for (size_t k = 0; k < n; k++) total += count[k];
+    if (total <= 0) return -1;
+    // Compared as integers: sum >= need, the product rounded up (less a hair, so
+    // that 0.9 x 10 is 9 whatever its last bit); fraction 1 is the last outflow.
+    int64_t need = (int64_t)ceil(fraction * (double)total - 1e-9);
+    if (need < 1) need = 1;
+    int64_t sum = 0;
+    for (size_t k = 0; k < n; k++)
+        if ((sum += count[k]) >= need) return iteration[k];
+    return iteration[n - 1];
 }
 
 void gf_lga_row_density(const gf_lga *l, double *out)

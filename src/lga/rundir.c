@@ -51,6 +51,8 @@ typedef struct gf_lga_out {
     FILE *outflow, *waves;
     char outflow_tmp[GF_PATH_MAX + 64], waves_tmp[GF_PATH_MAX + 64];
     char outflow_path[GF_PATH_MAX + 64], waves_path[GF_PATH_MAX + 64];
+    int64_t *out_iter, *out_count; // the iterations with outflow and how many left in each
+    size_t nout, iter_cap, count_cap;
 } gf_lga_out;
 
 static gf_status gf_lga_snapshot(gf_lga_out *o, const gf_lga *l, const char *title)
@@ -155,6 +157,14 @@ static gf_status gf_lga_write_summary(const gf_lga_out *o, const gf_lga *l, cons
     if (s->iterations_to_empty >= 0) gf_json_int(&j, "iterations_to_empty", s->iterations_to_empty);
     else gf_json_null(&j, "iterations_to_empty");
     int64_t span = s->iterations_to_empty >= 0 ? s->iterations_to_empty : s->iterations;
+    // When the outflow happened, whether or not the silo emptied (a funnel
+    // flow leaves a stagnant heap: iterations_to_empty is null there).
+    static const char *const names[] = {"iterations_to_stop", "t50", "t90", "t99"};
+    const int64_t times[] = {s->iterations_to_stop, s->t50, s->t90, s->t99};
+    for (size_t k = 0; k < 4; k++) {
+        if (times[k] >= 0) gf_json_int(&j, names[k], times[k]);
+        else gf_json_null(&j, names[k]);
+    }
     gf_json_general(&j, "mean_outflow_rate", s->iterations > 0 ? (double)s->particles_removed / (double)span : NAN, 6);
     gf_json_general(&j, "slope_angle", s->slope_angle, 6);
     gf_json_general(&j, "slope_left", s->slope_left, 6);
@@ -175,7 +185,32 @@ static void gf_lga_out_close(gf_lga_out *o)
     o->outflow = o->waves = NULL;
     for (size_t i = 0; i < o->nframes; i++) gf_lga_frame_free(&o->frames[i]);
     if (o->frames) GF_DELETE(o->frames, GF_LGA_KEEP_FRAMES);
+    if (o->out_iter) GF_DELETE(o->out_iter, o->iter_cap);
+    if (o->out_count) GF_DELETE(o->out_count, o->count_cap);
+    o->out_iter = o->out_count = NULL;
     o->frames = NULL;
+}
+
+// Doubles the capacity of `*a` (`*cap` values) when `n` values fill it.
+static bool gf_lga_grow(int64_t **a, size_t *cap, size_t n)
+{
+    if (n < *cap) return true;
+    size_t grown = *cap ? 2 * *cap : 1024;
+    int64_t *q = gf_realloc(*a, *cap * sizeof *q, grown * sizeof *q);
+    if (!q) return false;
+    *a = q;
+    *cap = grown;
+    return true;
+}
+
+// Notes that `count` particles left in `iteration` (for t50, t90, t99).
+static gf_status gf_lga_note_outflow(gf_lga_out *o, int64_t iteration, int64_t count)
+{
+    if (!gf_lga_grow(&o->out_iter, &o->iter_cap, o->nout) || !gf_lga_grow(&o->out_count, &o->count_cap, o->nout))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory (LGA outflow record)");
+    o->out_iter[o->nout] = iteration;
+    o->out_count[o->nout++] = count;
+    return GF_OK;
 }
 
 // Whether the run is over (auto ends; an explicit lga.iterations is handled by the caller).
@@ -255,7 +290,8 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
         st = gf_atomic_open(o.waves_path, o.waves_tmp, sizeof o.waves_tmp, &o.waves);
     }
 
-    gf_lga_summary s = {.scenario = l->scenario, .iterations_to_empty = -1, .slope_angle = NAN, .slope_left = NAN,
+    gf_lga_summary s = {.scenario = l->scenario, .iterations_to_empty = -1, .iterations_to_stop = -1, .t50 = -1,
+                        .t90 = -1, .t99 = -1, .slope_angle = NAN, .slope_left = NAN,
                         .slope_right = NAN, .wave_variance_initial = NAN, .wave_variance_final = NAN};
     char title[96];
     snprintf(title, sizeof title, "LGA %s", gf_lga_scenario_name(l->scenario));
@@ -284,6 +320,7 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
         gf_lga_step(l);
         fprintf(o.outflow, "%lld,%lld,%lld,%lld\n", (long long)l->iteration, (long long)l->last_outflow,
                 (long long)l->particles, (long long)l->added);
+        if (l->last_outflow > 0) st = gf_lga_note_outflow(&o, l->iteration, l->last_outflow);
         if (l->scenario == GF_LGA_SILO && l->particles == 0 && s.iterations_to_empty < 0)
             s.iterations_to_empty = l->iteration;
         if (o.waves && l->iteration % GF_LGA_WAVE_EVERY == 0) {
@@ -295,7 +332,7 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
                 wave_n++;
             }
         }
-        if (l->iteration % every == 0) st = gf_lga_snapshot(&o, l, title);
+        if (st == GF_OK && l->iteration % every == 0) st = gf_lga_snapshot(&o, l, title);
         if (opts->progress && l->iteration % 100 == 0) {
             gf_lga_stats ps = gf_lga_get_stats(l);
             opts->progress(opts->ctx, &ps, until);
@@ -306,6 +343,10 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
     s.particles_added = l->added;
     s.particles_removed = l->removed;
     s.particles_final = l->particles;
+    s.iterations_to_stop = gf_lga_outflow_time(o.out_iter, o.out_count, o.nout, 1.0);
+    s.t50 = gf_lga_outflow_time(o.out_iter, o.out_count, o.nout, 0.50);
+    s.t90 = gf_lga_outflow_time(o.out_iter, o.out_count, o.nout, 0.90);
+    s.t99 = gf_lga_outflow_time(o.out_iter, o.out_count, o.nout, 0.99);
     s.site_updates_per_second = s.wall_seconds > 0 ? (double)l->fluid_sites * (double)l->iteration / s.wall_seconds : 0;
     if (o.waves) s.wave_variance_final = wave_n ? wave_sum / (double)wave_n : gf_lga_wave_variance(l, GF_LGA_WAVE_WINDOW);
 

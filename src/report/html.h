@@ -18,14 +18,44 @@ gf_status gf_html_base64_file(FILE *out, const char *path);
 /// Writes <img src="data:MIME;base64,..." alt="ALT">. MIME from the suffix (.png, .svg).
 gf_status gf_html_image(FILE *out, const char *path, const char *alt);
 
-/// A two-column table of the members of a JSON object (summary.json, in any
-/// layout: pretty or compact). Writes nothing and returns GF_ERR_IO when the
-/// file cannot be read (errno ENOENT when absent), GF_ERR_FORMAT (file, line,
-/// column) when it is not a JSON object.
+/// One entry of a flat JSON object (summary.json).
+typedef struct gf_html_entry {
+    char key[64];
+    char value[512]; ///< a number or `null` as written, or a string without its quotes
+    bool text;       ///< the value was a string
+} gf_html_entry;
+
+/// Reads the JSON object of `path` (summary.json, in any layout: pretty or
+/// compact; jansson) into `e` (at most `max` entries; more are dropped).
+/// Returns the number read, -1 when the file is absent, -2 when it cannot be
+/// read or is not a JSON object (gf_last_error() names the file, line and
+/// column; no entry is made).
+int gf_html_json_read(const char *path, gf_html_entry *e, size_t max);
+
+/// Writes the number `text` (as a summary writes it) with 4 significant
+/// digits: 1.412 x 10<sup>-7</sup>, 39.69, 68970. Whole numbers written
+/// without a point or exponent (counts) stay as they are; other text is
+/// escaped as it is.
+void gf_html_number(FILE *out, const char *text);
+
+/// Writes a unit, `^2` as a superscript.
+void gf_html_unit(FILE *out, const char *unit);
+
+/// The table of `n` entries: each row the quantity in words, its value (4
+/// significant digits), its unit and its key. An entry with `why[k]` set
+/// (why may be NULL) is left out of the table and listed below it, in words
+/// with its key, saying why.
+void gf_html_kv_table(FILE *out, const gf_html_entry *e, size_t n, const char *const *why);
+
+/// gf_html_kv_table of the file `path` (gf_html_json_read), nothing left out.
+/// Writes nothing and returns GF_ERR_IO when the file is absent, GF_ERR_FORMAT
+/// (file, line, column) when it is not a JSON object.
 gf_status gf_html_json_table(FILE *out, const char *path);
 
 /// A table of a CSV file (header row, then rows), at most `max_rows` rows;
-/// every field is a cell, empty ones too; blank lines are skipped.
+/// every field is a cell, empty ones too; blank lines are skipped; numbers
+/// with 4 significant digits. A first column named `key` (compare's
+/// summary.csv) is shown in words, its unit in a last column.
 /// Returns false (writes nothing) when the file is absent.
 bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows);
 

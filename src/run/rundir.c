@@ -418,3 +418,40 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
 }
 
 gf_run_opts gf_run_opts_default(void) { return (gf_run_opts){.dir = NULL}; }
+
+gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
+{
+    if (!sim || !dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_sim_write_run_dir: NULL argument");
+    const gf_config *cfg = gf_sim_config(sim);
+    gf_run_opts opts = gf_run_opts_default();
+    opts.dir = dir;
+    opts.force = force;
+    gf_rundir rd = {.cfg = cfg, .opts = &opts, .status = "saved", .lock_fd = -1, .wall0 = gf_clock_now()};
+    if (snprintf(rd.dir, sizeof rd.dir, "%s", dir) >= (int)sizeof rd.dir)
+        return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(dir),
+                            GF_PATH_MAX - 1);
+    char path[GF_PATH_MAX + 64];
+    gf_path(path, sizeof path, rd.dir, "checkpoint.bin");
+    if (!force && access(path, F_OK) == 0)
+        return gf_error_set(GF_ERR_EXISTS, "%s already holds a run (%s exists): clear it, force, or use another directory",
+                            rd.dir, path);
+    gf_status st = gf_prepare_dir(&rd, sim);
+    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
+    // The snapshot of now, numbered on the snapshot grid as gf_run_dir numbers
+    // them, so that a resumed run's next snapshots follow it.
+    const double t = gf_sim_get_stats(sim).time, dsnap = cfg->output_snapshot_interval;
+    const uint64_t index = dsnap > 0 ? (uint64_t)floor(t / dsnap + 1e-9) : 0;
+    if (st == GF_OK && cfg->output_format != GF_OUTPUT_VTK) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd.dir, index);
+        st = gf_sim_write_snapshot(sim, path);
+    }
+    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) {
+        snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd.dir, index);
+        st = gf_sim_write_vtk(sim, path);
+    }
+    if (st == GF_OK) st = gf_save_all(&rd, sim);
+    if (rd.exits) fclose(rd.exits);
+    if (rd.lock_fd >= 0) close(rd.lock_fd);
+    gf_packing_free(&rd.scratch);
+    return st;
+}

@@ -4,9 +4,13 @@
 #include "granflow/sim.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
+#include "geom/container.h"
+#include "granflow/packing.h"
 
 gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out)
 {
@@ -26,6 +30,78 @@ gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig
     if (st == GF_OK && (rep.other_types || rep.below_base))
         gf_warn("%s: %zu of %zu particles kept (%zu below the base counted as exited, %zu of other atom types dropped)",
                 c.packing_file, pk.n, rep.read, rep.below_base, rep.other_types);
+    if (st == GF_OK) st = gf_sim_create(&c, &pk, out);
+    gf_packing_free(&pk);
+    return st;
+}
+
+static int gf_cmp_i64(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+// The first id that occurs twice (0: none); ids are already known to be >= 1.
+static gf_status gf_first_repeated_id(const int64_t *id, size_t n, int64_t *dup)
+{
+    *dup = 0;
+    int64_t *sorted = GF_NEW(int64_t, n);
+    if (!sorted) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    memcpy(sorted, id, sizeof *sorted * n);
+    qsort(sorted, n, sizeof *sorted, gf_cmp_i64);
+    for (size_t i = 1; i < n && !*dup; i++)
+        if (sorted[i] == sorted[i - 1]) *dup = sorted[i];
+    GF_DELETE(sorted, n);
+    return GF_OK;
+}
+
+gf_status gf_sim_create_from_arrays(const gf_config *cfg, size_t n, const double *xyz, const double *radius,
+                                    const int64_t *id, gf_sim **out)
+{
+    if (!cfg || !out || (n && !xyz)) return gf_error_set(GF_ERR_PARAM, "gf_sim_create_from_arrays: NULL argument");
+    *out = NULL;
+    if (n == 0) return gf_error_set(GF_ERR_PARAM, "no particles: give at least one position");
+    gf_config c = *cfg;
+    gf_status st = gf_config_validate(&c);
+    if (st != GF_OK) return st;
+    for (size_t i = 0; i < n; i++) {
+        const double *p = xyz + 3 * i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return gf_error_set(GF_ERR_PARAM, "positions[%zu] = (%g, %g, %g) is not finite", i, p[0], p[1], p[2]);
+        if (radius && !(isfinite(radius[i]) && radius[i] > 0))
+            return gf_error_set(GF_ERR_PARAM, "radii[%zu] = %g: a radius must be positive and finite (d)", i,
+                                radius[i]);
+        if (id && id[i] < 1)
+            return gf_error_set(GF_ERR_PARAM, "ids[%zu] = %lld: ids must be >= 1", i, (long long)id[i]);
+    }
+    if (id) {
+        int64_t dup;
+        if ((st = gf_first_repeated_id(id, n, &dup)) != GF_OK) return st;
+        if (dup) {
+            size_t a = 0, b = 0;
+            while (id[a] != dup) a++;
+            for (b = a + 1; id[b] != dup; b++) {}
+            return gf_error_set(GF_ERR_PARAM, "ids[%zu] = ids[%zu] = %lld: ids must be unique", a, b, (long long)dup);
+        }
+    }
+    gf_packing pk = {0};
+    st = gf_packing_reserve(&pk, n);
+    for (size_t i = 0; st == GF_OK && i < n; i++)
+        st = gf_packing_push(&pk, id ? id[i] : (int64_t)i + 1, 0, xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2],
+                             radius ? radius[i] : 0.5);
+    if (st == GF_OK) {
+        gf_packing_tag_layers(&pk, c.packing_layer_thickness);
+        // gf_packing_check names the particle by id; the caller knows indices.
+        gf_container box = gf_container_make(&c);
+        for (size_t i = 0; i < n; i++)
+            if (!gf_container_contains(&box, pk.x[i], pk.y[i], pk.z[i], 0.0, 0.0)) {
+                st = gf_error_set(GF_ERR_PARAM,
+                                  "positions[%zu] = (%g, %g, %g) is outside the container (|x| <= %g, |y| <= %g, "
+                                  "above the base except over the outlet)",
+                                  i, pk.x[i], pk.y[i], pk.z[i], box.xhi, box.yhi);
+                break;
+            }
+    }
     if (st == GF_OK) st = gf_sim_create(&c, &pk, out);
     gf_packing_free(&pk);
     return st;

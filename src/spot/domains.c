@@ -42,6 +42,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "geom/celllist.h"
+#include "spot/par_mpi.h"
 #include "spot/sim_internal.h"
 
 /// Worker counts the speedup is projected for (as the spatial step's).
@@ -85,6 +86,9 @@ typedef struct gf_dom {
     double *coltop;
     size_t ncol;
     uint32_t *run;          ///< sectors of the current phase with spots
+    uint32_t *runload;      ///< their spots (MPI: the ranks share the phase by these)
+    uint8_t *mine;          ///< per run[] entry: this rank runs it
+    uint64_t *rankload;     ///< scratch of gf_mpi_assign
     double *secs;           ///< their times (profiling)
     int messages;           ///< neighbours a domain exchanges with: 3^(cut axes) - 1
     uint64_t shared;        ///< phases with two or more sectors to run side by side
@@ -111,9 +115,13 @@ void gf_dom_free(gf_sim *sim)
     GF_DELETE(q->dead, q->spot_cap);
     GF_DELETE(q->coltop, q->ncol);
     GF_DELETE(q->run, q->nblock);
+    GF_DELETE(q->runload, q->nblock);
+    GF_DELETE(q->mine, q->nblock);
+    GF_DELETE(q->rankload, q->nblock);
     GF_DELETE(q->secs, q->nblock);
     gf_free(q, sizeof *q);
     sim->dom = NULL;
+    gf_mpi_release();
 }
 
 // Sectors along one axis of n cells (cell size h): a sector spans `need`
@@ -162,8 +170,11 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
     q->sec = GF_NEW(gf_sector, q->nblock);
     q->blockof = GF_NEW(uint32_t, g->ncell);
     q->run = GF_NEW(uint32_t, q->nblock);
+    q->runload = GF_NEW(uint32_t, q->nblock);
+    q->mine = GF_NEW(uint8_t, q->nblock);
+    q->rankload = GF_NEW(uint64_t, q->nblock);
     q->secs = GF_NEW(double, q->nblock);
-    if (!q->sec || !q->blockof || !q->run || !q->secs)
+    if (!q->sec || !q->blockof || !q->run || !q->runload || !q->mine || !q->rankload || !q->secs)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
     gf_status st = gf_celllist_keys(&q->bycolour, (size_t)q->nsect, q->nblock);
     if (st != GF_OK) return st;
@@ -305,8 +316,10 @@ static void gf_dom_sector(gf_sim *sim, gf_dom *q, int t, size_t b, double t_end)
     gf_rng rng;
     w->rng = &rng;
     w->st = &sc->st;
+    gf_work_touch(w, GF_TOUCH_BLOCK, (uint32_t)b);
     while (nh > 0) {
         uint32_t k = gf_dom_pop(sim, h, &nh);
+        gf_work_touch(w, GF_TOUCH_SPOT, k);
         gf_dom_seed(sim, k, &rng);
         // A late move (the spot waited for this sector's phase) is made, and
         // timed, at the window's start: exits stay in time order.
@@ -353,6 +366,10 @@ static int gf_dom_cmp_exit(const void *a, const void *b)
 // time and id at the end of the cycle).
 static gf_status gf_dom_merge_exits(gf_sim *sim, gf_dom *q)
 {
+#ifdef GF_MPI
+    gf_status sm = gf_mpi_merge_exits(sim, q->work, q->threads); // every rank's exits (sorted at the cycle's end)
+    if (sm != GF_OK) return sm;
+#endif
     size_t total = 0;
     for (int t = 0; t < q->threads; t++) total += q->work[t].nexit;
     if (total == 0) return GF_OK;
@@ -461,11 +478,13 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
         if (load == 0) continue;
         spots += load;
         size_t k = nrun++;
-        while (k > 0 && cl->start[q->run[k - 1] + 1] - cl->start[q->run[k - 1]] < load) {
+        while (k > 0 && q->runload[k - 1] < load) {
             q->run[k] = q->run[k - 1];
+            q->runload[k] = q->runload[k - 1];
             k--;
         }
         q->run[k] = b;
+        q->runload[k] = (uint32_t)load;
     }
     if (nrun == 0) return GF_OK;
     q->shared += nrun >= 2;
@@ -473,6 +492,15 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
     if (threads < 1 || spots < GF_DOM_MIN_SHARED) threads = 1;
     if (q->profiling)
         for (size_t r = 0; r < nrun; r++) q->sec[q->run[r]].nparticle = gf_dom_particles(sim, q, q->run[r]);
+    gf_status st = GF_OK;
+#ifdef GF_MPI
+    // Every rank holds the whole state and runs its share of the phase's
+    // sectors, then the ranks swap what their moves changed (par_mpi.c).
+    if ((st = gf_mpi_phase_begin(sim, q->work, q->threads)) != GF_OK) return st;
+    gf_mpi_assign(q->runload, nrun, q->rankload, q->mine);
+#else
+    memset(q->mine, 1, nrun);
+#endif
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
@@ -482,8 +510,12 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
 #else
         const int t = 0;
 #endif
-        gf_dom_sector(sim, q, t, q->run[r], t_end);
+        if (q->mine[r]) gf_dom_sector(sim, q, t, q->run[r], t_end);
     }
+#ifdef GF_MPI
+    if ((st = gf_mpi_phase_end(sim, q->work, q->threads, q->dead, q->sec, q->nblock, sizeof *q->sec)) != GF_OK) return st;
+#endif
+    (void)st;
     if (q->profiling) gf_dom_record(q, nrun);
     for (size_t r = 0; r < nrun; r++)
         if (q->sec[q->run[r]].status != GF_OK)

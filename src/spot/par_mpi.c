@@ -42,7 +42,7 @@ typedef struct gf_mpi_pos {
 
 /// A spot's record.
 typedef struct gf_mpi_spot {
-    double x, y, z;
+    double x, y, z, next; ///< next: the time of its next move (the domain engine's clock)
     uint32_t k, count, dead, pad_;
 } gf_mpi_spot;
 
@@ -339,7 +339,7 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
                 break;
             }
             case GF_TOUCH_SPOT: {
-                gf_mpi_spot r = {sim->sx[v], sim->sy[v], sim->sz[v], v, sim->scount[v], dead[v], 0};
+                gf_mpi_spot r = {sim->sx[v], sim->sy[v], sim->sz[v], sim->snext[v], v, sim->scount[v], dead[v], 0};
                 memcpy(o, &r, sizeof r);
                 break;
             }
@@ -416,6 +416,7 @@ static void gf_mpi_apply(gf_sim *sim, const unsigned char *o, uint8_t *dead, voi
                 sim->sy[r.k] = r.y;
                 sim->sz[r.k] = r.z;
                 sim->scount[r.k] = r.count;
+                sim->snext[r.k] = r.next;
                 dead[r.k] = (uint8_t)r.dead;
                 break;
             }

@@ -31,7 +31,8 @@ tables() { sed -n '/<table class="kv">/,/<\/table>/p' "$1"; }
 diff <(tables pretty.html) <(tables compact.html) > tables.diff ||
   fail "compact summary.json gives other tables: $(head -5 tables.diff)"
 exited=$(python3 -c 'import json; print(json.load(open("run/summary.json"))["particles_exited"])')
-grep -q "<th>particles_exited</th><td>$exited</td>" compact.html || fail "no particles_exited = $exited row"
+grep -q "<td class=\"num\">$exited</td><td>particles</td><td><code>particles_exited</code>" compact.html ||
+  fail "no particles_exited = $exited row"
 ok "report: compact summary.json, the same tables as the pretty one"
 
 # analyze NAME reads the compact analysis/summary.json and keeps the other numbers.

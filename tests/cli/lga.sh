@@ -63,6 +63,24 @@ for flow in mass funnel; do
     [ "$out" = 400 ] || fail "silo ($flow): outflow.csv adds up to $out, not 400"
     last=$(tail -n 1 silo-$flow/outflow.csv | cut -d, -f1)
     [ "$last" = "$n" ] || fail "silo ($flow): outflow.csv ends at $last, emptied at $n"
+    # when the outflow left: the last outflow is the emptying; t50 < t90 <= t99 <= it
+    [ "$(json iterations_to_stop silo-$flow/summary.json)" = "$n" ] || fail "silo ($flow): iterations_to_stop is not $n"
+    t50=$(json t50 silo-$flow/summary.json) t90=$(json t90 silo-$flow/summary.json) t99=$(json t99 silo-$flow/summary.json)
+    [ 0 -lt "$t50" ] && [ "$t50" -lt "$t90" ] && [ "$t90" -le "$t99" ] && [ "$t99" -le "$n" ] 2>/dev/null ||
+        fail "silo ($flow): t50 $t50, t90 $t90, t99 $t99 are not ordered within $n iterations"
+    half=$(awk -F, 'NR > 1 { s += $2; if (s >= 200) { print $1; exit } }' silo-$flow/outflow.csv)
+    [ "$half" = "$t50" ] || fail "silo ($flow): t50 is $t50, outflow.csv reaches 200 of 400 at $half"
+done
+# a funnel that never empties (hopper past the repose angle, 2 d outlet) still says when its outflow left
+gf lga -q --set lga.silo_flow=funnel --set lga.hopper_angle=75 --set lga.width=30 --set lga.height=20 \
+    --set lga.outlet_width=2 --set lga.particles=400 -o silo-stuck
+expect_rc 0 "lga silo (funnel, 75 degrees)"
+[ "$(json iterations_to_empty silo-stuck/summary.json)" = null ] || fail "silo-stuck emptied"
+stop=$(json iterations_to_stop silo-stuck/summary.json)
+last=$(awk -F, 'NR > 1 && $2 > 0 { i = $1 } END { print i }' silo-stuck/outflow.csv)
+[ "$stop" = "$last" ] || fail "silo-stuck: iterations_to_stop is '$stop', the last outflow in outflow.csv is at $last"
+for k in t50 t90 t99; do
+    [ "$(json $k silo-stuck/summary.json)" -gt 0 ] 2>/dev/null || fail "silo-stuck: $k is '$(json $k silo-stuck/summary.json)'"
 done
 hm=$(sed -n 's/^  "hopper_angle": \(.*\),$/\1/p' silo-mass/summary.json)
 hf=$(sed -n 's/^  "hopper_angle": \(.*\),$/\1/p' silo-funnel/summary.json)

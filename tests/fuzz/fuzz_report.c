@@ -2,7 +2,8 @@
 // Fuzz target: the readers of `granflow report` (src/report/html.c): the
 // input as a flat JSON file (summary.json's table), as a CSV file (the
 // comparison tables) and as a text file (config.ini in <pre>), each written
-// out as HTML, which must have no unescaped '<' of the input.
+// out as HTML (keys in words, numbers to 4 digits), which must have no
+// unescaped '<' of the input.
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,8 +32,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         size_t len = 0;
         char *html = gf_fuzz_html(which, path, &len);
         // Every '<' written opens one of the writer's own tags.
-        static const char *const tags[] = {"<table", "</table", "<tr>", "</tr>", "<th>", "</th>", "<td>",
-                                           "</td>", "<pre>",  "</pre>"};
+        static const char *const tags[] = {"<table", "</table", "<tr>",   "</tr>",  "<th>",  "</th>",
+                                           "<td>",   "<td class=\"num\">", "</td>", "<code>", "</code>",
+                                           "<sup>",  "</sup>",  "<pre>",  "</pre>"};
         for (const char *lt = html; (lt = memchr(lt, '<', len - (size_t)(lt - html))) != NULL; lt++) {
             int known = 0;
             for (size_t t = 0; t < sizeof tags / sizeof tags[0] && !known; t++)

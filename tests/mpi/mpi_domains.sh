@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# MPI test of the domain engine (run.order = domains; build-mpi only, label
+# mpi): for one decomposition, 1, 2 and 4 ranks with 1 and 2 threads each
+# write the single process's run directory byte for byte (snapshots,
+# exits.csv, summary.json without its timing fields); a run stopped at
+# 4 ranks resumes on 1 process to the uninterrupted run; a rank killed with
+# SIGKILL ends the job with a non-zero status within 30 s, and the
+# checkpoint written before it resumes.
+# usage: bash tests/mpi/mpi_domains.sh GRANFLOW_BINARY(MPI build) TESTS_DATA_DIR [MPIRUN]
+NAME=mpi_domains
+source "$(dirname "$0")/../cli/lib.bash" "$1" "$2"
+MPIRUN=${3:-mpirun}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+mpi() { # mpi NP ARGS...: granflow on NP ranks
+    local np=$1
+    shift
+    LAST="mpirun -np $np granflow $*"
+    "$MPIRUN" --oversubscribe -np "$np" "$GF" "$@" >"$T/out" 2>"$T/err"
+    RC=$?
+}
+
+# A wide slit (44 of 50 d) starts spots over most of the width at once, and
+# 4 sectors per axis (~5.5 d) cut the silo into 9 x 18 sectors: every phase
+# has several busy sectors and every rank runs some of them.
+SILO=(--set container.width=50 --set container.depth=4 --set container.orifice_shape=slit
+      --set container.orifice_diameter=44 --set packing.particles=6000
+      --set spot.step_z=0.2 --set run.mode=fixed --set run.order=domains --set parallel.sectors=4
+      --set output.snapshot_interval=0.5)
+export GF_MPI_STATS=1
+took() { sed -n 's/.*rank 0 took \([0-9]*\) words.*/\1/p' "$T/err"; }
+same() {
+    local a=$1 b=$2 f
+    for f in $(cd "$a" && ls snapshots/*) exits.csv; do
+        cmp -s "$a/$f" "$b/$f" || fail "$b/$f differs from $a/$f"
+    done
+    diff <(grep -vE '"(t_relax|wall_seconds|steps_per_second)"' "$a/summary.json") \
+         <(grep -vE '"(t_relax|wall_seconds|steps_per_second)"' "$b/summary.json") >/dev/null ||
+        fail "$b/summary.json differs from $a/summary.json (timing fields aside)"
+}
+
+gf run -q "${SILO[@]}" --set run.duration=2 --set run.threads=1 -o S
+expect_rc 0 "single process, no mpirun"
+[ "$(wc -l <S/exits.csv)" -gt 5 ] || fail "the silo did not flow ($(wc -l <S/exits.csv) lines in exits.csv)"
+for np in 1 2 4; do
+    for t in 1 2; do
+        mpi $np run -q "${SILO[@]}" --set run.duration=2 --set run.threads=$t -o "R${np}T$t"
+        expect_rc 0 "$np ranks, $t threads"
+        same S "R${np}T$t"
+        [ "$np" -eq 1 ] || [ "$(took)" -gt 0 ] || fail "$np ranks: rank 0 took no words from the others: $(cat "$T/err")"
+        ok "$np ranks x $t threads: the single process's snapshots, exits and summary"
+    done
+done
+
+# Stopped at t = 1 on 4 ranks (GF_MPI_CHECK=1: the ranks' states agree after
+# every phase), resumed on 1 process to t = 2.
+GF_MPI_CHECK=1 mpi 4 run -q "${SILO[@]}" --set run.duration=1 --set run.threads=1 -o P
+expect_rc 0 "4 ranks to t = 1 (GF_MPI_CHECK=1)"
+gf run -q --resume P --set run.duration=2
+expect_rc 0 "resumed on 1 process"
+same S P
+ok "4 ranks to t = 1, then 1 process to t = 2: the uninterrupted run"
+
+# kill -9 of rank 1: mpirun ends the job (every rank) with a non-zero status
+# within 30 s; the checkpoint written before it (every 0.5 tau) resumes.
+LAST="mpirun -np 2 granflow run (rank 1 killed)"
+start=$(date +%s)
+timeout -s KILL 120 "$MPIRUN" --oversubscribe -np 2 "$GF" run -q "${SILO[@]}" --set run.duration=30 \
+    --set run.threads=1 --set run.checkpoint_interval=0.5 -o K >"$T/out" 2>"$T/err" &
+pid=$!
+for k in $(seq 1200); do
+    [ -e K/checkpoint.bin ] && break
+    sleep 0.05
+done
+[ -e K/checkpoint.bin ] || fail "no checkpoint before the kill"
+mp=$(pgrep -P "$pid")
+for k in $(pgrep -P "$mp"); do
+    tr '\0' '\n' <"/proc/$k/environ" 2>/dev/null | grep -q '^OMPI_COMM_WORLD_RANK=1$' && kill -KILL "$k"
+done
+killed=$(date +%s)
+wait "$pid"
+RC=$?
+KRC=$RC
+took_s=$(( $(date +%s) - killed ))
+[ "$RC" -ne 0 ] || fail "rank 1 killed: the job exited 0"
+# (137 is mpirun passing on rank 1's SIGKILL; a hang shows as the time.)
+[ "$took_s" -le 30 ] || fail "rank 1 killed: the job took $took_s s to end (rank 0 hung)"
+pgrep -f "$GF run -q" >/dev/null && fail "a rank is still running after the job ended"
+gf run -q --resume K --set run.duration=2
+expect_rc 0 "the checkpoint before the kill resumes"
+ok "kill -9 of rank 1: the job ends with status $KRC within $took_s s; its last checkpoint resumes"
+echo "cli $NAME: $PASS passed"
