@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cli.h"
 
+#include <getopt.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,67 +20,125 @@ static bool gf_cli_number(const char *cmd, const char *opt, const char *s, doubl
     return true;
 }
 
-bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
+// Option codes of the long-only options (after every char).
+enum { GF_OPT_RESUME = 256, GF_OPT_JSON, GF_OPT_PARTICLES, GF_OPT_WARMUP, GF_OPT_WINDOW, GF_OPT_EVENT, GF_OPT_SPATIAL,
+       GF_OPT_NO_LARGE, GF_OPT_LGA_ONLY, GF_OPT_RUN, GF_OPT_DRAIN_ONLY };
+
+// Every option of the commands that share gf_cli_parse; `cmds` lists those
+// that take it (each command's --help lists the same).
+static const struct gf_cli_opt {
+    struct option o;
+    const char *cmds;
+} gf_cli_opts[] = {
+    {{"output", required_argument, NULL, 'o'}, "run pack lga report dem"},
+    {{"set", required_argument, NULL, 's'}, "run pack config bench lga dem"},
+    {{"resume", required_argument, NULL, GF_OPT_RESUME}, "run"},
+    {{"force", no_argument, NULL, 'f'}, "run lga dem"},
+    {{"quiet", no_argument, NULL, 'q'}, "run pack lga report dem"},
+    {{"json", no_argument, NULL, GF_OPT_JSON}, "bench"},
+    {{"particles", required_argument, NULL, GF_OPT_PARTICLES}, "bench"},
+    {{"warmup", required_argument, NULL, GF_OPT_WARMUP}, "bench"},
+    {{"window", required_argument, NULL, GF_OPT_WINDOW}, "bench"},
+    {{"event", no_argument, NULL, GF_OPT_EVENT}, "bench"},
+    {{"spatial", no_argument, NULL, GF_OPT_SPATIAL}, "bench"},
+    {{"no-large", no_argument, NULL, GF_OPT_NO_LARGE}, "bench"},
+    {{"lga-only", no_argument, NULL, GF_OPT_LGA_ONLY}, "bench"},
+    {{"run", no_argument, NULL, GF_OPT_RUN}, "dem"},
+    {{"drain-only", no_argument, NULL, GF_OPT_DRAIN_ONLY}, "dem"},
+    {{"help", no_argument, NULL, 'h'}, "run pack config bench lga report dem"},
+};
+
+static bool gf_cli_takes(const char *cmds, const char *cmd)
+{
+    size_t n = strlen(cmd);
+    for (const char *p = cmds; (p = strstr(p, cmd)) != NULL; p += n)
+        if ((p == cmds || p[-1] == ' ') && (p[n] == ' ' || !p[n])) return true;
+    return false;
+}
+
+int gf_cli_getopt_error(const char *cmd, int c, char **argv)
+{
+    const char *arg = argv[optind - 1];
+    if (c == ':') fprintf(stderr, "granflow %s: error: %s needs a value (see granflow %s --help)\n", cmd, arg, cmd);
+    else if (optopt && !strncmp(arg, "--", 2)) // --force=1
+        fprintf(stderr, "granflow %s: error: %.*s takes no value (see granflow %s --help)\n", cmd,
+                (int)strcspn(arg, "="), arg, cmd);
+    else if (optopt && optopt < 256 && arg[0] == '-' && arg[1] != '-')
+        fprintf(stderr, "granflow %s: error: unknown option '-%c' (see granflow %s --help)\n", cmd, optopt, cmd);
+    else fprintf(stderr, "granflow %s: error: unknown option '%s' (see granflow %s --help)\n", cmd, arg, cmd);
+    return GF_EXIT_USAGE;
+}
+
+int gf_cli_help(const char *cmd)
+{
+    fputs(gf_cli_usage(cmd), stdout);
+    return GF_EXIT_OK;
+}
+
+int gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
 {
     memset(cli, 0, sizeof *cli);
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-#define GF_NEED_VALUE()                                                                 \
-    do {                                                                                \
-        if (!val) {                                                                     \
-            fprintf(stderr, "granflow %s: error: %s needs a value\n", cmd, a);         \
-            return false;                                                               \
-        }                                                                               \
-        i++;                                                                            \
-    } while (0)
-        if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            GF_NEED_VALUE();
-            cli->out = val;
-        } else if (!strcmp(a, "--set") || !strcmp(a, "-s")) {
-            GF_NEED_VALUE();
-            if (cli->nsets == (int)(sizeof cli->sets / sizeof cli->sets[0])) {
-                fprintf(stderr, "granflow %s: error: too many --set options\n", cmd);
-                return false;
-            }
-            cli->sets[cli->nsets++] = val;
-        } else if (!strncmp(a, "--set=", 6)) {
-            if (cli->nsets == (int)(sizeof cli->sets / sizeof cli->sets[0])) {
-                fprintf(stderr, "granflow %s: error: too many --set options\n", cmd);
-                return false;
-            }
-            cli->sets[cli->nsets++] = a + 6;
-        } else if (!strcmp(a, "--resume")) {
-            GF_NEED_VALUE();
-            cli->resume = val;
-        } else if (!strcmp(a, "--json")) {
-            cli->json = true;
-        } else if (!strcmp(a, "--force") || !strcmp(a, "-f")) {
-            cli->force = true;
-        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            cli->quiet = true;
-        } else if (!strcmp(a, "--particles")) {
-            GF_NEED_VALUE();
-            if (!gf_cli_number(cmd, a, val, &cli->bench_particles)) return false;
-        } else if (!strcmp(a, "--warmup")) {
-            GF_NEED_VALUE();
-            if (!gf_cli_number(cmd, a, val, &cli->bench_warmup)) return false;
-        } else if (!strcmp(a, "--window")) {
-            GF_NEED_VALUE();
-            if (!gf_cli_number(cmd, a, val, &cli->bench_window)) return false;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "granflow %s: error: unknown option '%s' (see granflow help)\n", cmd, a);
-            return false;
-        } else if (!cli->config_path) {
-            cli->config_path = a;
-        } else {
-            fprintf(stderr, "granflow %s: error: unexpected argument '%s' (one CONFIG file at most; "
-                            "see granflow help)\n", cmd, a);
-            return false;
+    enum { N = sizeof gf_cli_opts / sizeof gf_cli_opts[0] };
+    struct option longs[N + 1];
+    char shorts[32] = ":"; // ':' first: a missing value is reported as ':'
+    size_t nl = 0, ns = 1;
+    for (size_t k = 0; k < N; k++) {
+        if (!gf_cli_takes(gf_cli_opts[k].cmds, cmd)) continue;
+        longs[nl++] = gf_cli_opts[k].o;
+        int c = gf_cli_opts[k].o.val;
+        if (c < 256) {
+            shorts[ns++] = (char)c;
+            if (gf_cli_opts[k].o.has_arg == required_argument) shorts[ns++] = ':';
         }
-#undef GF_NEED_VALUE
     }
-    return true;
+    longs[nl] = (struct option){0};
+    shorts[ns] = '\0';
+    optind = 0; // a fresh scan (GNU: also resets getopt's state)
+    opterr = 0;
+    int c;
+    while ((c = getopt_long(argc, argv, shorts, longs, NULL)) != -1) {
+        switch (c) {
+        case 'h': return gf_cli_help(cmd);
+        case 'o': cli->out = optarg; break;
+        case 's':
+            if (cli->nsets == (int)(sizeof cli->sets / sizeof cli->sets[0])) {
+                fprintf(stderr, "granflow %s: error: too many --set options\n", cmd);
+                return GF_EXIT_USAGE;
+            }
+            cli->sets[cli->nsets++] = optarg;
+            break;
+        case GF_OPT_RESUME: cli->resume = optarg; break;
+        case GF_OPT_JSON: cli->json = true; break;
+        case 'f': cli->force = true; break;
+        case 'q': cli->quiet = true; break;
+        case GF_OPT_PARTICLES:
+            if (!gf_cli_number(cmd, "--particles", optarg, &cli->bench_particles)) return GF_EXIT_USAGE;
+            break;
+        case GF_OPT_WARMUP:
+            if (!gf_cli_number(cmd, "--warmup", optarg, &cli->bench_warmup)) return GF_EXIT_USAGE;
+            break;
+        case GF_OPT_WINDOW:
+            if (!gf_cli_number(cmd, "--window", optarg, &cli->bench_window)) return GF_EXIT_USAGE;
+            break;
+        case GF_OPT_EVENT: cli->event = true; break;
+        case GF_OPT_SPATIAL: cli->spatial = true; break;
+        case GF_OPT_NO_LARGE: cli->no_large = true; break;
+        case GF_OPT_LGA_ONLY: cli->lga_only = true; break;
+        case GF_OPT_RUN: cli->dem_run = true; break;
+        case GF_OPT_DRAIN_ONLY: cli->drain_only = true; break;
+        default: return gf_cli_getopt_error(cmd, c, argv);
+        }
+    }
+    for (int i = optind; i < argc; i++) {
+        if (!cli->config_path) {
+            cli->config_path = argv[i];
+        } else {
+            fprintf(stderr, "granflow %s: error: unexpected argument '%s' (one %s at most; see granflow %s --help)\n",
+                    cmd, argv[i], strcmp(cmd, "report") ? "CONFIG file" : "run directory", cmd);
+            return GF_EXIT_USAGE;
+        }
+    }
+    return GF_CLI_GO;
 }
 
 bool gf_cli_config(const gf_cli *cli, const char *base_path, gf_config *cfg)

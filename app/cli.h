@@ -20,18 +20,33 @@ enum {
 
 /// Options common to the subcommands.
 typedef struct gf_cli {
-    const char *config_path; ///< positional CONFIG, or NULL
+    const char *config_path; ///< positional CONFIG (report: DIR), or NULL
     const char *out;         ///< -o
     const char *resume;      ///< --resume DIR
     bool json, force, quiet;
     const char *sets[256];   ///< --set assignments, applied after the file
     int nsets;
     double bench_particles, bench_warmup, bench_window; ///< bench options (0 = default)
+    bool event, spatial, no_large, lga_only; ///< bench --event, --spatial, --no-large, --lga-only
+    bool dem_run, drain_only;       ///< dem --run, --drain-only
 } gf_cli;
 
-/// Parses argv (after the subcommand name). Returns false after printing a
-/// usage error.
-bool gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli);
+/// gf_cli_parse's "go on" (any other value is the exit code to return now).
+enum { GF_CLI_GO = -1 };
+
+/// Parses the options of `cmd` (run, pack, config, bench, lga, report, dem)
+/// with getopt_long: argv[0] is the command's name; options and positionals
+/// mix; `--` ends the options; -h/--help prints the command's usage. Returns
+/// GF_CLI_GO, or the exit code after printing the usage or an error.
+int gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli);
+
+/// The usage text of `cmd` (`granflow CMD --help`; main.c's table), or NULL.
+const char *gf_cli_usage(const char *cmd);
+/// Prints the usage of `cmd` on stdout; returns GF_EXIT_OK.
+int gf_cli_help(const char *cmd);
+/// The message of a getopt_long error `c` ('?' unknown option, ':' missing
+/// value) naming the option; returns GF_EXIT_USAGE. argv as given to getopt_long.
+int gf_cli_getopt_error(const char *cmd, int c, char **argv);
 
 /// Default config, then the CONFIG file, then the --set overrides, validated.
 /// Prints the error and returns false on failure.
@@ -73,11 +88,12 @@ typedef struct gf_demargs {
     const char *sets[64];
     size_t nsets;
     gf_analysis_opts opts;
-    bool quiet, plots;
+    bool quiet, plots, refine; ///< -q; not compare --no-plots; not calibrate --no-refine
 } gf_demargs;
 
-/// Parses the options of calibrate and compare (positionals, -o, --timestep,
-/// --config, --set: config keys go to `sets`, the others to `opts`).
+/// Parses the options of calibrate and compare with getopt_long (argv[0] the
+/// command's name; positionals, -o, --timestep, --config, --set: config keys
+/// go to `sets`, the others to `opts`). Returns GF_CLI_GO or the exit code.
 int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a);
 /// Loads a run with gf_dem_series_load (`dem`: with --config/--set) and reports it.
 gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path, bool dem, gf_series *s);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `granflow analyze [NAME] DIR`: the papers' statistics of a run (SPEC 1.6),
 // as CSV files, plots and headline numbers in DIR/analysis/.
+#include <getopt.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -19,7 +20,8 @@ static void gf_analyze_list(FILE *f)
 static int gf_analyze_usage(const char *msg, const char *arg)
 {
     fprintf(stderr, "granflow analyze: error: %s%s%s\n", msg, arg ? " " : "", arg ? arg : "");
-    fprintf(stderr, "usage: granflow analyze [NAME] DIR [--set key=value]... [--timestep DT] [--config INI] [-o OUTDIR] [--no-plots] [--list]\n");
+    fprintf(stderr, "usage: granflow analyze [NAME] DIR [--set key=value]... [--timestep DT] [--config INI] [-o OUTDIR] "
+                    "[--no-plots] [--list] (see granflow analyze --help)\n");
     return GF_EXIT_USAGE;
 }
 
@@ -42,44 +44,45 @@ int gf_cmd_analyze(int argc, char **argv)
     int npos = 0;
     const char *outdir = NULL;
     bool plots = true, quiet = false;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--list")) {
-            gf_analyze_list(stdout);
-            return GF_EXIT_OK;
-        } else if (!strcmp(a, "--set") || !strcmp(a, "-s") || !strncmp(a, "--set=", 6)) {
-            const char *kv = a[5] == '=' ? a + 6 : i + 1 < argc ? argv[++i] : NULL;
-            if (!kv) return gf_analyze_usage("--set needs key=value", NULL);
-            if (gf_analyze_is_config_key(kv)) { // container.width=..., packing.types=...: the run's config
+    enum { OPT_TIMESTEP = 256, OPT_CONFIG, OPT_NO_PLOTS, OPT_LIST };
+    static const struct option longs[] = {
+        {"set", required_argument, NULL, 's'},          {"timestep", required_argument, NULL, OPT_TIMESTEP},
+        {"config", required_argument, NULL, OPT_CONFIG}, {"output", required_argument, NULL, 'o'},
+        {"no-plots", no_argument, NULL, OPT_NO_PLOTS},   {"list", no_argument, NULL, OPT_LIST},
+        {"quiet", no_argument, NULL, 'q'},              {"help", no_argument, NULL, 'h'},
+        {0},
+    };
+    optind = 0;
+    opterr = 0;
+    int c;
+    while ((c = getopt_long(argc, argv, ":s:o:qh", longs, NULL)) != -1) {
+        switch (c) {
+        case 'h': return gf_cli_help("analyze");
+        case OPT_LIST: gf_analyze_list(stdout); return GF_EXIT_OK;
+        case 's':
+            if (gf_analyze_is_config_key(optarg)) { // container.width=..., packing.types=...: the run's config
                 if (nsets == sizeof sets / sizeof sets[0]) return gf_analyze_usage("too many --set", NULL);
-                sets[nsets++] = kv;
-            } else if (gf_analysis_opts_set(&opts, kv) != GF_OK) {
+                sets[nsets++] = optarg;
+            } else if (gf_analysis_opts_set(&opts, optarg) != GF_OK) {
                 return gf_cli_fail("analyze", GF_ERR_PARAM);
             }
-        } else if (!strcmp(a, "--timestep") || !strcmp(a, "--config")) {
-            if (i + 1 >= argc) return gf_analyze_usage(a, "needs a value");
-            const char *v = argv[++i];
-            if (a[2] == 'c') {
-                config = v;
-            } else {
-                char dt[128];
-                snprintf(dt, sizeof dt, "dump.dt=%s", v);
-                if (gf_analysis_opts_set(&opts, dt) != GF_OK) return gf_cli_fail("analyze", GF_ERR_PARAM);
-            }
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (i + 1 >= argc) return gf_analyze_usage("-o needs a directory", NULL);
-            outdir = argv[++i];
-        } else if (!strcmp(a, "--no-plots")) {
-            plots = false;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            quiet = true;
-        } else if (a[0] == '-' && a[1]) {
-            return gf_analyze_usage("unknown option", a);
-        } else if (npos < 2) {
-            pos[npos++] = a;
-        } else {
-            return gf_analyze_usage("unexpected argument", a);
+            break;
+        case OPT_CONFIG: config = optarg; break;
+        case OPT_TIMESTEP: {
+            char dt[128];
+            snprintf(dt, sizeof dt, "dump.dt=%s", optarg);
+            if (gf_analysis_opts_set(&opts, dt) != GF_OK) return gf_cli_fail("analyze", GF_ERR_PARAM);
+            break;
         }
+        case 'o': outdir = optarg; break;
+        case OPT_NO_PLOTS: plots = false; break;
+        case 'q': quiet = true; break;
+        default: return gf_cli_getopt_error("analyze", c, argv);
+        }
+    }
+    for (int i = optind; i < argc; i++) {
+        if (npos == 2) return gf_analyze_usage("unexpected argument", argv[i]);
+        pos[npos++] = argv[i];
     }
     if (npos == 0) return gf_analyze_usage("which run? give its directory (or a LAMMPS dump)", NULL);
     const char *name = npos == 2 ? pos[0] : NULL;

@@ -23,17 +23,13 @@ int gf_cmd_bench(int argc, char **argv)
     // fixed step, instead of the domain engine. --no-large: skip the silo ten
     // times larger.
     gf_bench_opts o = gf_bench_opts_default();
-    char *args[256];
-    int nargs = 0;
-    for (int i = 0; i < argc; i++) {
-        if (!strcmp(argv[i], "--lga-only")) o.lga_only = true;
-        else if (!strcmp(argv[i], "--event")) o.event = true;
-        else if (!strcmp(argv[i], "--spatial")) o.spatial = true;
-        else if (!strcmp(argv[i], "--no-large")) o.large = false;
-        else if (nargs < (int)(sizeof args / sizeof args[0])) args[nargs++] = argv[i];
-    }
     gf_cli cli;
-    if (!gf_cli_parse(nargs, args, "bench", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "bench", &cli);
+    if (rc != GF_CLI_GO) return rc;
+    o.lga_only = cli.lga_only;
+    o.event = cli.event;
+    o.spatial = cli.spatial;
+    if (cli.no_large) o.large = false;
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
     if (cli.bench_particles > 0) o.particles = (size_t)cli.bench_particles;

@@ -3,6 +3,7 @@
 // to a DEM run as the thesis does (Sec. 3.3), printed with their
 // uncertainties and written as a config `granflow run` takes directly.
 #define _XOPEN_SOURCE 700
+#include <getopt.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -20,56 +21,65 @@ static bool gf_demargs_is_config_key(const char *kv)
     return gf_config_set(&c, kv, "--set") == GF_OK;
 }
 
-/// Parses [positional]... -o OUT --timestep DT --config INI --set k=v -q --no-plots.
+/// Parses [positional]... -o OUT --timestep DT --config INI --set k=v -q, and
+/// compare's --no-plots, calibrate's --no-refine, with getopt_long.
 int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
 {
     memset(a, 0, sizeof *a);
     a->plots = true;
+    a->refine = true;
     a->opts = gf_analysis_opts_default();
-    for (int i = 0; i < argc; i++) {
-        const char *s = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes = !strcmp(s, "-o") || !strcmp(s, "--output") || !strcmp(s, "--timestep") || !strcmp(s, "--config") ||
-                     !strcmp(s, "--set") || !strcmp(s, "-s");
-        if (takes && !val) {
-            fprintf(stderr, "granflow %s: error: %s needs a value\n", cmd, s);
-            return GF_EXIT_USAGE;
-        }
-        if (takes) i++;
-        if (!strcmp(s, "-o") || !strcmp(s, "--output")) {
-            a->out = val;
-        } else if (!strcmp(s, "--config")) {
-            a->config = val;
-        } else if (!strcmp(s, "--timestep")) {
+    enum { OPT_TIMESTEP = 256, OPT_CONFIG, OPT_NO_PLOTS, OPT_NO_REFINE };
+    bool calibrate = !strcmp(cmd, "calibrate");
+    const struct option longs[] = {
+        {"output", required_argument, NULL, 'o'},
+        {"set", required_argument, NULL, 's'},
+        {"timestep", required_argument, NULL, OPT_TIMESTEP},
+        {"config", required_argument, NULL, OPT_CONFIG},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {calibrate ? "no-refine" : "no-plots", no_argument, NULL, calibrate ? OPT_NO_REFINE : OPT_NO_PLOTS},
+        {0},
+    };
+    optind = 0;
+    opterr = 0;
+    int c;
+    while ((c = getopt_long(argc, argv, ":o:s:qh", longs, NULL)) != -1) {
+        switch (c) {
+        case 'h': return gf_cli_help(cmd);
+        case 'o': a->out = optarg; break;
+        case OPT_CONFIG: a->config = optarg; break;
+        case OPT_TIMESTEP: {
             char kv[128];
-            snprintf(kv, sizeof kv, "dump.dt=%s", val);
+            snprintf(kv, sizeof kv, "dump.dt=%s", optarg);
             if (gf_analysis_opts_set(&a->opts, kv) != GF_OK) return gf_cli_fail(cmd, GF_ERR_PARAM);
-        } else if (!strcmp(s, "--set") || !strcmp(s, "-s") || !strncmp(s, "--set=", 6)) {
-            const char *kv = s[5] == '=' ? s + 6 : val;
-            if (gf_demargs_is_config_key(kv)) {
+            break;
+        }
+        case 's':
+            if (gf_demargs_is_config_key(optarg)) {
                 if (a->nsets == 64) {
                     fprintf(stderr, "granflow %s: error: too many --set\n", cmd);
                     return GF_EXIT_USAGE;
                 }
-                a->sets[a->nsets++] = kv;
-            } else if (gf_analysis_opts_set(&a->opts, kv) != GF_OK) {
+                a->sets[a->nsets++] = optarg;
+            } else if (gf_analysis_opts_set(&a->opts, optarg) != GF_OK) {
                 return gf_cli_fail(cmd, GF_ERR_PARAM);
             }
-        } else if (!strcmp(s, "-q") || !strcmp(s, "--quiet")) {
-            a->quiet = true;
-        } else if (!strcmp(s, "--no-plots")) {
-            a->plots = false;
-        } else if (s[0] == '-' && s[1]) {
-            fprintf(stderr, "granflow %s: error: unknown option '%s' (see granflow help)\n", cmd, s);
-            return GF_EXIT_USAGE;
-        } else if (a->npos < 4) {
-            a->pos[a->npos++] = s;
-        } else {
-            fprintf(stderr, "granflow %s: error: unexpected argument '%s'\n", cmd, s);
-            return GF_EXIT_USAGE;
+            break;
+        case 'q': a->quiet = true; break;
+        case OPT_NO_PLOTS: a->plots = false; break;
+        case OPT_NO_REFINE: a->refine = false; break;
+        default: return gf_cli_getopt_error(cmd, c, argv);
         }
     }
-    return GF_EXIT_OK;
+    for (int i = optind; i < argc; i++) {
+        if (a->npos == 4) {
+            fprintf(stderr, "granflow %s: error: unexpected argument '%s' (see granflow %s --help)\n", cmd, argv[i], cmd);
+            return GF_EXIT_USAGE;
+        }
+        a->pos[a->npos++] = argv[i];
+    }
+    return GF_CLI_GO;
 }
 
 gf_status gf_demargs_load(const char *cmd, const gf_demargs *a, const char *path, bool dem, gf_series *s)
@@ -106,17 +116,10 @@ static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_co
 
 int gf_cmd_calibrate(int argc, char **argv)
 {
-    // --no-refine is calibrate's own; the rest is shared with compare.
-    bool refine = true;
-    char *rest[512];
-    int nrest = 0;
-    for (int i = 0; i < argc && nrest < 512; i++) {
-        if (!strcmp(argv[i], "--no-refine")) refine = false;
-        else rest[nrest++] = argv[i];
-    }
     gf_demargs a;
-    int rc = gf_demargs_parse("calibrate", nrest, rest, &a);
-    if (rc != GF_EXIT_OK) return rc;
+    int rc = gf_demargs_parse("calibrate", argc, argv, &a);
+    if (rc != GF_CLI_GO) return rc;
+    bool refine = a.refine;
     if (a.npos != 1 || !a.out) {
         fprintf(stderr, "granflow calibrate: error: give one DEM run and -o PARAMS.ini\n"
                         "usage: granflow calibrate DEM_DIR [--timestep DT] [--config INI] [--set key=value]... "

@@ -12,7 +12,7 @@ int gf_cmd_compare(int argc, char **argv)
 {
     gf_demargs a;
     int rc = gf_demargs_parse("compare", argc, argv, &a);
-    if (rc != GF_EXIT_OK) return rc;
+    if (rc != GF_CLI_GO) return rc;
     if (a.npos != 2) {
         fprintf(stderr, "granflow compare: error: give the DEM run and the spot run\n"
                         "usage: granflow compare DEM_DIR SPOT_DIR [--timestep DT] [--config INI] [--set key=value]... "

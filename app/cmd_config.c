@@ -7,7 +7,8 @@
 int gf_cmd_config(int argc, char **argv)
 {
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "config", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "config", &cli);
+    if (rc != GF_CLI_GO) return rc;
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
     gf_status st = gf_config_write(&cfg, stdout);

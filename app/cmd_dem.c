@@ -48,16 +48,10 @@ static void gf_dem_show_progress(void *ctx, const gf_dem_progress *p)
 
 int gf_cmd_dem(int argc, char **argv)
 {
-    bool run = false, drain_only = false;
-    char *rest[512];
-    int nrest = 0;
-    for (int i = 0; i < argc && nrest < 512; i++) {
-        if (!strcmp(argv[i], "--run")) run = true;
-        else if (!strcmp(argv[i], "--drain-only")) run = drain_only = true;
-        else rest[nrest++] = argv[i];
-    }
     gf_cli cli;
-    if (!gf_cli_parse(nrest, rest, "dem", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "dem", &cli);
+    if (rc != GF_CLI_GO) return rc;
+    bool drain_only = cli.drain_only, run = cli.dem_run || drain_only;
     if (!cli.out) {
         fprintf(stderr, "granflow dem: error: -o DIR is required (where the LAMMPS inputs go)\n");
         return GF_EXIT_USAGE;

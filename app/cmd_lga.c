@@ -37,7 +37,8 @@ static void gf_lga_progress(void *ctx, const gf_lga_stats *s, int64_t until)
 int gf_cmd_lga(int argc, char **argv)
 {
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "lga", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "lga", &cli);
+    if (rc != GF_CLI_GO) return rc;
     if (cli.resume) {
         fprintf(stderr, "granflow lga: error: --resume is not supported for LGA runs\n");
         return GF_EXIT_USAGE;

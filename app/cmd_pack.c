@@ -8,7 +8,8 @@
 int gf_cmd_pack(int argc, char **argv)
 {
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "pack", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "pack", &cli);
+    if (rc != GF_CLI_GO) return rc;
     if (!cli.out) {
         fprintf(stderr, "granflow pack: error: -o FILE is required (.dump, .xyz or .csv)\n");
         return GF_EXIT_USAGE;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `granflow render DIR`: pictures of a run's snapshots (central slices and a contact sheet).
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,32 +15,6 @@
 const char *__lsan_default_suppressions(void);
 __attribute__((visibility("default"))) const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"; }
 #endif
-
-static const char gf_render_usage[] =
-    "usage: granflow render DIR [options]\n"
-    "Draws the central slice (y > 0, seen from -y) of a run's snapshots.\n"
-    "By default: DIR/render/slice_NNNNNN.png for the first, middle and last snapshots\n"
-    "coloured by initial layer, slice_NNNNNN_phi.png for the last one coloured by\n"
-    "local packing fraction (averaged within 2.2 d), and sheet.png, a contact sheet\n"
-    "of the run over time.\n"
-    "NNNNNN is the snapshot's index in time order. DIR may also be a directory of\n"
-    "LAMMPS dumps or one dump file (then the pictures go to render/ beside it).\n"
-    "\n"
-    "options:\n"
-    "  --colour layer|phi|phi-raw\n"
-    "                         colour by initial layer (default), by the local packing\n"
-    "                         fraction averaged over the bulk particles within 2.2 d\n"
-    "                         (phi: the 2009 paper's Fig. 4; files *_phi.*), or by each\n"
-    "                         particle's volume over its Voronoi cell's volume\n"
-    "                         (phi-raw: the paper's Fig. 6; files *_phi_raw.*)\n"
-    "  --times T1,T2,...      the snapshots nearest these times (tau)\n"
-    "  --all                  every snapshot\n"
-    "  --sheet                the contact sheet (only it, unless --times or --all)\n"
-    "  --panels N             snapshots on the contact sheet, evenly spaced (default 8)\n"
-    "  --format png|svg|pdf   file format (default png)\n"
-    "  --scale PX             pixels per particle diameter (default 10; the sheet uses half)\n"
-    "  -o OUTDIR              where the pictures go (default DIR/render)\n"
-    "  -q, --quiet            do not list the files written\n";
 
 enum { GF_RENDER_MAX_TIMES = 256 };
 
@@ -81,54 +56,63 @@ static int gf_render_parse(int argc, char **argv, gf_render_cli *c)
 {
     *c = (gf_render_cli){.o = gf_render_options_default()};
     c->o.times = c->times;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = !strcmp(a, "--colour") || !strcmp(a, "--color") || !strcmp(a, "--times") ||
-                    !strcmp(a, "--format") || !strcmp(a, "--scale") || !strcmp(a, "-o") ||
-                    !strcmp(a, "--output") || !strcmp(a, "--panels");
-        if (takes && !val) return gf_render_bad("%s needs a value", a);
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            fputs(gf_render_usage, stdout);
-            return GF_EXIT_OK;
-        } else if (!strcmp(a, "--colour") || !strcmp(a, "--color")) {
+    enum { OPT_COLOUR = 256, OPT_TIMES, OPT_FORMAT, OPT_SCALE, OPT_PANELS, OPT_ALL, OPT_SHEET };
+    static const struct option longs[] = {
+        {"colour", required_argument, NULL, OPT_COLOUR}, {"color", required_argument, NULL, OPT_COLOUR},
+        {"times", required_argument, NULL, OPT_TIMES},   {"format", required_argument, NULL, OPT_FORMAT},
+        {"scale", required_argument, NULL, OPT_SCALE},   {"panels", required_argument, NULL, OPT_PANELS},
+        {"output", required_argument, NULL, 'o'},        {"all", no_argument, NULL, OPT_ALL},
+        {"sheet", no_argument, NULL, OPT_SHEET},         {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},                {0},
+    };
+    optind = 0;
+    opterr = 0;
+    int o;
+    while ((o = getopt_long(argc, argv, ":o:qh", longs, NULL)) != -1) {
+        const char *val = optarg;
+        switch (o) {
+        case 'h': return gf_cli_help("render");
+        case OPT_COLOUR:
             c->o.raw = !strcmp(val, "phi-raw");
             if (!strcmp(val, "layer")) c->o.colour = GF_RENDER_LAYER;
             else if (!strcmp(val, "phi") || c->o.raw) c->o.colour = GF_RENDER_PHI;
             else return gf_render_bad("--colour is layer, phi or phi-raw, not '%s'", val);
-        } else if (!strcmp(a, "--times")) {
+            break;
+        case OPT_TIMES: {
             int rc = gf_render_parse_times(val, c);
             if (rc) return rc;
-        } else if (!strcmp(a, "--format")) {
+            break;
+        }
+        case OPT_FORMAT:
             if (strcmp(val, "png") && strcmp(val, "svg") && strcmp(val, "pdf"))
                 return gf_render_bad("--format is png, svg or pdf, not '%s'", val);
             c->o.format = val;
-        } else if (!strcmp(a, "--scale")) {
+            break;
+        case OPT_SCALE: {
             char *end;
             c->o.scale = strtod(val, &end);
             if (end == val || *end || !(c->o.scale >= 1 && c->o.scale <= 200))
                 return gf_render_bad("--scale takes pixels per d from 1 to 200, not '%s'", val);
-        } else if (!strcmp(a, "--panels")) {
+            break;
+        }
+        case OPT_PANELS: {
             char *end;
             long n = strtol(val, &end, 10);
             if (end == val || *end || n < 1 || n > 40)
                 return gf_render_bad("--panels takes a number of snapshots from 1 to 40, not '%s'", val);
             c->o.panels = (size_t)n;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            c->o.outdir = val;
-        } else if (!strcmp(a, "--all")) {
-            c->o.all = true;
-        } else if (!strcmp(a, "--sheet")) {
-            c->o.sheet = true;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            c->quiet = true;
-        } else if (a[0] == '-' && a[1]) {
-            return gf_render_bad("unknown option '%s'", a);
-        } else if (!c->dir) {
-            c->dir = a;
-        } else {
-            return gf_render_bad("unexpected argument '%s' (one run directory)", a);
+            break;
         }
-        if (takes) i++;
+        case 'o': c->o.outdir = val; break;
+        case OPT_ALL: c->o.all = true; break;
+        case OPT_SHEET: c->o.sheet = true; break;
+        case 'q': c->quiet = true; break;
+        default: return gf_cli_getopt_error("render", o, argv);
+        }
+    }
+    for (int i = optind; i < argc; i++) {
+        if (c->dir) return gf_render_bad("unexpected argument '%s' (one run directory)", argv[i]);
+        c->dir = argv[i];
     }
     if (!c->dir) return gf_render_bad("which run? give its directory%s", "");
     if (c->o.all && c->o.ntimes) return gf_render_bad("--all and --times%s exclude each other", "");

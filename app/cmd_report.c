@@ -7,10 +7,11 @@
 int gf_cmd_report(int argc, char **argv)
 {
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "report", &cli)) return GF_EXIT_USAGE;
-    if (!cli.config_path || cli.nsets || cli.resume || cli.force || cli.json) {
+    int rc = gf_cli_parse(argc, argv, "report", &cli);
+    if (rc != GF_CLI_GO) return rc;
+    if (!cli.config_path) {
         fprintf(stderr, "granflow report: error: give one run directory\n"
-                        "usage: granflow report DIR [-o FILE.html] [-q]\n");
+                        "usage: granflow report DIR [-o FILE] [-q]\n");
         return GF_EXIT_USAGE;
     }
     gf_report_opts o = gf_report_opts_default();

@@ -55,7 +55,8 @@ static void gf_show_progress(void *ctx, const gf_run_progress *p)
 int gf_cmd_run(int argc, char **argv)
 {
     gf_cli cli;
-    if (!gf_cli_parse(argc, argv, "run", &cli)) return GF_EXIT_USAGE;
+    int rc = gf_cli_parse(argc, argv, "run", &cli);
+    if (rc != GF_CLI_GO) return rc;
     gf_config cfg;
     char base[GF_PATH_MAX + 16];
     const char *dir = cli.out ? cli.out : "runs/silo";

@@ -9,44 +9,69 @@
 static const char gf_usage[] =
     "granflow %s: fast spot-model simulations of dense granular drainage\n"
     "\n"
-    "usage: granflow COMMAND [CONFIG] [options]\n"
+    "usage: granflow COMMAND [ARGUMENTS] [OPTIONS]\n"
+    "       granflow COMMAND --help    the command's synopsis and options\n"
+    "       granflow help [COMMAND]\n"
     "\n"
     "commands:\n"
-    "  run [CONFIG] [-o DIR] [--set k=v]...  drain a silo into DIR (default runs/silo)\n"
-    "  run --resume DIR [--set run.duration=T]  continue (or extend) a run from its checkpoint\n"
-    "  pack [CONFIG] [--set k=v]... -o FILE  build the initial packing (.dump, .xyz or .csv)\n"
-    "  config [CONFIG] [--set k=v]...        print the effective configuration as INI\n"
-    "  bench [--json] [--particles N] [--warmup T] [--window T] [--event] [--no-large] [--lga-only]\n"
-    "                                        time spot(), relax(), whole steps and LGA site updates\n"
-    "  analyze [NAME] DIR [--set key=value]... [--timestep DT] [--config INI] [-o OUTDIR] [--no-plots] [--list]\n"
-    "                                        the papers' statistics of a run: CSV, plots, summary.json\n"
-    "  render DIR [--colour layer|phi|phi-raw] [--sheet] [--times T1,T2|--all] [--format png|svg|pdf]\n"
-    "       [--scale PX] [-o OUTDIR]          pictures of a run's central slice (cairo)\n"
-    "  dem [CONFIG] [--set k=v]... -o DIR [--run] [--drain-only]\n"
-    "                                        LAMMPS inputs for a DEM run of the same silo (and run them)\n"
-    "  calibrate DEM_DIR [--timestep DT] [--config INI] [--set k=v]... [--no-refine] -o PARAMS.ini\n"
-    "                                        fit the five spot parameters to a DEM run (thesis Sec. 3.3),\n"
-    "                                        then refine them with spot runs until flow and widths match\n"
-    "  compare DEM_DIR SPOT_DIR [--timestep DT] [--config INI] [--set k=v]... [-o OUTDIR]\n"
-    "                                        the two runs side by side: differences with uncertainties and\n"
-    "                                        verdicts; CSV, plots, pictures, summary.md\n"
-    "  lga [CONFIG] [--set lga.k=v]... [-o DIR] [--force]\n"
-    "                                        the 2D lattice-gas automaton: pile, channel or silo (maps, CSV)\n"
-    "  report DIR [-o FILE]                  one self-contained HTML page of a run (DIR/report.html)\n"
-    "  help                                  this text\n"
+    "%s"
     "\n"
     "options:\n"
-    "  --set section.key=value   override one configuration key (repeatable)\n"
-    "  -o PATH                   output directory (run) or file (pack)\n"
-    "  --force                   let a fresh run overwrite a directory holding a run\n"
-    "  -q, --quiet               no progress line\n"
-    "  --config INI              (analyze, calibrate, compare) the container of the dumps, instead of DIR/config.ini\n"
-    "  --timestep DT             (analyze, calibrate, compare) tau per LAMMPS step of dumps without ITEM: TIME\n"
+    "  -h, --help      this text\n"
+    "      --version   granflow's version\n"
+    "Options and arguments mix in any order; -- ends the options (a file named -x: -- -x).\n"
+    "Units: lengths in particle diameters d, times in tau = sqrt(d/g).\n"
     "\n"
     "exit codes: 0 ok, 1 failure (I/O, memory), 2 bad command line or configuration,\n"
     "            3 malformed data file, 130 interrupted (checkpoint written)\n"
-    "SIGINT/SIGTERM/SIGHUP during a run write a checkpoint; resume with --resume DIR.\n"
+    "SIGINT/SIGTERM/SIGHUP during a run write a checkpoint; resume with run --resume DIR.\n"
     "A run holds a lock on DIR; --force first removes the old run's files from DIR.\n";
+
+/// The commands, in the order `granflow help` lists them.
+static const struct gf_command {
+    const char *name;
+    int (*fn)(int argc, char **argv);
+    const char *what;
+} gf_commands[] = {
+    {"run", gf_cmd_run, "drain a silo into a run directory, or resume one from its checkpoint"},
+    {"pack", gf_cmd_pack, "build (or convert) an initial packing: .dump, .xyz or .csv"},
+    {"config", gf_cmd_config, "print the effective configuration as INI"},
+    {"bench", gf_cmd_bench, "time spot(), relax(), whole steps and LGA site updates"},
+    {"analyze", gf_cmd_analyze, "the papers' statistics of a run or of LAMMPS dumps: CSV, plots, summary.json"},
+    {"render", gf_cmd_render, "pictures of a run's central slice (cairo)"},
+    {"dem", gf_cmd_dem, "LAMMPS inputs for a DEM run of the same silo (and run them)"},
+    {"calibrate", gf_cmd_calibrate, "fit the five spot parameters to a DEM run (thesis Sec. 3.3)"},
+    {"compare", gf_cmd_compare, "a DEM run and a spot run side by side: differences and verdicts"},
+    {"lga", gf_cmd_lga, "the 2D lattice-gas automaton: pile, channel or silo"},
+    {"report", gf_cmd_report, "one self-contained HTML page of a run"},
+    {"help", NULL, "this text, or a command's (help COMMAND)"},
+};
+enum { GF_NCOMMANDS = sizeof gf_commands / sizeof gf_commands[0] };
+
+static void gf_print_usage(FILE *f)
+{
+    char list[2048] = "";
+    size_t w = 0;
+    for (size_t k = 0; k < GF_NCOMMANDS && w < sizeof list; k++)
+        w += (size_t)snprintf(list + w, sizeof list - w, "  %-10s %s\n", gf_commands[k].name, gf_commands[k].what);
+    fprintf(f, gf_usage, gf_version(), list);
+}
+
+static int gf_help(int argc, char **argv)
+{
+    if (argc < 2) {
+        gf_print_usage(stdout);
+        return GF_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) return gf_cli_help("help");
+    const char *name = !strcmp(argv[1], "analyse") ? "analyze" : argv[1];
+    if (argc > 2 || !gf_cli_usage(name)) {
+        fprintf(stderr, "granflow help: error: %s '%s' (the commands: granflow help)\n",
+                argc > 2 ? "one command at most, not" : "no such command", argv[argc > 2 ? 2 : 1]);
+        return GF_EXIT_USAGE;
+    }
+    return gf_cli_help(name);
+}
 
 // The library never prints its warnings: the CLI does, naming the command.
 static void gf_print_warning(void *ctx, const char *message)
@@ -58,27 +83,18 @@ static int gf_main(int argc, char **argv)
 {
     const char *cmd = argc > 1 ? argv[1] : "help";
     gf_set_warning_fn(gf_print_warning, (void *)cmd);
-    if (!strcmp(cmd, "run")) return gf_cmd_run(argc - 2, argv + 2);
-    if (!strcmp(cmd, "pack")) return gf_cmd_pack(argc - 2, argv + 2);
-    if (!strcmp(cmd, "config")) return gf_cmd_config(argc - 2, argv + 2);
-    if (!strcmp(cmd, "bench")) return gf_cmd_bench(argc - 2, argv + 2);
-    if (!strcmp(cmd, "lga")) return gf_cmd_lga(argc - 2, argv + 2);
-    if (!strcmp(cmd, "analyze") || !strcmp(cmd, "analyse")) return gf_cmd_analyze(argc - 2, argv + 2);
-    if (!strcmp(cmd, "render")) return gf_cmd_render(argc - 2, argv + 2);
-    if (!strcmp(cmd, "dem")) return gf_cmd_dem(argc - 2, argv + 2);
-    if (!strcmp(cmd, "calibrate")) return gf_cmd_calibrate(argc - 2, argv + 2);
-    if (!strcmp(cmd, "compare")) return gf_cmd_compare(argc - 2, argv + 2);
-    if (!strcmp(cmd, "report")) return gf_cmd_report(argc - 2, argv + 2);
+    if (!strcmp(cmd, "analyse")) cmd = "analyze";
+    // Each command parses argv from its own name on (argv[0] for getopt_long).
+    for (size_t k = 0; k < GF_NCOMMANDS; k++)
+        if (gf_commands[k].fn && !strcmp(cmd, gf_commands[k].name)) return gf_commands[k].fn(argc - 1, argv + 1);
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
         printf("granflow %s\n", gf_version());
         return GF_EXIT_OK;
     }
-    if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
-        printf(gf_usage, gf_version());
-        return GF_EXIT_OK;
-    }
+    if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h"))
+        return gf_help(argc > 1 ? argc - 1 : 1, argc > 1 ? argv + 1 : argv);
     fprintf(stderr, "granflow: error: unknown command '%s'\n\n", cmd);
-    fprintf(stderr, gf_usage, gf_version());
+    gf_print_usage(stderr);
     return GF_EXIT_USAGE;
 }
 

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 # `cmake --install BUILD [--prefix P]`: the shared and static library, the
-# public headers, the CLI, granflow.pc (pkg-config) and a CMake package
+# public headers, the CLI with its man page and bash completion, granflow.pc
+# (pkg-config) and a CMake package
 # (find_package(granflow) -> granflow::granflow, granflow::granflow_static).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -12,6 +13,11 @@ install(TARGETS granflow granflow_static EXPORT granflowTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS granflow_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The man page (built by the default target; OPTIONAL: a build of granflow_cli
+# alone has none) and the bash completion.
+install(FILES ${CMAKE_BINARY_DIR}/granflow.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 OPTIONAL)
+install(FILES scripts/granflow-completion.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+        RENAME granflow)
 install(DIRECTORY include/granflow DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 install(FILES ${GF_GENERATED_INCLUDE}/granflow/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/granflow)
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The one JSON writer (core/json.c): escaping, nesting in both layouts,
-// numbers in their fixed formats and null for what JSON cannot hold.
+// numbers in their fixed formats and null for what JSON cannot hold; and the
+// one reader (core/json_read.c, jansson) reading back what the writer wrote.
 #include "support.h"
 
 #include <math.h>
@@ -9,6 +10,7 @@
 #include <string.h>
 
 #include "core/json.h"
+#include "core/json_read.h"
 
 /// What `write` puts on a stream, as a malloc'd string.
 static char *capture(void (*write)(gf_json *), bool pretty)
@@ -132,7 +134,55 @@ static void top_level_array(void **state)
     expect_text(write_top_array, true, "[0.5, \"a\"]\n");
 }
 
+/// The members read, one "key=kind:value" line each.
+static gf_status collect(void *ctx, const gf_json_member *m)
+{
+    FILE *f = ctx;
+    fprintf(f, "%s=%d:", m->key, (int)m->kind);
+    if (m->kind == GF_JSON_INT) fprintf(f, "%lld", m->integer);
+    else if (m->kind == GF_JSON_REAL || m->kind == GF_JSON_BOOL) fprintf(f, "%.17g", m->number);
+    else if (m->text) fputs(m->text, f);
+    fputc('\n', f);
+    return GF_OK;
+}
+
+// What the writer writes, pretty or compact, the reader reads back member by
+// member in file order, strings unescaped, nested values as compact JSON.
+static void reader_reads_the_writer_back(void **state)
+{
+    (void)state;
+    for (int pretty = 0; pretty < 2; pretty++) {
+        char *text = capture(write_nested, pretty);
+        const char *path = gf_test_write_file(gf_test_tmpdir(), "r.json", text);
+        char *got = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&got, &len);
+        assert_non_null(f);
+        assert_int_equal(gf_json_read_members(path, collect, f), GF_OK);
+        fclose(f);
+        // 2^64 - 1 is beyond jansson's integers: then every number is read as a double.
+        assert_string_equal(got, "n=3:-3\ninner=6:{\"yes\":true,\"no\":false,\"empty\":{}}\n"
+                                 "xyz=5:[1.0,1.8446744073709552e19,{\"a\":null,\"b\":2.0},[]]\nlast=4:x\n");
+        free(got);
+        free(text);
+    }
+    char *text = capture(write_strings, true);
+    const char *path = gf_test_write_file(gf_test_tmpdir(), "r.json", text);
+    char *got = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&got, &len);
+    assert_int_equal(gf_json_read_members(path, collect, f), GF_OK);
+    fclose(f);
+    assert_string_equal(got, "plain=4:silo 50 x 8\nquote\"key=4:say \"hi\"\\now\nctl=4:a\nb\tc\x01\n"
+                             "utf8=4:\xc3\xa9t\xc3\xa9\nnull=4:\n");
+    free(got);
+    free(text);
+    // An absent file: GF_ERR_IO, errno ENOENT.
+    assert_int_equal(gf_json_read_members("/nonexistent/summary.json", collect, NULL), GF_ERR_IO);
+}
+
 static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(reader_reads_the_writer_back),
     cmocka_unit_test(strings_are_escaped),
     cmocka_unit_test(nesting_pretty_and_compact),
     cmocka_unit_test(numbers_have_fixed_formats),

@@ -33,7 +33,8 @@ static char *table_of(int kind, const char *text, size_t max_rows)
     size_t len = 0;
     FILE *out = open_memstream(&buf, &len);
     assert_non_null(out);
-    assert_true(kind == TABLE_CSV ? gf_html_csv_table(out, path, max_rows) : gf_html_json_table(out, path));
+    if (kind == TABLE_CSV) assert_true(gf_html_csv_table(out, path, max_rows));
+    else assert_int_equal(gf_html_json_table(out, path), GF_OK);
     fclose(out);
     return buf;
 }
@@ -100,9 +101,58 @@ static void json_rows_in_words_with_units(void **state)
                               "<td>particles</td><td><code>particles_exited</code></td></tr>\n"
                               "<tr><th>steady outflow rate</th><td class=\"num\">—</td><td>particles/tau</td>"
                               "<td><code>flow_rate</code></td></tr>\n"
-                              "<tr><th>note</th><td>a \\&quot;&lt;b&gt;\\&quot;</td><td></td><td><code>note</code></td></tr>\n"
+                              "<tr><th>note</th><td>a &quot;&lt;b&gt;&quot;</td><td></td><td><code>note</code></td></tr>\n"
                               "</table>\n");
     free(html);
+}
+
+// The same summary.json re-saved as compact JSON (one line, no spaces), as
+// json.dump or jq -c write it: the same rows (jansson reads both). The line
+// reader made one garbled row of it (issue 25).
+static void json_compact_same_rows(void **state)
+{
+    (void)state;
+    const char *pretty = "{\n  \"granflow_version\": \"0.1.0\",\n  \"seed\": 18446744073709551615,\n"
+                         "  \"particles_exited\": 1234,\n  \"flow_rate\": 3.141592654,\n  \"b_p\": null,\n"
+                         "  \"status\": \"finished, \\\"ok\\\": yes\"\n}\n";
+    const char *compact = "{\"granflow_version\":\"0.1.0\",\"seed\":18446744073709551615,\"particles_exited\":1234,"
+                          "\"flow_rate\":3.141592654,\"b_p\":null,\"status\":\"finished, \\\"ok\\\": yes\"}";
+    char *a = table_of(TABLE_JSON, pretty, 0), *b = table_of(TABLE_JSON, compact, 0);
+    assert_string_equal(a, b);
+    assert_non_null(strstr(a, "<td class=\"num\">1234</td><td>particles</td><td><code>particles_exited</code>"));
+    assert_non_null(strstr(a, "<td class=\"num\">3.142</td>"));
+    assert_non_null(strstr(a, "<td>finished, &quot;ok&quot;: yes</td>"));
+    // A seed above 2^63 (beyond jansson's integers) is read as a number, not refused.
+    assert_non_null(strstr(a, "<td class=\"num\">1.845 × 10<sup>19</sup></td>"));
+    free(a);
+    free(b);
+}
+
+// Not JSON, or not an object: GF_ERR_FORMAT naming the file, line and column; nothing written.
+static void json_malformed_is_an_error(void **state)
+{
+    (void)state;
+    static const char *const bad[] = {"{\n  \"frames\": 12,\n  \"b_p\": nul\n}\n", "[1, 2]\n",
+                                      "{\"a\": 1, \"a\": 2}", "{\"a\": 1} trailing", ""};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        const char *path = gf_test_write_file(gf_test_tmpdir(), "bad.json", bad[k]);
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *out = open_memstream(&buf, &len);
+        assert_non_null(out);
+        assert_int_equal(gf_html_json_table(out, path), GF_ERR_FORMAT);
+        fclose(out);
+        assert_int_equal(len, 0);
+        assert_non_null(strstr(gf_last_error(), path));
+        free(buf);
+    }
+    const char *path = gf_test_write_file(gf_test_tmpdir(), "bad.json", bad[0]);
+    FILE *out = fopen("/dev/null", "w");
+    assert_int_equal(gf_html_json_table(out, path), GF_ERR_FORMAT);
+    fclose(out);
+    char want[4200];
+    snprintf(want, sizeof want, "%s:3:", path); // the line of `nul`
+    assert_non_null(strstr(gf_last_error(), want));
 }
 
 // 4 significant digits: plain decimals from 0.001 to 999999 (trailing zeros
@@ -247,6 +297,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(csv_rows_are_limited_and_escaped),
     cmocka_unit_test(csv_keys_in_words_with_units),
     cmocka_unit_test(json_rows_in_words_with_units),
+    cmocka_unit_test(json_compact_same_rows),
+    cmocka_unit_test(json_malformed_is_an_error),
     cmocka_unit_test(numbers_to_4_significant_digits),
     cmocka_unit_test(left_out_rows_listed_by_reason),
     cmocka_unit_test(spot_run_omissions),

@@ -62,6 +62,8 @@ typedef void gf_free_fn(void *block, size_t size);
 /// `alloc`/`free`; NULL, NULL restores aligned_alloc/free. Set it before the
 /// first granflow call that allocates and keep it while any granflow object
 /// lives (a block must be freed by the allocator that made it). Not thread-safe.
+/// Not routed: Voro++'s `new` and jansson's parser (summary.json), whose
+/// allocator hook is process-wide; both free all they take before returning.
 GF_API void gf_set_allocator(gf_alloc_fn *alloc, gf_free_fn *free);
 
 /// Called when an internal consistency check fails (a bug in granflow or a

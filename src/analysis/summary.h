@@ -30,14 +30,15 @@ gf_summary_item *gf_summary_slot(gf_summary *s, const char *key);
 /// Sets `key` to the number v (NaN and infinities are written as null).
 void gf_summary_num(gf_summary *s, const char *key, double v);
 
-/// Sets `key` to `text`, cut to 255 bytes, with quotes, backslashes and
+/// Sets `key` to `text`, cut to at most 255 bytes (at a UTF-8 character's start), with quotes, backslashes and
 /// control characters made `'` so that the JSON stays valid.
 void gf_summary_text(gf_summary *s, const char *key, const char *text);
 
-/// Adds the entries of the summary.json at `path` (one "key": value per line,
-/// as gf_summary_write writes them; other lines are skipped). An absent or
-/// unreadable file adds nothing.
-void gf_summary_read(gf_summary *s, const char *path);
+/// Adds the entries of the summary.json at `path` (a JSON object of numbers,
+/// strings and nulls, in any layout: gf_summary_write's, or compact). An
+/// absent file adds nothing; GF_ERR_FORMAT names the file, and the line or
+/// key, of one that is not such an object; GF_ERR_IO an unreadable one.
+gf_status gf_summary_read(gf_summary *s, const char *path);
 
 /// Writes the summary to `path` (atomically).
 gf_status gf_summary_write(const gf_summary *s, const char *path);

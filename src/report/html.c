@@ -5,9 +5,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/json_read.h"
 #include "report/fields.h"
 
 #define GF_HTML_ENTRIES 256 // keys of one summary.json (the analysis writes up to 256)
@@ -79,29 +81,37 @@ static char *gf_html_trim(char *s, bool json)
     return s;
 }
 
+typedef struct gf_html_reading {
+    gf_html_entry *e;
+    size_t max, n;
+} gf_html_reading;
+
+// One member as text: a number as %lld or %.17g (the same double back; the
+// table rounds it), null as `null`, a string as it is, an array or object as
+// compact JSON.
+static gf_status gf_html_json_entry(void *ctx, const gf_json_member *m)
+{
+    gf_html_reading *r = ctx;
+    if (r->n == r->max) return GF_OK; // more are dropped
+    gf_html_entry *e = &r->e[r->n++];
+    snprintf(e->key, sizeof e->key, "%s", m->key);
+    e->text = m->kind == GF_JSON_STRING || m->kind == GF_JSON_ARRAY || m->kind == GF_JSON_OBJECT;
+    switch (m->kind) {
+    case GF_JSON_NULL: snprintf(e->value, sizeof e->value, "null"); break;
+    case GF_JSON_BOOL: snprintf(e->value, sizeof e->value, "%s", m->number != 0 ? "true" : "false"); break;
+    case GF_JSON_INT: snprintf(e->value, sizeof e->value, "%lld", m->integer); break;
+    case GF_JSON_REAL: snprintf(e->value, sizeof e->value, "%.17g", m->number); break;
+    default: snprintf(e->value, sizeof e->value, "%s", m->text); break;
+    }
+    return GF_OK;
+}
+
 int gf_html_json_read(const char *path, gf_html_entry *e, size_t max)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return -1;
-    char *line = NULL;
-    size_t cap = 0, n = 0;
-    while (gf_getline(&line, &cap, f) > 0) {
-        char *colon = strstr(line, "\":");
-        if (!colon) continue; // the braces
-        colon[1] = '\0';
-        char *value = colon + 2;
-        while (*value == ' ' || *value == '\t') value++;
-        bool text = *value == '"';
-        char *key = gf_html_trim(line, true);
-        value = gf_html_trim(value, true);
-        if (n == max) continue;
-        snprintf(e[n].key, sizeof e[n].key, "%s", key);
-        snprintf(e[n].value, sizeof e[n].value, "%s", value);
-        e[n++].text = text;
-    }
-    gf_free(line, cap);
-    fclose(f);
-    return (int)n;
+    if (access(path, F_OK) != 0 && errno == ENOENT) return -1;
+    gf_html_reading r = {e, max, 0};
+    // jansson reads the whole file first: on an error no entry was made.
+    return gf_json_read_members(path, gf_html_json_entry, &r) == GF_OK ? (int)r.n : -2;
 }
 
 // Whether `s` is a whole number as a summary writes a count: digits, maybe a sign.
@@ -231,13 +241,15 @@ void gf_html_kv_table(FILE *out, const gf_html_entry *e, size_t n, const char *c
     fputs("</ul>\n", out);
 }
 
-bool gf_html_json_table(FILE *out, const char *path)
+gf_status gf_html_json_table(FILE *out, const char *path)
 {
     gf_html_entry *e = GF_NEW(gf_html_entry, GF_HTML_ENTRIES);
-    int n = e ? gf_html_json_read(path, e, GF_HTML_ENTRIES) : -1;
+    if (!e) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    int n = gf_html_json_read(path, e, GF_HTML_ENTRIES);
     if (n >= 0) gf_html_kv_table(out, e, (size_t)n, NULL);
-    if (e) GF_DELETE(e, GF_HTML_ENTRIES);
-    return n >= 0;
+    GF_DELETE(e, GF_HTML_ENTRIES);
+    if (n == -1) return gf_error_set(GF_ERR_IO, "%s: no such file", path);
+    return n >= 0 ? GF_OK : GF_ERR_FORMAT; // gf_last_error() names file, line and column
 }
 
 // One CSV line's fields, in place: every field, empty ones too (strtok would

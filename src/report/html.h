@@ -25,9 +25,11 @@ typedef struct gf_html_entry {
     bool text;       ///< the value was a string
 } gf_html_entry;
 
-/// Reads the flat JSON object of `path`, written one `"key": value` per line
-/// (summary.json), into `e` (at most `max` entries; more are dropped).
-/// Returns the number read, -1 when the file is absent.
+/// Reads the JSON object of `path` (summary.json, in any layout: pretty or
+/// compact; jansson) into `e` (at most `max` entries; more are dropped).
+/// Returns the number read, -1 when the file is absent, -2 when it cannot be
+/// read or is not a JSON object (gf_last_error() names the file, line and
+/// column; no entry is made).
 int gf_html_json_read(const char *path, gf_html_entry *e, size_t max);
 
 /// Writes the number `text` (as a summary writes it) with 4 significant
@@ -46,8 +48,9 @@ void gf_html_unit(FILE *out, const char *unit);
 void gf_html_kv_table(FILE *out, const gf_html_entry *e, size_t n, const char *const *why);
 
 /// gf_html_kv_table of the file `path` (gf_html_json_read), nothing left out.
-/// Returns false (writes nothing) when the file is absent.
-bool gf_html_json_table(FILE *out, const char *path);
+/// Writes nothing and returns GF_ERR_IO when the file is absent, GF_ERR_FORMAT
+/// (file, line, column) when it is not a JSON object.
+gf_status gf_html_json_table(FILE *out, const char *path);
 
 /// A table of a CSV file (header row, then rows), at most `max_rows` rows;
 /// every field is a cell, empty ones too; blank lines are skipped; numbers

@@ -51,7 +51,7 @@ static const char gf_report_css[] =
 typedef struct gf_report {
     FILE *out;
     gf_report_info info;
-    gf_status st; // first image failure
+    gf_status st; // first failure (an image, a summary.json that is not JSON); the page is not written
     gf_report_context ctx; // what is left out, and why
 } gf_report;
 
@@ -142,6 +142,8 @@ static bool gf_report_summary(gf_report *r, const char *path)
     gf_html_entry *e = GF_NEW(gf_html_entry, GF_REPORT_ENTRIES);
     const char **why = GF_NEW(const char *, GF_REPORT_ENTRIES);
     int n = e && why ? gf_html_json_read(path, e, GF_REPORT_ENTRIES) : -1;
+    // Not JSON (gf_last_error names file, line, column): the page is not written.
+    if (n == -2 && r->st == GF_OK) r->st = GF_ERR_FORMAT;
     if (n >= 0) {
         gf_report_omit(&r->ctx, e, (size_t)n, why);
         gf_html_kv_table(r->out, e, (size_t)n, why);
