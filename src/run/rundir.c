@@ -364,10 +364,23 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     double reached = gf_sim_get_stats(sim).time;
     if (rd.stalled && nexit == 0) {
         // Not one particle has left: a silo that cannot drain is an error.
+        // An exit plane far below the outlet (or the pipe's end) is reached
+        // only slowly: below it a particle moves only as spots pass, there
+        // is no free fall, so say so.
+        char deep[256] = "";
+        if (cfg.exit_z < -1.0)
+            snprintf(deep, sizeof deep,
+                     "; the exit plane is %g d below the %s, and a particle on its way there moves only as "
+                     "spots pass (there is no free fall): raise container.exit_z, or run.stall_time to wait "
+                     "longer",
+                     -cfg.exit_z,
+                     cfg.container_shape != GF_SHAPE_CYLINDER ? "orifice"
+                     : cfg.outlet_length > 0.0                ? "end of the outlet pipe"
+                                                              : "outlet");
         st = gf_error_set(GF_ERR_STATE,
                           "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
-                          "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau",
-                          cfg.run_stall_time, reached);
+                          "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau%s",
+                          cfg.run_stall_time, reached, deep);
     } else if (rd.stalled) {
         st = GF_OK;
     }

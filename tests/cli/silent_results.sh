@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# CLI test: results that came out wrong without a word, and messages that
+# misled (issue 26, items 6 and 7). Each check fails on the code before its
+# fix; docs/reliability.md lists the guarantees they hold.
+# usage: bash tests/cli/silent_results.sh GRANFLOW_BINARY TESTS_DATA_DIR
+NAME=silent_results
+source "$(dirname "$0")/lib.bash" "$@"
+TINY=(--set container.width=12 --set container.depth=6 --set container.orifice_diameter=4
+      --set packing.particles=1500 --set run.duration=3 --set run.threads=1)
+CYL=(--set container.shape=cylinder --set container.radius=6 --set container.outlet_diameter=4)
+# zmin FILE.xyz: the lowest centre of an XYZ packing.
+zmin() { awk 'NR > 2 && (m == "" || $4 < m) { m = $4 } END { print m }' "$1"; }
+
+# --- a cylinder's exit plane far below the outlet (old: the generator's "bug"
+# check at -100; at -60 half the spheres hung in the open below the outlet) ---
+for ez in -100 -60; do
+    gf pack -q "${TINY[@]}" "${CYL[@]}" --set container.exit_z=$ez -o c$ez.xyz
+    expect_rc 0 "pack a cylinder with container.exit_z=$ez"
+    [ "$(zmin c$ez.xyz)" = 0.5 ] || fail "cylinder, exit_z=$ez: lowest centre at $(zmin c$ez.xyz), not on the base (0.5)"
+done
+gf pack -q "${TINY[@]}" "${CYL[@]}" --set container.outlet_length=3 --set container.exit_z=-60 -o pipe.xyz
+expect_rc 0 "pack a cylinder with a pipe and container.exit_z=-60"
+[ "$(zmin pipe.xyz)" = -2.5 ] || fail "cylinder with a 3 d pipe, exit_z=-60: lowest centre at $(zmin pipe.xyz), not at the pipe's end (-2.5)"
+gf run -q "${TINY[@]}" "${CYL[@]}" --set container.exit_z=-60 --set run.duration=20 -o deep
+expect_rc 1 "run a cylinder with container.exit_z=-60"
+expect_err "the exit plane is 60 d below the outlet" "run a cylinder with container.exit_z=-60"
+ok "a deep exit plane: the packing rests on the outlet (or fills the pipe); the run says why nothing leaves"
+
+# --- pack -o p.xyz keeps the radii of a bidisperse packing (old: dropped) ---
+gf pack -q --set container.width=12 --set container.depth=6 --set packing.particles=300 \
+    --set packing.radius2=0.35 --set packing.fraction2=0.5 -o bi.xyz
+expect_rc 0 "pack a bidisperse packing -o bi.xyz"
+gf pack -q --set packing.file=bi.xyz -o bi.csv
+expect_rc 0 "re-import bi.xyz"
+[ "$(tail -n +2 bi.csv | cut -d, -f6 | sort -u | tr '\n' ' ')" = "0.35 0.5 " ] ||
+    fail "bi.xyz -> bi.csv: radii $(tail -n +2 bi.csv | cut -d, -f6 | sort -u | tr '\n' ' '), not 0.35 and 0.5"
+ok "a bidisperse packing keeps its radii through XYZ"
+
+echo "cli $NAME: $PASS passed, 0 failed"
