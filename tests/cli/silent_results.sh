@@ -36,4 +36,26 @@ expect_rc 0 "re-import bi.xyz"
     fail "bi.xyz -> bi.csv: radii $(tail -n +2 bi.csv | cut -d, -f6 | sort -u | tr '\n' ' '), not 0.35 and 0.5"
 ok "a bidisperse packing keeps its radii through XYZ"
 
+# --- dem --run: a LAMMPS that exits 0 without writing (old: "done", rc 0),
+# and one that crashes (old: exit 130, "stopped by a signal") ------------------
+printf '#!/bin/sh\necho "LAMMPS (stand-in)"\nexit 0\n' >lmp-silent
+printf '#!/bin/sh\necho "LAMMPS (stand-in)"\nkill -SEGV $$\n' >lmp-segv
+chmod +x lmp-silent lmp-segv
+DEM=(--set container.width=10 --set container.depth=6 --set container.orifice_diameter=5 --set packing.particles=300
+    --set run.duration=8 --set dem.mpi_ranks=1)
+GF_LMP=$T/lmp-silent gf dem -q "${DEM[@]}" -o D --run
+expect_rc 1 "dem --run with a LAMMPS that exits 0 and writes nothing"
+expect_err "LAMMPS ended the fill (D/in.fill) with exit status 0 but wrote no D/settled.restart" "dem --run, silent LAMMPS"
+grep -qF "done" "$T/err" && fail "dem --run with a silent LAMMPS says done"
+GF_LMP=$T/lmp-silent gf dem -q "${DEM[@]}" -o D --drain-only
+expect_rc 1 "dem --drain-only with a LAMMPS that exits 0 and writes nothing"
+expect_err "with exit status 0 but wrote no snapshot in D/snapshots" "dem --drain-only, silent LAMMPS"
+ok "dem --run: a LAMMPS that exits 0 but writes nothing is an error (exit 1)"
+GF_LMP=$T/lmp-segv gf dem -q "${DEM[@]}" -o D --run --force
+expect_rc 1 "dem --run with a LAMMPS that segfaults"
+expect_err "LAMMPS crashed on D/in.fill: killed by signal 11 (Segmentation fault); see D/log.fill" "dem --run, LAMMPS segfaults"
+grep -qF "stopped by a signal" "$T/err" && fail "a LAMMPS segfault is reported as a stop"
+[ ! -e D/interrupted.txt ] || fail "a LAMMPS segfault wrote interrupted.txt"
+ok "dem --run: a LAMMPS crash is a failure (exit 1, the signal named), not an interruption"
+
 echo "cli $NAME: $PASS passed, 0 failed"
