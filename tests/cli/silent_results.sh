@@ -58,4 +58,15 @@ grep -qF "stopped by a signal" "$T/err" && fail "a LAMMPS segfault is reported a
 [ ! -e D/interrupted.txt ] || fail "a LAMMPS segfault wrote interrupted.txt"
 ok "dem --run: a LAMMPS crash is a failure (exit 1, the signal named), not an interruption"
 
+# --- a column that closes the silo, refused before the packing (old: accepted,
+# "cannot drain" after the packing was built) ---------------------------------
+gf run -q --set container.shape=cylinder --set container.inner_radius=2 --set container.hopper_angle=1e-300 -o col
+expect_rc 2 "run with inner_radius = 2, hopper_angle = 1e-300"
+expect_err "every spot would be removed at its first step" "inner_radius = 2, hopper_angle = 1e-300"
+[ ! -e col ] || fail "inner_radius = 2, hopper_angle = 1e-300: the run directory was created"
+gf config --set container.shape=cylinder --set container.radius=0.5 --set container.outlet_diameter=4
+expect_rc 2 "outlet_diameter = 4 in a cylinder of radius 0.5"
+expect_err "must be less than the cylinder's diameter 2R = 1 (container.radius = 0.5)" "outlet_diameter = 4, radius = 0.5"
+ok "a column that closes the silo is refused up front; the cylinder's bounds are printed worked out"
+
 echo "cli $NAME: $PASS passed, 0 failed"
