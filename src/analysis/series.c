@@ -270,6 +270,53 @@ static void gf_series_fit_container(gf_series *s, const gf_packing_frame *h)
 
 // ---------------------------------------------------------------------------
 
+static int gf_series_id_cmp(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+// A particle of the first frame that is gone from the last one has left
+// (without recirculation nothing else removes one), so exits.csv must list
+// it by then. One that it does not list makes the outflow and residence
+// times read from exits.csv short without a word (issue 26: 100 particles
+// lost from the last frame, rc 0): warn, naming the frame and a particle.
+static gf_status gf_series_check_exits(const gf_series *s, const char *last_file, const char *exits_path)
+{
+    if (!s->has_exits || s->cfg.run_recirculate || s->nframes < 2) return GF_OK;
+    const gf_packing *first = &s->frames[0].pk, *last = &s->frames[s->nframes - 1].pk;
+    const double t = s->frames[s->nframes - 1].time, slack = 1e-9 * fmax(1.0, fabs(t));
+    size_t nl = last->n, ne = 0;
+    int64_t *kept = GF_NEW(int64_t, nl ? nl : 1), *left = GF_NEW(int64_t, s->nexits ? s->nexits : 1);
+    if (!kept || !left) {
+        GF_DELETE(kept, nl ? nl : 1);
+        GF_DELETE(left, s->nexits ? s->nexits : 1);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory checking %s", exits_path);
+    }
+    memcpy(kept, last->id, nl * sizeof *kept);
+    for (size_t k = 0; k < s->nexits; k++)
+        if (s->exits[k].time <= t + slack) left[ne++] = s->exits[k].id;
+    qsort(kept, nl, sizeof *kept, gf_series_id_cmp);
+    qsort(left, ne, sizeof *left, gf_series_id_cmp);
+    size_t missing = 0;
+    int64_t example = 0;
+    for (size_t i = 0; i < first->n; i++) {
+        const int64_t id = first->id[i];
+        if (bsearch(&id, kept, nl, sizeof *kept, gf_series_id_cmp) ||
+            bsearch(&id, left, ne, sizeof *left, gf_series_id_cmp))
+            continue;
+        if (missing++ == 0) example = id;
+    }
+    GF_DELETE(kept, nl ? nl : 1);
+    GF_DELETE(left, s->nexits ? s->nexits : 1);
+    if (missing)
+        gf_warn("%s (t = %.6g tau): %zu particles of the first frame are gone (id %lld, ...) but %s does not list "
+                "them leaving by then: it is incomplete or from another run, and the outflow and residence times "
+                "read from it miss them",
+                last_file, t, missing, (long long)example, exits_path);
+    return GF_OK;
+}
+
 static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
 {
     qsort(L->fr, L->nfr, sizeof *L->fr, gf_frame_cmp);
@@ -311,7 +358,12 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
     }
     s->n_initial = s->frames[0].pk.n;
     if (!have_cfg) gf_series_fit_container(s, &L->fr[0].hdr);
-    return gf_series_fill_layers(s, L->fr);
+    st = gf_series_fill_layers(s, L->fr);
+    if (st == GF_OK && dir) {
+        snprintf(path, sizeof path, "%s/exits.csv", dir);
+        st = gf_series_check_exits(s, L->files[L->fr[L->nfr - 1].file], path);
+    }
+    return st;
 }
 
 gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)

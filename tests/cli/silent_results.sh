@@ -69,4 +69,18 @@ expect_rc 2 "outlet_diameter = 4 in a cylinder of radius 0.5"
 expect_err "must be less than the cylinder's diameter 2R = 1 (container.radius = 0.5)" "outlet_diameter = 4, radius = 0.5"
 ok "a column that closes the silo is refused up front; the cylinder's bounds are printed worked out"
 
+# --- analyze: particles gone from the last frame that exits.csv does not list
+# (old: rc 0, no word) ---------------------------------------------------------
+gf run -q "${TINY[@]}" --set output.snapshot_interval=1 -o A
+expect_rc 0 "run -o A"
+gf analyze A --no-plots
+grep -qF "does not list" "$T/err" && fail "analyze of a whole run warns about exits.csv"
+L=A/snapshots/snap_000003.dump
+awk 'NR == 6 { print $1 - 100; next } NR >= 12 && NR < 112 { next } { print }' $L >x && mv x $L
+gf analyze A --no-plots
+expect_rc 0 "analyze a series whose last frame lost 100 unlisted particles"
+expect_err "A/snapshots/snap_000003.dump (t = 3 tau): 100 particles of the first frame are gone (id 1, ...) but A/exits.csv does not list them" \
+    "analyze a series whose last frame lost 100 unlisted particles"
+ok "analyze warns when particles are gone that exits.csv does not list"
+
 echo "cli $NAME: $PASS passed, 0 failed"
