@@ -135,6 +135,15 @@ static char *gf_config_read_line(char *str, int num, void *stream)
         return NULL;
     }
     ld->line++;
+    // A NUL would end the line for every string function below: "radius =
+    // 2\0junk" read as 2 (issue 26). A configuration file is text.
+    const char *nul = memchr(ld->buf, '\0', (size_t)got);
+    if (nul) {
+        gf_config_fail(ld, gf_error_set(GF_ERR_PARAM, "%s:%d: a NUL byte (\\0) at column %zu: a configuration "
+                                                      "file is text",
+                                        ld->path, ld->line, (size_t)(nul - ld->buf) + 1));
+        return NULL;
+    }
     char *p = ld->buf;
     if (ld->line == 1 && got >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3; // UTF-8 BOM
     p = gf_config_trim(p);

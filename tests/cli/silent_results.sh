@@ -83,4 +83,11 @@ expect_err "A/snapshots/snap_000003.dump (t = 3 tau): 100 particles of the first
     "analyze a series whose last frame lost 100 unlisted particles"
 ok "analyze warns when particles are gone that exits.csv does not list"
 
+# --- a NUL inside a value (old: "radius = 2\0junk" read as 2) ----------------
+printf '[spot]\nradius = 2\000junk\n' >nul.ini
+gf config nul.ini
+expect_rc 2 "config with a NUL inside a value"
+expect_err "nul.ini:2: a NUL byte (\0) at column 11: a configuration file is text" "config with a NUL inside a value"
+ok "a NUL byte in a configuration file is refused, naming line and column"
+
 echo "cli $NAME: $PASS passed, 0 failed"
