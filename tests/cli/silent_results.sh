@@ -90,4 +90,14 @@ expect_rc 2 "config with a NUL inside a value"
 expect_err "nul.ini:2: a NUL byte (\0) at column 11: a configuration file is text" "config with a NUL inside a value"
 ok "a NUL byte in a configuration file is refused, naming line and column"
 
+# --- render --times beyond the run (old: drew t = 0) ---------------------------
+gf render A --times 1e17 -o RT
+expect_rc 2 "render --times 1e17"
+expect_err "no snapshot of A near t = 1e+17 tau: its 4 snapshots go from t = 0 to 3 tau" "render --times 1e17"
+[ ! -e RT ] || fail "render --times 1e17: the output directory was created"
+gf render A --times 3.4 -o RT
+expect_rc 0 "render --times 3.4 (the last snapshot is at 3, every 1 tau)"
+[ -e RT/slice_000003.png ] || fail "render --times 3.4: no picture of the last snapshot"
+ok "render refuses a time beyond the run, before it writes anything"
+
 echo "cli $NAME: $PASS passed, 0 failed"
