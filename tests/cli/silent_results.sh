@@ -100,4 +100,13 @@ expect_rc 0 "render --times 3.4 (the last snapshot is at 3, every 1 tau)"
 [ -e RT/slice_000003.png ] || fail "render --times 3.4: no picture of the last snapshot"
 ok "render refuses a time beyond the run, before it writes anything"
 
+# --- a particle at z = 1e300 (old: "grid too large", no file, no particle) ---
+printf 'x,y,z\n0,0,5\n1,0,1e300\n3,0,5\n' >far.csv
+gf run -q --set packing.file=far.csv --set run.duration=0.2 -o FAR
+expect_rc 2 "run with an imported particle at z = 1e300"
+expect_err "far.csv:3: grid too large" "run with an imported particle at z = 1e300"
+expect_err "particle id 2 at (1, 0, 1e+300) is the highest" "run with an imported particle at z = 1e300"
+[ ! -e FAR ] || fail "run with a particle at z = 1e300: the run directory was created"
+ok "a particle too high for the grid is named, with its file and line"
+
 echo "cli $NAME: $PASS passed, 0 failed"
