@@ -70,6 +70,33 @@ static gf_status gf_clear_run(const char *dir)
 // One run at a time per directory: a POSIX record lock on dir/.lock, held
 // until the process ends (the kernel drops it even after kill -9). The file
 // holds the owner's pid for the message of the next one.
+// The refusal of a directory whose lock (open on fd) another run holds; closes fd.
+static gf_status gf_lock_busy(const char *dir, const char *path, int fd)
+{
+    char pid[32] = "";
+    ssize_t n = pread(fd, pid, sizeof pid - 1, 0);
+    pid[n > 0 ? n : 0] = '\0';
+    pid[strcspn(pid, "\n")] = '\0';
+    close(fd);
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
+                        "or use another directory",
+                        dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
+}
+
+gf_status gf_run_dir_check_free(const char *dir)
+{
+    if (!dir) return gf_error_set(GF_ERR_PARAM, "gf_run_dir_check_free: NULL directory");
+    char path[GF_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/.lock", dir);
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return GF_OK; // no lock file (or no directory): nobody runs there
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+    if (fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK) return gf_lock_busy(dir, path, fd);
+    close(fd);
+    return GF_OK;
+}
+
 static gf_status gf_lock_dir(const char *dir, int *fd_out)
 {
     char path[GF_PATH_MAX + 32];
@@ -79,16 +106,8 @@ static gf_status gf_lock_dir(const char *dir, int *fd_out)
     struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
     if (fcntl(fd, F_SETLK, &fl) != 0) {
         int err = errno;
-        char pid[32] = "";
-        ssize_t n = read(fd, pid, sizeof pid - 1);
-        pid[n > 0 ? n : 0] = '\0';
-        pid[strcspn(pid, "\n")] = '\0';
+        if (err == EACCES || err == EAGAIN) return gf_lock_busy(dir, path, fd);
         close(fd);
-        if (err == EACCES || err == EAGAIN)
-            return gf_error_set(GF_ERR_PARAM,
-                                "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
-                                "or use another directory",
-                                dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
         return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
     }
     char pid[32];
@@ -316,6 +335,10 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (snprintf(rd.dir, sizeof rd.dir, "%s", opts->dir) >= (int)sizeof rd.dir)
         return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(opts->dir),
                             GF_PATH_MAX - 1);
+    // A directory another run holds is refused first: before a checkpoint
+    // is read or a packing built (issue 26: a resume of a locked directory
+    // said "no run to resume"; a fresh run built its packing, then failed).
+    if ((st = gf_run_dir_check_free(rd.dir)) != GF_OK) return st;
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)

@@ -109,4 +109,17 @@ expect_err "particle id 2 at (1, 0, 1e+300) is the highest" "run with an importe
 [ ! -e FAR ] || fail "run with a particle at z = 1e300: the run directory was created"
 ok "a particle too high for the grid is named, with its file and line"
 
+# --- a resume of a directory another run holds, before its first checkpoint
+# (old: "no run to resume") ----------------------------------------------------
+start run -q --set container.width=12 --set packing.particles=300 --set run.stall_time=0 \
+    --set run.checkpoint_interval=0 --set run.duration=5000 -o LK
+for ((i = 0; i < 200; i++)); do [ -e LK/snapshots/snap_000001.dump ] && break; sleep 0.1; done
+[ -e LK/snapshots/snap_000001.dump ] || fail "run -o LK: no snapshot 1 after 20 s"
+gf run -q --resume LK
+expect_rc 2 "resume of a directory in use"
+expect_err "LK is in use by another granflow run (pid $BGPID, lock LK/.lock)" "resume of a directory in use"
+grep -qF "no run to resume" "$T/err" && fail "resume of a directory in use says 'no run to resume'"
+kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; BGPID=
+ok "a resume of a directory in use says so"
+
 echo "cli $NAME: $PASS passed, 0 failed"
