@@ -418,6 +418,25 @@ static const char *gf_config_unwritable(const char *key, const char *path)
     return NULL;
 }
 
+gf_status gf_config_check_writable(const gf_config *cfg)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_check_writable");
+    if (st != GF_OK) return st;
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        if (k->type != GF_KEY_PATH) continue;
+        const char *bad = gf_config_unwritable(k->name, (const char *)cfg + k->offset);
+        if (!bad) continue;
+        char key[160];
+        snprintf(key, sizeof key, "%s.%s", k->section, k->name);
+        gf_config_msg m;
+        gf_config_msg_make(&m, cfg, key, NULL);
+        return gf_error_set(GF_ERR_PARAM, "%s%s %s: config.ini could not hold it (rename the file, or move it)",
+                            m.lead, m.key[0], bad);
+    }
+    return GF_OK;
+}
+
 gf_status gf_config_write(const gf_config *cfg, FILE *out)
 {
     gf_status st = gf_config_check(cfg, "gf_config_write");

@@ -362,6 +362,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }
+    // config.ini must hold the configuration: refused before the directory is
+    // made (issue 26: a packing.file with a line break left an empty one).
+    if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
     if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
     if (st != GF_OK) {

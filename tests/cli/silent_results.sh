@@ -122,4 +122,16 @@ grep -qF "no run to resume" "$T/err" && fail "resume of a directory in use says 
 kill -KILL "$BGPID"; wait "$BGPID" 2>/dev/null; BGPID=
 ok "a resume of a directory in use says so"
 
+# --- a packing.file with a line break (old: an empty run directory left) ------
+NLF=$(printf 'a\nb.csv')
+printf 'x,y,z\n0,0,5\n3,0,5\n' >"$NLF"
+gf run -q --set "packing.file=$NLF" --set run.duration=0.2 -o NL
+expect_rc 2 "run with a packing.file holding a line break"
+expect_err "packing.file = a\x0Ab.csv contains a line break: config.ini could not hold it" "packing.file with a line break"
+[ ! -e NL ] || fail "run with a packing.file holding a line break: the run directory was created"
+gf dem -q --set "packing.file=$NLF" -o NLD
+expect_rc 2 "dem with a packing.file holding a line break"
+[ ! -e NLD ] || fail "dem with a packing.file holding a line break: the directory was created"
+ok "a packing.file that config.ini cannot hold is refused before anything is created"
+
 echo "cli $NAME: $PASS passed, 0 failed"
