@@ -134,4 +134,15 @@ expect_rc 2 "dem with a packing.file holding a line break"
 [ ! -e NLD ] || fail "dem with a packing.file holding a line break: the directory was created"
 ok "a packing.file that config.ini cannot hold is refused before anything is created"
 
+# --- compare of 2-snapshot runs (old: NaN rows, then "gnuplot failed") --------
+gf run -q "${TINY[@]}" --set run.duration=1 --set output.snapshot_interval=1 -o C1
+gf run -q "${TINY[@]}" --set run.seed=2 --set run.duration=1 --set output.snapshot_interval=1 -o C2
+gf compare C1 C2 -o CMP
+expect_rc 2 "compare of two 2-snapshot runs"
+expect_err "too few snapshots to compare: the window 0.25..1 tau holds 1 of the DEM run's and 1 of the spot run's" \
+    "compare of two 2-snapshot runs"
+grep -qi nan "$T/out" && fail "compare of two 2-snapshot runs prints NaN"
+[ ! -e CMP ] || fail "compare of two 2-snapshot runs: CMP was created"
+ok "compare refuses runs with too few snapshots in the window, before writing anything"
+
 echo "cli $NAME: $PASS passed, 0 failed"
