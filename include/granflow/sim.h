@@ -59,6 +59,13 @@ typedef struct gf_run_hooks {
 /// The defaults (what a NULL `hooks` means): every member NULL/0.
 GF_API gf_run_hooks gf_run_hooks_default(void);
 
+/// Checks `cfg` (validated on a copy) for what the engine needs of the
+/// container before any packing is built: with run.recirculate = on and
+/// run.reinsert = zone, room for a re-inserted sphere in the zone
+/// run.reinsert_rmin <= r < run.reinsert_rmax (GF_ERR_PARAM naming both keys
+/// otherwise). gf_sim_create and gf_run_dir call it first.
+GF_API gf_status gf_sim_check_config(const gf_config *cfg);
+
 /// Creates a simulation of `packing` (copied) under `cfg` (validated). Spots
 /// and time start at zero.
 GF_API gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim **out);

@@ -330,6 +330,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (stats) memset(stats, 0, sizeof *stats);
     gf_config cfg = *cfg_in;
     gf_status st = gf_config_validate(&cfg);
+    if (st == GF_OK) st = gf_sim_check_config(&cfg); // before a packing is built
     if (st != GF_OK) return st;
     gf_rundir rd = {.cfg = &cfg, .opts = opts, .status = "running", .lock_fd = -1};
     if (snprintf(rd.dir, sizeof rd.dir, "%s", opts->dir) >= (int)sizeof rd.dir)

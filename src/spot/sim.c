@@ -96,6 +96,7 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
     if (!sim) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     sim->cfg = *cfg;
     gf_status st = gf_config_validate(&sim->cfg);
+    if (st == GF_OK) st = gf_sim_check_config(&sim->cfg);
     if (st != GF_OK) goto fail;
     gf_sim_derive(sim);
     if ((st = gf_sim_alloc_particles(sim, packing->n)) != GF_OK) goto fail;

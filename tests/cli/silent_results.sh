@@ -145,4 +145,14 @@ grep -qi nan "$T/out" && fail "compare of two 2-snapshot runs prints NaN"
 [ ! -e CMP ] || fail "compare of two 2-snapshot runs: CMP was created"
 ok "compare refuses runs with too few snapshots in the window, before writing anything"
 
+# --- an impossible re-insertion zone, refused before the packing is built (old:
+# at the first exit) -----------------------------------------------------------
+gf run -q --set container.width=12 --set packing.particles=300 --set run.recirculate=on --set run.reinsert=zone \
+    --set run.reinsert_rmin=6.8 -o RZ
+expect_rc 2 "recirculation into a zone outside the box"
+expect_err "run.reinsert_rmin = 6.8 and run.reinsert_rmax = auto (default) leave nothing of the container's cross-section" \
+    "recirculation into a zone outside the box"
+[ ! -e RZ ] || fail "recirculation into a zone outside the box: the run directory was created"
+ok "an impossible re-insertion zone is refused up front"
+
 echo "cli $NAME: $PASS passed, 0 failed"
