@@ -167,13 +167,16 @@ static gf_status gf_list_dumps(gf_loader *L, const char *dir)
     }
     closedir(d);
     if (st != GF_OK) return st;
+    // Nothing to read where the command was pointed: a wrong directory or a
+    // run made without dumps, so the command line (exit 2), not an I/O
+    // failure (issue 26: both exited 1, "the run failed").
     if (L->nfiles == 0 && vtu)
-        return gf_error_set(GF_ERR_IO,
+        return gf_error_set(GF_ERR_PARAM,
                             "%s: only VTK (.vtu) snapshots, which are for ParaView: analysis and pictures read the "
                             "LAMMPS dumps (run with output.format = dump or both)",
                             dir);
     if (L->nfiles == 0)
-        return gf_error_set(GF_ERR_IO,
+        return gf_error_set(GF_ERR_PARAM,
                             "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*, each possibly .gz)",
                             dir);
     qsort(L->files, L->nfiles, sizeof *L->files, gf_name_cmp);

@@ -155,4 +155,16 @@ expect_err "run.reinsert_rmin = 6.8 and run.reinsert_rmax = auto (default) leave
 [ ! -e RZ ] || fail "recirculation into a zone outside the box: the run directory was created"
 ok "an impossible re-insertion zone is refused up front"
 
+# --- analyze of an empty directory or a VTK-only run (old: exit 1, "failed") ---
+mkdir -p EMPTY
+gf analyze EMPTY --no-plots
+expect_rc 2 "analyze of an empty directory"
+expect_err "EMPTY: no LAMMPS dumps in this directory" "analyze of an empty directory"
+gf run -q --set container.width=12 --set packing.particles=300 --set run.duration=1 --set output.format=vtk -o VTK
+expect_rc 0 "run with output.format = vtk"
+gf analyze VTK --no-plots
+expect_rc 2 "analyze of a VTK-only run"
+expect_err "VTK/snapshots: only VTK (.vtu) snapshots" "analyze of a VTK-only run"
+ok "analyze of a directory with nothing to read: exit 2 (the command line), with what to do"
+
 echo "cli $NAME: $PASS passed, 0 failed"
