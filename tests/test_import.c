@@ -754,6 +754,53 @@ static void gzip_reads_like_plain(void **state)
     gf_packing_free(&c);
 }
 
+// Issue 26: a .gz with bytes after its gzip data was read as if whole (zlib
+// ignores them), and a cut one was reported at ":1:" whatever the place of
+// the cut. Two gzip members one after the other are still one file.
+static void gzip_garbage_and_the_place_of_a_cut(void **state)
+{
+    (void)state;
+    gf_packing a = {0}, c = {0};
+    random_packing(&a, 3000, 11, 1, 1);
+    char plain[1024], gz[1024], bad[1024];
+    snprintf(plain, sizeof plain, "%s", tmppath("gg.dump"));
+    snprintf(gz, sizeof gz, "%s", tmppath("gg.dump.gz"));
+    snprintf(bad, sizeof bad, "%s", tmppath("gg_bad.dump.gz"));
+    assert_int_equal(gf_packing_write(&a, plain, GF_FORMAT_AUTO, NULL), GF_OK);
+    size_t full = gf_test_gzip(plain, gz, 0);
+    assert_true(full > 0);
+    size_t nz;
+    char *z = gf_test_read_file(gz, &nz);
+    assert_non_null(z);
+    const char *tails[] = {"garbage\n", "x"}; // (a tail starting 1f 8b is a bad member: zlib says corrupt)
+    for (size_t k = 0; k < 2; k++) {
+        FILE *f = fopen(bad, "wb");
+        assert_non_null(f);
+        fwrite(z, 1, nz, f);
+        fputs(tails[k], f);
+        fclose(f);
+        expect_error(bad, GF_FORMAT_AUTO, GF_ERR_FORMAT, "gg_bad.dump.gz", 0, "bytes after the end of the gzip data");
+    }
+    FILE *f = fopen(bad, "wb"); // two members: read as one file (the second frame is the last)
+    assert_non_null(f);
+    fwrite(z, 1, nz, f);
+    fwrite(z, 1, nz, f);
+    fclose(f);
+    assert_int_equal(gf_packing_read(bad, GF_FORMAT_AUTO, &c), GF_OK);
+    expect_same(&a, &c, 1, 1);
+    free(z);
+    // Cut at a third: the line of the cut, far past line 1.
+    assert_true(gf_test_gzip(plain, bad, full / 3) > 0);
+    expect_error(bad, GF_FORMAT_AUTO, GF_ERR_FORMAT, "gg_bad.dump.gz", 0, "truncated gzip file");
+    long line = 0;
+    const char *m = strstr(gf_last_error(), "gg_bad.dump.gz:");
+    assert_non_null(m);
+    assert_int_equal(sscanf(m, "gg_bad.dump.gz:%ld:", &line), 1);
+    if (!(line > 100 && line < 3010)) fail_msg("the cut is reported at line %ld: %s", line, gf_last_error());
+    gf_packing_free(&a);
+    gf_packing_free(&c);
+}
+
 static void read_from_fifo(void **state)
 {
     (void)state;
@@ -831,6 +878,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(write_error_names_path),
     cmocka_unit_test(big_dump_50000),
     cmocka_unit_test(gzip_reads_like_plain),
+    cmocka_unit_test(gzip_garbage_and_the_place_of_a_cut),
     cmocka_unit_test(read_from_fifo),
 };
 
