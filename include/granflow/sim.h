@@ -163,8 +163,14 @@ GF_API void gf_sim_set_par_profiling(gf_sim *sim, int on);
 /// the first spatial step).
 GF_API gf_par_profile gf_sim_par_profile(const gf_sim *sim);
 
-/// Writes a checkpoint (versioned header, CRC-32, written then renamed).
+/// Writes a checkpoint (versioned header, CRC-32, written then renamed). It
+/// is built in memory first, in one block of its size.
 GF_API gf_status gf_sim_save(const gf_sim *sim, const char *path);
+/// An estimate from above of the size of the checkpoint, bytes, once every
+/// particle still inside has left (each exit adds a record; with
+/// recirculation, a record per particle): what gf_run_dir makes sure of, in
+/// memory and on disk, before it runs.
+GF_API size_t gf_sim_checkpoint_bound(const gf_sim *sim);
 /// Restores a checkpoint. `cfg` may differ from the saved one only in [run]
 /// and [output] keys (GF_ERR_PARAM otherwise); it becomes the sim's config.
 GF_API gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out);

@@ -10,7 +10,9 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -40,6 +42,8 @@ typedef struct gf_rundir {
     double flow_t0;       // when this invocation began (stall clock without exits)
     bool stalled;         // the snapshot hook saw no exit for run.stall_time
     int lock_fd;          // holds the lock on dir/.lock
+    void *reserve;        // memory held for the checkpoint (gf_make_room), freed while one is built
+    size_t reserve_size;
 } gf_rundir;
 
 // A fresh run starts from an empty run directory: everything an earlier run
@@ -251,8 +255,64 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
+    // The memory held for the checkpoint since the start is what it is
+    // built in now; held again afterwards, for the next one.
+    if (rd->reserve) gf_free(rd->reserve, rd->reserve_size);
     gf_status st = gf_sim_save(sim, path);
+    rd->reserve = rd->reserve_size ? gf_alloc(rd->reserve_size) : NULL;
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
+}
+
+static void gf_mb(char *buf, size_t n, double bytes) { snprintf(buf, n, "%.3g MB", bytes / 1e6); }
+
+// What the checkpoint will need at the end of the run, made sure of before
+// the run starts (issue 26: a 200,000-particle run under a 100 MB limit ran to
+// its end, then failed to write its checkpoint): memory to build it in, held
+// from now on; below the file size limit; twice on disk (the new one is
+// written beside the old, then renamed). The snapshots' share of the disk is
+// only estimated, so a shortfall there is a warning.
+static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
+{
+    const double bound = (double)gf_sim_checkpoint_bound(sim);
+    char need[32], have[32];
+    gf_mb(need, sizeof need, bound);
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_FSIZE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && bound > (double)rl.rlim_cur) {
+        gf_mb(have, sizeof have, (double)rl.rlim_cur);
+        return gf_error_set(GF_ERR_IO,
+                            "cannot write checkpoint: File too large: it will take up to %s by the end of the run, "
+                            "over the file size limit of %s (ulimit -f)",
+                            need, have);
+    }
+    struct statvfs fs;
+    if (statvfs(rd->dir, &fs) == 0) {
+        const double free_bytes = (double)fs.f_bavail * (double)fs.f_frsize;
+        gf_mb(have, sizeof have, free_bytes);
+        if (free_bytes < 2.0 * bound)
+            return gf_error_set(GF_ERR_IO,
+                                "cannot write checkpoint: No space left on device: it will take up to %s by the end "
+                                "of the run (twice while one replaces the other), and %s has %s free",
+                                need, rd->dir, have);
+        const gf_config *c = rd->cfg;
+        const double left = c->run_duration - gf_sim_get_stats(sim).time;
+        const double snaps = c->output_format == GF_OUTPUT_VTK ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
+        const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
+        if (free_bytes < 2.0 * bound + dumps) {
+            char total[32];
+            gf_mb(total, sizeof total, 2.0 * bound + dumps);
+            gf_warn("%s has %s free, and this run may write about %s (up to %.0f snapshots and its checkpoint): "
+                    "it may fill the disk before the end",
+                    rd->dir, have, total, snaps);
+        }
+    }
+    rd->reserve_size = (size_t)bound;
+    rd->reserve = gf_alloc(rd->reserve_size);
+    if (!rd->reserve)
+        return gf_error_set(GF_ERR_NOMEM,
+                            "out of memory for the checkpoint: it will take up to %s by the end of the run, and that "
+                            "much cannot be allocated now (a memory limit?)",
+                            need);
+    return GF_OK;
 }
 
 static gf_status gf_on_checkpoint(void *ctx, const gf_sim *sim) { return gf_save_all(ctx, sim); }
@@ -385,7 +445,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         .progress_every = 1u << 15,
         .stop = opts->stop,
     };
-    st = gf_sim_run(sim, cfg.run_duration, &hooks);
+    st = gf_make_room(&rd, sim);
+    if (st == GF_OK) st = gf_sim_run(sim, cfg.run_duration, &hooks);
     size_t nexit;
     gf_sim_exits(sim, &nexit);
     double reached = gf_sim_get_stats(sim).time;
@@ -453,6 +514,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
     GF_DELETE(rd.pass, rd.pass_cap);
+    if (rd.reserve) gf_free(rd.reserve, rd.reserve_size);
     gf_sim_destroy(sim);
     return st;
 }
