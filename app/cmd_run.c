@@ -71,6 +71,10 @@ int gf_cmd_run(int argc, char **argv)
         char ck[GF_PATH_MAX + 32];
         snprintf(ck, sizeof ck, "%s/checkpoint.bin", cli.resume);
         if (access(base, R_OK) != 0 || access(ck, R_OK) != 0) {
+            // A run that holds the directory (before its first checkpoint) is
+            // what to say, not "no run to resume".
+            gf_status busy = gf_run_dir_check_free(cli.resume);
+            if (busy != GF_OK) return gf_cli_fail("run", busy);
             fprintf(stderr, "granflow run: error: %s: no run to resume (cannot read %s)\n", cli.resume,
                     access(base, R_OK) != 0 ? base : ck);
             return GF_EXIT_USAGE;

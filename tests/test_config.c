@@ -537,7 +537,30 @@ static void validate_names_where_keys_were_set(void **state)
     expect_validate_message("w6.ini", "[run]\nreinsert = zone\nreinsert_rmin = 5\nreinsert_rmax = 4\n", NULL,
                             "@:3: run.reinsert_rmin = 5 must be less than run.reinsert_rmax = 4 (@:4)");
     expect_validate_message("w7.ini", "[container]\nshape = cylinder\nradius = 5\noutlet_diameter = 12\n", NULL,
-                            "@:4: container.outlet_diameter = 12 must be less than 2 * container.radius = 5 (@:3)");
+                            "@:4: container.outlet_diameter = 12 must be less than the cylinder's diameter 2R = 10 "
+                            "(container.radius = 5 (@:3))");
+    // Issue 26: the bounds worked out (the old text ended "2 * container.radius = 5",
+    // read as a bound of 5), and a column whose gap to the funnel is too narrow.
+    expect_validate_message("w7b.ini", "[container]\nshape = cylinder\nradius = 6\nhopper_angle = 30\ninner_radius = 5.5\n",
+                            NULL,
+                            "@:5: container.inner_radius = 5.5 leaves no room for a sphere: it must be less than "
+                            "R - 1 = 5 (container.radius = 6 (@:3))");
+    expect_validate_message("w7c.ini", "[container]\nshape = cylinder\ninner_radius = 2\nhopper_angle = 1e-300\n",
+                            NULL,
+                            "@:3: container.inner_radius = 2 with container.hopper_angle = 1e-300 (@:4) puts the "
+                            "column's bottom 1.48e-301 d above the outlet, too low for a sphere under it, over the "
+                            "whole disc where spots are born (radius container.outlet_diameter / 2 - "
+                            "spot.insertion_margin = 1.4): every spot would be removed at its first step and nothing "
+                            "could drain (raise container.hopper_angle to at least 6.71, or lower "
+                            "container.inner_radius below 1.4)");
+    expect_validate_message("w7d.ini",
+                            "[container]\nshape = cylinder\nradius = 6\noutlet_diameter = 4\ninner_radius = 2\n"
+                            "hopper_angle = 13\n",
+                            NULL,
+                            "@:5: container.inner_radius = 2 with container.hopper_angle = 13 (@:6) leaves a gap of "
+                            "0.9 d between the column's bottom (z = 0.923) and the funnel, narrower than a sphere: "
+                            "nothing could reach the outlet (raise container.hopper_angle, or lower "
+                            "container.inner_radius)");
     expect_validate_message("w8.ini", "[spot]\nwall_distance = 4.5\n", NULL,
                             "@:2: spot.wall_distance = 4.5 leaves spots no room: 2 * spot.wall_distance must be "
                             "less than min(container.width, container.depth) = 8 (container.depth = 8 (default))");

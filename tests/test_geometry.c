@@ -233,6 +233,37 @@ static void cylinder_packings_keep_the_promises(void **state)
     }
 }
 
+// An exit plane far below the outlet (issue 26: exit_z = -100 failed the
+// generator's own final check, and at -60 half the spheres hung below the
+// outlet, where there is no wall): the packing rests on the funnel, or fills
+// the pipe from its end, never the open space under it.
+static void cylinder_packing_ignores_a_deep_exit_plane(void **state)
+{
+    (void)state;
+    const double exits[] = {-100, -60, -1}, pipes[] = {0, 3};
+    for (size_t e = 0; e < 3; e++)
+        for (size_t k = 0; k < 2; k++) {
+            gf_config c = cylinder(6, 0, 4, pipes[k], 0);
+            c.exit_z = exits[e];
+            c.packing_particles = 1500;
+            assert_int_equal(gf_config_validate(&c), GF_OK);
+            gf_packing pk = {0};
+            assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+            assert_int_equal(pk.n, 1500);
+            gf_container box = gf_container_make(&c);
+            double zmin = INFINITY, floor = fmax(box.exit_z, -pipes[k]) + 0.5;
+            for (size_t i = 0; i < pk.n; i++) {
+                if (!gf_container_contains(&box, pk.x[i], pk.y[i], pk.z[i], 0.5, 1e-9))
+                    fail_msg("exit_z %g, pipe %g: sphere at (%g, %g, %g) crosses a wall", exits[e], pipes[k],
+                             pk.x[i], pk.y[i], pk.z[i]);
+                zmin = fmin(zmin, pk.z[i]);
+            }
+            if (!(zmin >= floor - 1e-9 && zmin < floor + 0.1))
+                fail_msg("exit_z %g, pipe %g: lowest centre at %g, not on %g", exits[e], pipes[k], zmin, floor);
+            gf_packing_free(&pk);
+        }
+}
+
 // An imported packing (e.g. a DEM dump) in a cylinder with a pipe: a centre
 // in the pipe stays, one below its end has already left (dropped and
 // counted), one outside the wall is an error naming it.
@@ -357,6 +388,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(cylinder_funnel_pipe_column_by_hand),
     cmocka_unit_test(cylinder_config_errors),
     cmocka_unit_test(cylinder_packings_keep_the_promises),
+    cmocka_unit_test(cylinder_packing_ignores_a_deep_exit_plane),
     cmocka_unit_test(cylinder_import_checks),
     cmocka_unit_test(hopper_keeps_spots_and_particles_inside),
     cmocka_unit_test(hopper_parallel_matches_serial),

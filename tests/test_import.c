@@ -473,6 +473,33 @@ static void error_xyz_fewer_lines(void **state)
     expect_error(path, GF_FORMAT_AUTO, GF_ERR_FORMAT, "not_count.xyz", 1, "number of atoms");
 }
 
+// Extended XYZ (issue 26: `pack -o p.xyz` of a bidisperse packing dropped
+// the radii, and the re-import ran monodisperse without a word): the comment
+// line's Properties= places the radius (and the positions); a malformed one
+// is refused, naming the line.
+static void xyz_properties_give_the_radii(void **state)
+{
+    (void)state;
+    gf_packing p = {0};
+    const char *path = tmpfile_with("ext.xyz", "2\nx Properties=species:S:1:pos:R:3:radius:R:1 t=0\n"
+                                               "P 0 0 0.5 0.5\nP 1 0 0.5 0.35\n");
+    assert_int_equal(gf_packing_read(path, GF_FORMAT_AUTO, &p), GF_OK);
+    assert_int_equal(p.n, 2);
+    assert_true(p.r[0] == 0.5 && p.r[1] == 0.35 && p.x[1] == 1.0);
+    path = tmpfile_with("ext2.xyz", "1\nProperties=species:S:1:radius:R:1:id:I:1:pos:R:3\nP 0.6 7 1 2 3\n");
+    assert_int_equal(gf_packing_read(path, GF_FORMAT_AUTO, &p), GF_OK);
+    assert_true(p.n == 1 && p.r[0] == 0.6 && p.x[0] == 1.0 && p.y[0] == 2.0 && p.z[0] == 3.0);
+    gf_packing_free(&p);
+    expect_error(tmpfile_with("ext3.xyz", "1\nProperties=species:S:1:pos:R:3:radius:R:1\nP 0 0 0.5\n"),
+                 GF_FORMAT_AUTO, GF_ERR_FORMAT, "ext3.xyz", 3, "Properties=");
+    expect_error(tmpfile_with("ext4.xyz", "1\nProperties=species:S\nP 0 0 0.5\n"), GF_FORMAT_AUTO,
+                 GF_ERR_FORMAT, "ext4.xyz", 2, "NAME:TYPE:COUNT");
+    expect_error(tmpfile_with("ext5.xyz", "1\nProperties=species:S:1:radius:R:1\nP 0.5\n"), GF_FORMAT_AUTO,
+                 GF_ERR_FORMAT, "ext5.xyz", 2, "no pos:R:3");
+    expect_error(tmpfile_with("ext6.xyz", "1\nProperties=species:S:1:pos:R:3:radius:R:1\nP 0 0 0.5 -1\n"),
+                 GF_FORMAT_AUTO, GF_ERR_FORMAT, "ext6.xyz", 3, "radius must be positive");
+}
+
 static void error_csv_without_z(void **state)
 {
     (void)state;
@@ -530,7 +557,7 @@ static void roundtrip_lammps(void **state)
 static void roundtrip_xyz(void **state)
 {
     (void)state;
-    roundtrip(GF_FORMAT_XYZ, "rt.xyz", 0, 0);
+    roundtrip(GF_FORMAT_XYZ, "rt.xyz", 0, 1); // radii kept (issue 26: a bidisperse packing lost them)
 }
 
 static void roundtrip_csv(void **state)
@@ -575,7 +602,8 @@ static void write_lammps_layout(void **state)
     path = tmppath("layout.xyz");
     assert_int_equal(gf_packing_write(&p, path, GF_FORMAT_AUTO, NULL), GF_OK);
     text = gf_test_read_file(path, NULL);
-    assert_string_equal(text, "2\ngranflow packing\nP 0.5 -1 2\nP 0.25 1 10\n");
+    assert_string_equal(text, "2\ngranflow packing Properties=species:S:1:pos:R:3:radius:R:1\n"
+                              "P 0.5 -1 2 0.5\nP 0.25 1 10 0.5\n");
     free(text);
     gf_packing_free(&p);
 }
@@ -726,6 +754,53 @@ static void gzip_reads_like_plain(void **state)
     gf_packing_free(&c);
 }
 
+// Issue 26: a .gz with bytes after its gzip data was read as if whole (zlib
+// ignores them), and a cut one was reported at ":1:" whatever the place of
+// the cut. Two gzip members one after the other are still one file.
+static void gzip_garbage_and_the_place_of_a_cut(void **state)
+{
+    (void)state;
+    gf_packing a = {0}, c = {0};
+    random_packing(&a, 3000, 11, 1, 1);
+    char plain[1024], gz[1024], bad[1024];
+    snprintf(plain, sizeof plain, "%s", tmppath("gg.dump"));
+    snprintf(gz, sizeof gz, "%s", tmppath("gg.dump.gz"));
+    snprintf(bad, sizeof bad, "%s", tmppath("gg_bad.dump.gz"));
+    assert_int_equal(gf_packing_write(&a, plain, GF_FORMAT_AUTO, NULL), GF_OK);
+    size_t full = gf_test_gzip(plain, gz, 0);
+    assert_true(full > 0);
+    size_t nz;
+    char *z = gf_test_read_file(gz, &nz);
+    assert_non_null(z);
+    const char *tails[] = {"garbage\n", "x"}; // (a tail starting 1f 8b is a bad member: zlib says corrupt)
+    for (size_t k = 0; k < 2; k++) {
+        FILE *f = fopen(bad, "wb");
+        assert_non_null(f);
+        fwrite(z, 1, nz, f);
+        fputs(tails[k], f);
+        fclose(f);
+        expect_error(bad, GF_FORMAT_AUTO, GF_ERR_FORMAT, "gg_bad.dump.gz", 0, "bytes after the end of the gzip data");
+    }
+    FILE *f = fopen(bad, "wb"); // two members: read as one file (the second frame is the last)
+    assert_non_null(f);
+    fwrite(z, 1, nz, f);
+    fwrite(z, 1, nz, f);
+    fclose(f);
+    assert_int_equal(gf_packing_read(bad, GF_FORMAT_AUTO, &c), GF_OK);
+    expect_same(&a, &c, 1, 1);
+    free(z);
+    // Cut at a third: the line of the cut, far past line 1.
+    assert_true(gf_test_gzip(plain, bad, full / 3) > 0);
+    expect_error(bad, GF_FORMAT_AUTO, GF_ERR_FORMAT, "gg_bad.dump.gz", 0, "truncated gzip file");
+    long line = 0;
+    const char *m = strstr(gf_last_error(), "gg_bad.dump.gz:");
+    assert_non_null(m);
+    assert_int_equal(sscanf(m, "gg_bad.dump.gz:%ld:", &line), 1);
+    if (!(line > 100 && line < 3010)) fail_msg("the cut is reported at line %ld: %s", line, gf_last_error());
+    gf_packing_free(&a);
+    gf_packing_free(&c);
+}
+
 static void read_from_fifo(void **state)
 {
     (void)state;
@@ -792,6 +867,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(error_empty_file),
     cmocka_unit_test(error_zero_atoms),
     cmocka_unit_test(error_xyz_fewer_lines),
+    cmocka_unit_test(xyz_properties_give_the_radii),
     cmocka_unit_test(error_csv_without_z),
     cmocka_unit_test(error_triclinic_box),
     cmocka_unit_test(error_not_a_dump),
@@ -802,6 +878,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(write_error_names_path),
     cmocka_unit_test(big_dump_50000),
     cmocka_unit_test(gzip_reads_like_plain),
+    cmocka_unit_test(gzip_garbage_and_the_place_of_a_cut),
     cmocka_unit_test(read_from_fifo),
 };
 

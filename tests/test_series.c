@@ -246,7 +246,7 @@ static void missing_inputs(void **state)
     (void)state;
     const char *dir = subdir("empty");
     gf_series s;
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_IO, "empty: no LAMMPS dumps in this directory", NULL);
+    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_PARAM, "empty: no LAMMPS dumps in this directory", NULL);
     char path[1200];
     snprintf(path, sizeof path, "%s/nothing-here", gf_test_tmpdir());
     expect_error(gf_series_load(path, 0.0, &s), GF_ERR_IO, "cannot open", "nothing-here");
@@ -254,13 +254,13 @@ static void missing_inputs(void **state)
     const char *run = subdir("emptyrun");
     snprintf(path, sizeof path, "%s/snapshots", run);
     assert_int_equal(mkdir(path, 0777), 0);
-    expect_error(gf_series_load(run, 0.0, &s), GF_ERR_IO, "emptyrun/snapshots: no LAMMPS dumps", NULL);
+    expect_error(gf_series_load(run, 0.0, &s), GF_ERR_PARAM, "emptyrun/snapshots: no LAMMPS dumps", NULL);
     // A run with output.format = vtk: its .vtu snapshots are named, and what to do.
     const char *vrun = subdir("vturun");
     snprintf(path, sizeof path, "%s/snapshots", vrun);
     assert_int_equal(mkdir(path, 0777), 0);
     gf_test_write_file(vrun, "snapshots/snap_000000.vtu", "<?xml version=\"1.0\"?>\n");
-    expect_error(gf_series_load(vrun, 0.0, &s), GF_ERR_IO, "vturun/snapshots: only VTK (.vtu) snapshots",
+    expect_error(gf_series_load(vrun, 0.0, &s), GF_ERR_PARAM, "vturun/snapshots: only VTK (.vtu) snapshots",
                  "output.format = dump or both");
     // An empty dump file: the importer's message.
     gf_test_write_file(run, "snapshots/snap_000000.dump", "");

@@ -268,6 +268,11 @@ GF_API double gf_config_exit_plane(const gf_config *cfg);
 /// Writes the configuration as a valid INI file that gf_config_load reads back
 /// to the same values (numbers printed with round-trip precision).
 GF_API gf_status gf_config_write(const gf_config *cfg, FILE *out);
+/// GF_OK when gf_config_write can write `cfg` so that it reads back the same;
+/// GF_ERR_PARAM naming the key and where it was set otherwise (a path with a
+/// line break, white space at an end, " ;" inside, or too long for one INI
+/// line). A run checks this before it creates its directory (config.ini).
+GF_API gf_status gf_config_check_writable(const gf_config *cfg);
 
 // ---- by name: what bindings use (no dependence on the struct's layout) -----
 

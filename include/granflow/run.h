@@ -55,6 +55,13 @@ GF_API gf_run_opts gf_run_opts_default(void);
 /// the final counters.
 GF_API gf_status gf_run_dir(const gf_config *cfg, const gf_run_opts *opts, gf_sim_stats *stats);
 
+/// GF_OK when no granflow run holds dir/.lock (or there is none, or no dir);
+/// GF_ERR_PARAM, "DIR is in use by another granflow run (pid N, lock
+/// DIR/.lock) ...", when one does. Touches nothing. gf_run_dir checks this
+/// first, before it builds a packing or reads a checkpoint; a caller may ask
+/// before anything of its own (the CLI, before "no run to resume").
+GF_API gf_status gf_run_dir_check_free(const char *dir);
+
 /// gf_run_write_snapshot (one snapshot frame as a LAMMPS dump) is a file
 /// format: it is declared in granflow/particles.h, included above.
 

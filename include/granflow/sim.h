@@ -59,6 +59,13 @@ typedef struct gf_run_hooks {
 /// The defaults (what a NULL `hooks` means): every member NULL/0.
 GF_API gf_run_hooks gf_run_hooks_default(void);
 
+/// Checks `cfg` (validated on a copy) for what the engine needs of the
+/// container before any packing is built: with run.recirculate = on and
+/// run.reinsert = zone, room for a re-inserted sphere in the zone
+/// run.reinsert_rmin <= r < run.reinsert_rmax (GF_ERR_PARAM naming both keys
+/// otherwise). gf_sim_create and gf_run_dir call it first.
+GF_API gf_status gf_sim_check_config(const gf_config *cfg);
+
 /// Creates a simulation of `packing` (copied) under `cfg` (validated). Spots
 /// and time start at zero.
 GF_API gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim **out);
@@ -175,8 +182,14 @@ GF_API void gf_sim_set_par_profiling(gf_sim *sim, int on);
 /// the first spatial step).
 GF_API gf_par_profile gf_sim_par_profile(const gf_sim *sim);
 
-/// Writes a checkpoint (versioned header, CRC-32, written then renamed).
+/// Writes a checkpoint (versioned header, CRC-32, written then renamed). It
+/// is built in memory first, in one block of its size.
 GF_API gf_status gf_sim_save(const gf_sim *sim, const char *path);
+/// An estimate from above of the size of the checkpoint, bytes, once every
+/// particle still inside has left (each exit adds a record; with
+/// recirculation, a record per particle): what gf_run_dir makes sure of, in
+/// memory and on disk, before it runs.
+GF_API size_t gf_sim_checkpoint_bound(const gf_sim *sim);
 /// Restores a checkpoint. `cfg` may differ from the saved one only in [run]
 /// and [output] keys (GF_ERR_PARAM otherwise); it becomes the sim's config.
 GF_API gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out);

@@ -134,7 +134,13 @@ def check(status):
 
 
 def enc(text):
-    return os.fsencode(text) if isinstance(text, os.PathLike) else str(text).encode()
+    """Text (or a path) as bytes for the library. A NUL would end the C string
+    there, so "2\\0junk" would be read as 2 without a word: refused, as
+    Python's own open() refuses one."""
+    data = os.fsencode(text) if isinstance(text, os.PathLike) else str(text).encode()
+    if b"\0" in data:
+        raise ValueError("%r: a NUL character cannot be passed to granflow (the text would end there)" % (text,))
+    return data
 
 
 def warnings():

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """A spot-model simulation driven step by step; particles and exits as numpy arrays."""
 import ctypes
+import math
 import os
 import time
 from pathlib import Path
@@ -70,6 +71,8 @@ class Simulation:
         pieces, the state whole; the pieces give the same result as one call.
         """
         until, piece = float(until), 0.01
+        if math.isnan(until):  # every comparison with NaN is false: it would return at once, having done nothing
+            raise ValueError("run(until=nan): until must be a number (tau)")
         sim = self._live()
         while self.time < until:
             start, was = time.perf_counter(), self.time

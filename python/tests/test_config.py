@@ -73,3 +73,15 @@ def test_where_each_key_was_set(tmp_path):
     c.validate()
     with pytest.raises(KeyError):
         c.where("nosuch.key")
+
+
+def test_a_nul_inside_a_value_is_refused(tmp_path):
+    # Issue 26: "2\0junk" was read as 2, from a file and from Python.
+    c = granflow.Config()
+    with pytest.raises(ValueError, match="NUL"):
+        c["spot.radius"] = "2\0junk"
+    assert c["spot.radius"] == 2.6
+    path = tmp_path / "nul.ini"
+    path.write_bytes(b"[spot]\nradius = 2\0junk\n")
+    with pytest.raises(ValueError, match=r"nul.ini:2: a NUL byte \(\\0\) at column 11"):
+        c.load(path)

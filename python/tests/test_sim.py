@@ -116,3 +116,15 @@ def test_import_reports_dropped_particles_as_a_warning(tmp_path):
     assert len(w) == 1 and "720 of 721 particles kept (1 below the base" in w[0], w
     granflow.clear_warnings()
     assert granflow.warnings() == []
+
+
+def test_run_nan_is_refused(small):
+    # Issue 26: run(nan) returned at once, having done nothing, without a word.
+    import pytest
+
+    with granflow.Simulation(small) as sim:
+        with pytest.raises(ValueError, match="nan"):
+            sim.run(float("nan"))
+        assert sim.time == 0
+        assert lib.gf_sim_run(sim._live(), float("nan"), None) != 0  # the library refuses it too
+        assert "NaN" in lib.gf_last_error().decode()

@@ -128,6 +128,8 @@ gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1,
     memset(f, 0, sizeof *f);
     if (!(bin > 0.0)) return gf_error_set(GF_ERR_PARAM, "velocity bin must be positive, got %g", bin);
     double xlo = INFINITY, xhi = -INFINITY, zlo = INFINITY, zhi = -INFINITY;
+    double far = -1.0; // the particle farthest from the origin, named when the field is too large
+    size_t far_k = k0, far_i = 0;
     for (size_t k = k0; k < k1; k++) {
         const gf_packing *pk = &s->frames[k].pk;
         for (size_t i = 0; i < pk->n; i++) {
@@ -136,14 +138,26 @@ gf_status gf_vfield_init(gf_vfield *f, const gf_series *s, size_t k0, size_t k1,
             xhi = fmax(xhi, x);
             zlo = fmin(zlo, pk->z[i]);
             zhi = fmax(zhi, pk->z[i]);
+            double d = fmax(fabs(x), fabs(pk->z[i]));
+            if (d > far) {
+                far = d;
+                far_k = k;
+                far_i = i;
+            }
         }
     }
     f->bin = bin;
     f->radial = radial;
     if (!(xlo <= xhi) || !(zlo <= zhi)) return GF_OK; // no particles: an empty field
     double nx = floor(xhi / bin) - floor(xlo / bin) + 1.0, nz = floor(zhi / bin) - floor(zlo / bin) + 1.0;
-    if (!(nx * nz <= 1e8))
-        return gf_error_set(GF_ERR_PARAM, "velocity field of %.0f x %.0f bins of %g d is too large", nx, nz, bin);
+    if (!(nx * nz <= 1e8)) {
+        const gf_packing *pk = &s->frames[far_k].pk;
+        return gf_error_set(GF_ERR_PARAM,
+                            "velocity field of %.3g x %.3g bins of %g d is too large: particle id %lld at (%g, %g, "
+                            "%g) in the snapshot at t = %g tau is that far out",
+                            nx, nz, bin, (long long)pk->id[far_i], pk->x[far_i], pk->y[far_i], pk->z[far_i],
+                            s->frames[far_k].time);
+    }
     f->ix0 = (long)floor(xlo / bin);
     f->iz0 = (long)floor(zlo / bin);
     f->nx = (size_t)nx;

@@ -174,13 +174,16 @@ static gf_status gf_list_dumps(gf_loader *L, const char *dir)
     }
     closedir(d);
     if (st != GF_OK) return st;
+    // Nothing to read where the command was pointed: a wrong directory or a
+    // run made without dumps, so the command line (exit 2), not an I/O
+    // failure (issue 26: both exited 1, "the run failed").
     if (L->nfiles == 0 && vtu)
-        return gf_error_set(GF_ERR_IO,
+        return gf_error_set(GF_ERR_PARAM,
                             "%s: only VTK (.vtu) snapshots, which are for ParaView: analysis and pictures read the "
                             "LAMMPS dumps (run with output.format = dump or both)",
                             dir);
     if (L->nfiles == 0)
-        return gf_error_set(GF_ERR_IO,
+        return gf_error_set(GF_ERR_PARAM,
                             "%s: no LAMMPS dumps in this directory (looked for *.dump, *.lammpstrj, *.txt, dump.*, each possibly .gz)",
                             dir);
     qsort(L->files, L->nfiles, sizeof *L->files, gf_name_cmp);
@@ -309,6 +312,53 @@ static gf_status gf_series_fit_container(gf_series *s, const gf_packing_frame *h
 
 // ---------------------------------------------------------------------------
 
+static int gf_series_id_cmp(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+// A particle of the first frame that is gone from the last one has left
+// (without recirculation nothing else removes one), so exits.csv must list
+// it by then. One that it does not list makes the outflow and residence
+// times read from exits.csv short without a word (issue 26: 100 particles
+// lost from the last frame, rc 0): warn, naming the frame and a particle.
+static gf_status gf_series_check_exits(const gf_series *s, const char *last_file, const char *exits_path)
+{
+    if (!s->has_exits || s->cfg.run_recirculate || s->nframes < 2) return GF_OK;
+    const gf_packing *first = &s->frames[0].pk, *last = &s->frames[s->nframes - 1].pk;
+    const double t = s->frames[s->nframes - 1].time, slack = 1e-9 * fmax(1.0, fabs(t));
+    size_t nl = last->n, ne = 0;
+    int64_t *kept = GF_NEW(int64_t, nl ? nl : 1), *left = GF_NEW(int64_t, s->nexits ? s->nexits : 1);
+    if (!kept || !left) {
+        GF_DELETE(kept, nl ? nl : 1);
+        GF_DELETE(left, s->nexits ? s->nexits : 1);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory checking %s", exits_path);
+    }
+    memcpy(kept, last->id, nl * sizeof *kept);
+    for (size_t k = 0; k < s->nexits; k++)
+        if (s->exits[k].time <= t + slack) left[ne++] = s->exits[k].id;
+    qsort(kept, nl, sizeof *kept, gf_series_id_cmp);
+    qsort(left, ne, sizeof *left, gf_series_id_cmp);
+    size_t missing = 0;
+    int64_t example = 0;
+    for (size_t i = 0; i < first->n; i++) {
+        const int64_t id = first->id[i];
+        if (bsearch(&id, kept, nl, sizeof *kept, gf_series_id_cmp) ||
+            bsearch(&id, left, ne, sizeof *left, gf_series_id_cmp))
+            continue;
+        if (missing++ == 0) example = id;
+    }
+    GF_DELETE(kept, nl ? nl : 1);
+    GF_DELETE(left, s->nexits ? s->nexits : 1);
+    if (missing)
+        gf_warn("%s (t = %.6g tau): %zu particles of the first frame are gone (id %lld, ...) but %s does not list "
+                "them leaving by then: it is incomplete or from another run, and the outflow and residence times "
+                "read from it miss them",
+                last_file, t, missing, (long long)example, exits_path);
+    return GF_OK;
+}
+
 static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
 {
     qsort(L->fr, L->nfr, sizeof *L->fr, gf_frame_cmp);
@@ -358,7 +408,12 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
     }
     s->n_initial = s->frames[0].pk.n;
     if (!have_cfg && (st = gf_series_fit_container(s, &L->fr[0].hdr)) != GF_OK) return st;
-    return gf_series_fill_layers(s, L->fr);
+    st = gf_series_fill_layers(s, L->fr);
+    if (st == GF_OK && dir) {
+        snprintf(path, sizeof path, "%s/exits.csv", dir);
+        st = gf_series_check_exits(s, L->files[L->fr[L->nfr - 1].file], path);
+    }
+    return st;
 }
 
 gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)

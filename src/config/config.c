@@ -135,6 +135,15 @@ static char *gf_config_read_line(char *str, int num, void *stream)
         return NULL;
     }
     ld->line++;
+    // A NUL would end the line for every string function below: "radius =
+    // 2\0junk" read as 2 (issue 26). A configuration file is text.
+    const char *nul = memchr(ld->buf, '\0', (size_t)got);
+    if (nul) {
+        gf_config_fail(ld, gf_error_set(GF_ERR_PARAM, "%s:%d: a NUL byte (\\0) at column %zu: a configuration "
+                                                      "file is text",
+                                        ld->path, ld->line, (size_t)(nul - ld->buf) + 1));
+        return NULL;
+    }
     char *p = ld->buf;
     if (ld->line == 1 && got >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3; // UTF-8 BOM
     p = gf_config_trim(p);
@@ -251,20 +260,61 @@ static gf_status gf_config_validate_cylinder(gf_config *cfg)
         return gf_error_set(GF_ERR_PARAM, "%s%s does nothing in a cylinder (container.shape = cylinder), whose "
                                           "outlet is %s: set that instead", m.lead, m.key[0], m.key[1]);
     }
+    // The bound is printed worked out (2R, R - 1): "less than 2 *
+    // container.radius = 0.5" read as if 0.5 were the bound (issue 26).
     if (!(cfg->outlet_diameter < 2.0 * cfg->container_radius)) {
         gf_config_msg_make(&m, cfg, "container.outlet_diameter", "container.radius");
-        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than 2 * %s", m.lead, m.key[0], m.key[1]);
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than the cylinder's diameter 2R = %g (%s)", m.lead,
+                            m.key[0], 2.0 * cfg->container_radius, m.key[1]);
     }
     if (cfg->inner_radius > 0.0 && !(cfg->inner_radius + 1.0 < cfg->container_radius)) {
         gf_config_msg_make(&m, cfg, "container.inner_radius", "container.radius");
-        return gf_error_set(GF_ERR_PARAM, "%s%s leaves no room for a sphere: it must be less than %s - 1", m.lead,
-                            m.key[0], m.key[1]);
+        return gf_error_set(GF_ERR_PARAM, "%s%s leaves no room for a sphere: it must be less than R - 1 = %g (%s)",
+                            m.lead, m.key[0], cfg->container_radius - 1.0, m.key[1]);
     }
     if (cfg->inner_radius > 0.0 && !(cfg->hopper_angle > 0.0)) {
         gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
         return gf_error_set(GF_ERR_PARAM, "%s%s needs container.hopper_angle > 0, not %s: the column ends at the "
                                           "top of the funnel, and on a flat base it would stand on the outlet",
                             m.lead, m.key[0], m.key[1]);
+    }
+    if (cfg->inner_radius > 0.0) {
+        // Everything reaches the outlet through the gap between the column's
+        // bottom rim (r_i, z_top) and the funnel (docs/geometry.md): its
+        // distance to the funnel's line, or to the outlet's rim (r_o, 0) when
+        // the foot of that distance falls inside the outlet. A gap narrower
+        // than a sphere closes the silo (issue 26: hopper_angle = 1e-300 was
+        // accepted, then failed with "cannot drain").
+        const double a = cfg->hopper_angle * (3.14159265358979323846 / 180.0);
+        const double R = cfg->container_radius, ro = 0.5 * cfg->outlet_diameter, ri = cfg->inner_radius;
+        const double z_top = (R - ro) * tan(a);
+        const double t = (ri - ro) * cos(a) + z_top * sin(a);
+        const double gap = t >= 0.0 ? (R - ri) * sin(a) : hypot(ri - ro, z_top);
+        if (!(gap >= 1.0)) {
+            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s%s with %s leaves a gap of %.3g d between the column's bottom (z = %.3g) and "
+                                "the funnel, narrower than a sphere: nothing could reach the outlet (raise "
+                                "container.hopper_angle, or lower container.inner_radius)",
+                                m.lead, m.key[0], m.key[1], gap, z_top);
+        }
+        // Spots are born on the disc of radius r_o - spot.insertion_margin
+        // and removed at the first step that takes them above the highest
+        // particle of their grid column. Under a column whose bottom is too
+        // low for a sphere there is none: if the column covers that whole
+        // disc, every spot goes at once and nothing can ever drain.
+        const double birth = fmax(0.0, ro - cfg->spot_insertion_margin);
+        if (z_top < 1.0 && ri >= birth) {
+            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s%s with %s puts the column's bottom %.3g d above the outlet, too low for a "
+                                "sphere under it, over the whole disc where spots are born (radius "
+                                "container.outlet_diameter / 2 - spot.insertion_margin = %g): every spot would be "
+                                "removed at its first step and nothing could drain (raise container.hopper_angle "
+                                "to at least %.3g, or lower container.inner_radius below %g)",
+                                m.lead, m.key[0], m.key[1], z_top, birth, atan(1.0 / (R - ro)) * (180.0 / 3.14159265358979323846),
+                                birth);
+        }
     }
     cfg->container_width = cfg->container_depth = 2.0 * cfg->container_radius;
     cfg->orifice_diameter = cfg->outlet_diameter;
@@ -366,6 +416,25 @@ static const char *gf_config_unwritable(const char *key, const char *path)
             return "contains ';' after white space (an INI comment)";
     if (strlen(key) + 3 + len > GF_CONFIG_MAX_LINE) return "is too long for one INI line";
     return NULL;
+}
+
+gf_status gf_config_check_writable(const gf_config *cfg)
+{
+    gf_status st = gf_config_check(cfg, "gf_config_check_writable");
+    if (st != GF_OK) return st;
+    for (size_t i = 0; i < gf_keys_count; i++) {
+        const gf_key *k = &gf_keys[i];
+        if (k->type != GF_KEY_PATH) continue;
+        const char *bad = gf_config_unwritable(k->name, (const char *)cfg + k->offset);
+        if (!bad) continue;
+        char key[160];
+        snprintf(key, sizeof key, "%s.%s", k->section, k->name);
+        gf_config_msg m;
+        gf_config_msg_make(&m, cfg, key, NULL);
+        return gf_error_set(GF_ERR_PARAM, "%s%s %s: config.ini could not hold it (rename the file, or move it)",
+                            m.lead, m.key[0], bad);
+    }
+    return GF_OK;
 }
 
 gf_status gf_config_write(const gf_config *cfg, FILE *out)

@@ -290,12 +290,32 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
     return gf_atomic_commit(f, tmp, path);
 }
 
+// Snapshots of `s` within t0..t1 (a hair of rounding either side).
+static size_t gf_cmp_frames_in(const gf_series *s, double t0, double t1)
+{
+    const double eps = 1e-9 * fmax(1.0, fabs(t1));
+    size_t n = 0;
+    for (size_t k = 0; k < s->nframes; k++)
+        if (!(s->frames[k].time < t0 - eps) && !(s->frames[k].time > t1 + eps)) n++;
+    return n;
+}
+
 gf_status gf_dem_compare(const gf_series *dem, const gf_series *spot, const gf_analysis_opts *o, const char *outdir,
                          bool plots)
 {
     if (dem->nframes < 2 || spot->nframes < 2)
         return gf_error_set(GF_ERR_PARAM, "compare needs two snapshots or more of each run (DEM %zu, spot %zu)",
                             dem->nframes, spot->nframes);
+    // The velocities, profiles and their fits take pairs of snapshots inside
+    // the window: with one, every row was NaN and the figure failed in
+    // gnuplot (issue 26). Refused before anything is written.
+    const size_t in_dem = gf_cmp_frames_in(dem, o->t0, o->t1), in_spot = gf_cmp_frames_in(spot, o->t0, o->t1);
+    if (in_dem < 2 || in_spot < 2)
+        return gf_error_set(GF_ERR_PARAM,
+                            "too few snapshots to compare: the window %g..%g tau holds %zu of the DEM run's and %zu "
+                            "of the spot run's, and each needs two or more (snapshots more often, a longer run, or "
+                            "a wider window.t0..window.t1)",
+                            o->t0, o->t1, in_dem, in_spot);
     gf_status st = gf_fs_mkdirs(outdir);
     if (st != GF_OK) return st;
     gf_analysis_opts oc = *o;

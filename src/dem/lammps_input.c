@@ -249,6 +249,7 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
         plan.box_zhi = top + 2.0;
     }
 
+    if ((st = gf_config_check_writable(c)) != GF_OK) goto done; // config.ini goes in last: check it first
     if ((st = gf_fs_mkdirs(dir)) != GF_OK) goto done;
     char sub[GF_PATH_MAX + 32];
     snprintf(sub, sizeof sub, "%s/snapshots", dir);

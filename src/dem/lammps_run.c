@@ -165,10 +165,57 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r->error[0]) return GF_OK;
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
         return gf_error_set(GF_ERR_IO, "cannot execute %s", argv[0]);
-    if (WIFSIGNALED(status))
-        return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped by signal %d", dir, script, WTERMSIG(status));
+    if (WIFSIGNALED(status)) {
+        // Our own stop only when the flag is up (a signal to granflow after
+        // LAMMPS closed its output); a crash or a kill by someone else is a
+        // failure, not an interruption (issue 26: a segfault read as exit 130).
+        if (r->o->stop && *r->o->stop)
+            return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped by signal %d", dir, script,
+                                WTERMSIG(status));
+        return gf_error_set(GF_ERR_STATE, "LAMMPS crashed on %s/%s: killed by signal %d (%s); see %s/%s", dir,
+                            script, WTERMSIG(status), strsignal(WTERMSIG(status)), dir, log);
+    }
     return gf_error_set(GF_ERR_PARAM, "LAMMPS failed on %s/%s (see %s/%s): %s", dir, script, dir, log,
                         r->error[0] ? r->error : "non-zero exit status");
+}
+
+/// After a phase LAMMPS ended with exit 0: what it must have written is
+/// there and new (modified since `since`, less a second for the file system's
+/// coarse clock): the fill's settled.restart and packing.dump, at least one
+/// snapshot of the drain. A LAMMPS that exits 0 without them (a wrong binary
+/// under GF_LMP, an input edited by hand) would otherwise end in "done".
+static gf_status gf_dem_check_outputs(const char *dir, bool fill, time_t since)
+{
+    char path[GF_PATH_MAX + 64];
+    struct stat sb;
+    if (fill) {
+        const char *names[2] = {"settled.restart", "packing.dump"};
+        for (int k = 0; k < 2; k++) {
+            snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+            if (stat(path, &sb) != 0 || sb.st_mtime < since - 1 || sb.st_size == 0)
+                return gf_error_set(GF_ERR_STATE,
+                                    "LAMMPS ended the fill (%s/in.fill) with exit status 0 but wrote no %s "
+                                    "(see %s/log.fill)",
+                                    dir, path, dir);
+        }
+        return GF_OK;
+    }
+    snprintf(path, sizeof path, "%s/snapshots", dir);
+    DIR *d = opendir(path);
+    bool found = false;
+    for (struct dirent *e; d && !found && (e = readdir(d)) != NULL;) {
+        if (strncmp(e->d_name, "snap_", 5) != 0) continue;
+        char file[GF_PATH_MAX + 320];
+        snprintf(file, sizeof file, "%s/%s", path, e->d_name);
+        found = stat(file, &sb) == 0 && sb.st_mtime >= since - 1 && sb.st_size > 0;
+    }
+    if (d) closedir(d);
+    if (!found)
+        return gf_error_set(GF_ERR_STATE,
+                            "LAMMPS ended the drain (%s/in.drain) with exit status 0 but wrote no snapshot in %s "
+                            "(see %s/log.drain)",
+                            dir, path, dir);
+    return GF_OK;
 }
 
 /// After LAMMPS was stopped: removes what the stopped phase may have left
@@ -241,6 +288,7 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         const time_t since = time(NULL);
         gf_status st = gf_dem_run_one(dir, scripts[k], lmp, use_mpi ? mpirun : NULL, ranks, &r);
         if (st == GF_ERR_INTERRUPTED) gf_dem_mark_interrupted(dir, k == 0, &r, since);
+        if (st == GF_OK) st = gf_dem_check_outputs(dir, k == 0, since);
         if (st != GF_OK) return st;
     }
     char mark[GF_PATH_MAX + 32];

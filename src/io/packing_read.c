@@ -613,23 +613,70 @@ static gf_status gf_read_lammps(gf_reader *rd)
 
 // ---------------------------------------------------------------------------
 // XYZ: count line, comment line, `name x y z [...]` lines; concatenated
-// frames are allowed, the last one is kept.
+// frames are allowed, the last one is kept. A comment line in the extended
+// XYZ form (`Properties=species:S:1:pos:R:3:radius:R:1`, as granflow writes
+// it, and OVITO and ASE read it) places the positions and the radius;
+// without one the columns are `name x y z` and every radius is 1/2.
+
+static int gf_xyz_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/// The columns that the comment line's `Properties=` announces, into `c`
+/// (left as it is without one). Returns GF_OK, or an error naming the line.
+static gf_status gf_xyz_properties(const gf_textscan *ts, const char *comment, gf_columns *c)
+{
+    const char *p = strstr(comment, "Properties=");
+    if (!p || (p > comment && !gf_xyz_blank(p[-1]))) return GF_OK;
+    p += strlen("Properties=");
+    int col = 0, pos = -1, radius = -1;
+    while (*p && !gf_xyz_blank(*p)) {
+        char name[64], type[8];
+        long count;
+        int used = 0;
+        if (sscanf(p, "%63[^:]:%7[^:]:%ld%n", name, type, &count, &used) != 3 || count < 1 ||
+            count > GF_READ_MAX_COLS || col + count > GF_READ_MAX_COLS)
+            return gf_error_set(GF_ERR_FORMAT,
+                                "%s:%ld: the comment line's Properties= is not a list of NAME:TYPE:COUNT "
+                                "(at '%.40s')",
+                                ts->path, ts->line, p);
+        if (strcmp(name, "pos") == 0 && count == 3) pos = col;
+        if (strcmp(name, "radius") == 0 && count == 1) radius = col;
+        col += (int)count;
+        p += used;
+        if (*p == ':') p++;
+        else if (*p && !gf_xyz_blank(*p))
+            return gf_error_set(GF_ERR_FORMAT,
+                                "%s:%ld: the comment line's Properties= is not a list of NAME:TYPE:COUNT "
+                                "(at '%.40s')",
+                                ts->path, ts->line, p);
+    }
+    if (pos < 0)
+        return gf_error_set(GF_ERR_FORMAT, "%s:%ld: the comment line's Properties= has no pos:R:3",
+                            ts->path, ts->line);
+    c->ncols = col;
+    for (int k = 0; k < 3; k++) c->pos[k] = pos + k;
+    c->radius = radius;
+    return GF_OK;
+}
 
 static gf_status gf_read_xyz(gf_reader *rd)
 {
     gf_textscan *ts = &rd->ts;
-    const gf_columns cols = {.ncols = 4,
-                             .pos = {1, 2, 3},
-                             .pos_name = {"x", "y", "z"},
-                             .id = -1,
-                             .radius = -1,
-                             .diameter = -1,
-                             .type = -1,
-                             .pass = -1};
+    const gf_columns plain = {.ncols = 4,
+                              .pos = {1, 2, 3},
+                              .pos_name = {"x", "y", "z"},
+                              .id = -1,
+                              .radius = -1,
+                              .diameter = -1,
+                              .type = -1,
+                              .pass = -1,
+                              .radius_name = "radius"};
     int nframes = 0;
     long count_line = 0;
     for (;;) {
-        char *line, *tok[4];
+        char *line, *tok[GF_READ_MAX_COLS];
         size_t len;
         gf_status st;
         int r;
@@ -656,6 +703,8 @@ static gf_status gf_read_xyz(gf_reader *rd)
             return gf_error_set(GF_ERR_FORMAT,
                                 "%s:%ld: file ends after the atom count (truncated file?)",
                                 ts->path, ts->line);
+        gf_columns cols = plain;
+        if ((st = gf_xyz_properties(ts, line, &cols)) != GF_OK) return st;
         st = gf_read_begin_frame(rd, want, 0);
         if (st != GF_OK) return st;
         long long have = 0;
@@ -668,20 +717,22 @@ static gf_status gf_read_xyz(gf_reader *rd)
                     "%s:%ld: file ends after %lld of the %lld atoms announced on line "
                     "%ld (truncated file?)",
                     ts->path, ts->line, have, want, count_line);
-            n = gf_textscan_split(line, tok, 4);
+            n = gf_textscan_split(line, tok, (size_t)cols.ncols);
             if (n == 0) continue;
-            if (n < 4 && ts->partial)
+            if (n < (size_t)cols.ncols && ts->partial)
                 return gf_error_set(
                     GF_ERR_FORMAT,
                     "%s:%ld: file ends in the middle of atom %lld of the %lld announced "
                     "on line %ld (truncated file?)",
                     ts->path, ts->line, have + 1, want, count_line);
-            if (n < 4)
+            if (n < (size_t)cols.ncols)
                 return gf_error_set(
                     GF_ERR_FORMAT,
-                    "%s:%ld: atom line has %zu columns, expected 'name x y z' (atom %lld "
+                    "%s:%ld: atom line has %zu columns, expected %s (atom %lld "
                     "of the %lld announced on line %ld)",
-                    ts->path, ts->line, n, have + 1, want, count_line);
+                    ts->path, ts->line, n,
+                    cols.ncols == 4 ? "'name x y z'" : "those of the comment line's Properties=", have + 1,
+                    want, count_line);
             st = gf_read_row(rd, &cols, tok, NULL, NULL);
             if (st != GF_OK) return st;
             have++;

@@ -75,7 +75,10 @@ static void gf_write_body(FILE *f, const gf_packing *p, gf_packing_format format
         }
         fputs("ITEM: ATOMS id type x y z radius\n", f);
     } else if (format == GF_FORMAT_XYZ) {
-        fprintf(f, "%zu\ngranflow packing\n", p->n);
+        // Extended XYZ: the comment line names the columns, so the radii
+        // come back (a bidisperse packing stays bidisperse) and OVITO and
+        // ASE read them too.
+        fprintf(f, "%zu\ngranflow packing Properties=species:S:1:pos:R:3:radius:R:1\n", p->n);
     } else {
         fputs("id,type,x,y,z,radius\n", f);
     }
@@ -84,11 +87,11 @@ static void gf_write_body(FILE *f, const gf_packing *p, gf_packing_format format
         gf_write_num(x, sizeof x, p->x[i]);
         gf_write_num(y, sizeof y, p->y[i]);
         gf_write_num(z, sizeof z, p->z[i]);
+        gf_write_num(r, sizeof r, p->r[i]);
         if (format == GF_FORMAT_XYZ) {
-            fprintf(f, "P %s %s %s\n", x, y, z);
+            fprintf(f, "P %s %s %s %s\n", x, y, z, r);
             continue;
         }
-        gf_write_num(r, sizeof r, p->r[i]);
         int type = p->layer[i] > 0 ? (int)p->layer[i] : 1;
         fprintf(f, "%lld%s%d%s%s%s%s%s%s%s%s\n", (long long)p->id[i], sep, type, sep, x, sep, y,
                 sep, z, sep, r);

@@ -4,6 +4,9 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -51,6 +54,86 @@ void gf_textscan_close(gf_textscan *ts)
     ts->cap = 0;
 }
 
+// Whether `path` is gzip members and nothing else: zlib's gzread ignores
+// bytes after the last member that do not start another one (issue 26: a .gz
+// with trailing garbage was accepted). Decompresses the file once more, into
+// nothing, and returns the raw offset of such bytes, or -1 when there are
+// none (or the file cannot be read here: gzread reports that itself).
+static long long gf_textscan_garbage_at(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) {
+        fclose(f);
+        return -1;
+    }
+    enum { GF_GZ_IN = 1 << 16 };
+    unsigned char *in = gf_alloc(GF_GZ_IN), out[1 << 14];
+    if (!in) {
+        inflateEnd(&z);
+        fclose(f);
+        return -1;
+    }
+    long long consumed = 0, at = -1;
+    bool done = false;
+    while (!done) {
+        if (z.avail_in == 0) {
+            size_t got = fread(in, 1, GF_GZ_IN, f);
+            if (got == 0) break; // the end of the file at a member's end or inside one
+            z.next_in = in;
+            z.avail_in = (uInt)got;
+        }
+        z.next_out = out;
+        z.avail_out = sizeof out;
+        uInt before = z.avail_in;
+        int rc = inflate(&z, Z_NO_FLUSH);
+        consumed += before - z.avail_in;
+        if (rc == Z_STREAM_END) {
+            // Another member must follow, or nothing at all.
+            if (z.avail_in == 0) {
+                size_t got = fread(in, 1, GF_GZ_IN, f);
+                if (got == 0) break;
+                z.next_in = in;
+                z.avail_in = (uInt)got;
+            }
+            if (z.avail_in >= 1 && z.next_in[0] != 0x1f) at = consumed;
+            else if (z.avail_in >= 2 && z.next_in[1] != 0x8b) at = consumed;
+            if (at >= 0) break;
+            inflateReset(&z);
+        } else if (rc != Z_OK && rc != Z_BUF_ERROR) {
+            done = true; // corrupt data: gzread says so
+        }
+    }
+    inflateEnd(&z);
+    gf_free(in, GF_GZ_IN);
+    fclose(f);
+    return at;
+}
+
+// At the end of a gzip file's data (`total` bytes): its trailer's ISIZE
+// (the last 4 bytes, little-endian) is that size mod 2^32 for a file of one
+// member, the common case, checked at the cost of a read; otherwise the file
+// is read again for bytes after its members.
+static gf_status gf_textscan_check_trailer(const gf_textscan *ts, long long total)
+{
+    FILE *f = fopen(ts->path, "rb");
+    if (!f) return GF_OK; // not a file we can reopen (gzread reads it): nothing to check
+    unsigned char t[4];
+    bool same = fseek(f, -4, SEEK_END) == 0 && fread(t, 1, 4, f) == 4 &&
+                ((uint32_t)t[0] | (uint32_t)t[1] << 8 | (uint32_t)t[2] << 16 | (uint32_t)t[3] << 24) ==
+                    (uint32_t)(unsigned long long)total;
+    fclose(f);
+    if (same) return GF_OK;
+    long long at = gf_textscan_garbage_at(ts->path);
+    if (at < 0) return GF_OK; // several members, and nothing after them
+    return gf_error_set(GF_ERR_FORMAT,
+                        "%s: bytes after the end of the gzip data, from byte %lld of the file (appended to it, or "
+                        "not one gzip file?)",
+                        ts->path, at);
+}
+
 // Refills: moves the unread tail to the front, grows the buffer when a single
 // line fills it, then reads one more chunk. Always leaves room for a NUL.
 static gf_status gf_textscan_fill(gf_textscan *ts)
@@ -83,12 +166,23 @@ static gf_status gf_textscan_fill(gf_textscan *ts)
     if (got < GF_TEXTSCAN_CHUNK) {
         // gzread returns short reads only at the end; a gzip stream cut off
         // before its trailer ends with Z_BUF_ERROR ("unexpected end of file").
+        // The data before the cut is whole: the line named is the one the
+        // cut falls in, not the first line of this chunk (issue 26: ":1:").
         int code;
         const char *msg = gzerror(ts->f, &code);
-        if (code == Z_BUF_ERROR)
-            return gf_error_set(GF_ERR_FORMAT, "%s:%ld: truncated gzip file (%s)", ts->path, ts->line + 1, msg);
+        if (code == Z_BUF_ERROR) {
+            long line = ts->line + 1;
+            for (size_t k = ts->beg; k < ts->end; k++) line += ts->buf[k] == '\n';
+            return gf_error_set(GF_ERR_FORMAT,
+                                "%s:%ld: truncated gzip file (%s): the data stops there, after %lld bytes", ts->path,
+                                line, msg, ts->base + (long long)ts->end);
+        }
         if (code != Z_OK)
             return gf_error_set(GF_ERR_FORMAT, "%s:%ld: corrupt gzip data (%s)", ts->path, ts->line + 1, msg);
+        if (ts->gz && ts->seekable) { // a regular file, which can be opened again (not a FIFO)
+            gf_status st = gf_textscan_check_trailer(ts, ts->base + (long long)ts->end);
+            if (st != GF_OK) return st;
+        }
         ts->eof = 1;
     }
     return GF_OK;

@@ -663,7 +663,12 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     g.stop = stop;
     g.box = gf_container_make(cfg);
     g.shaped = g.box.kind != GF_SHAPE_BOX;
-    g.zoff = g.shaped ? fmin(0.0, g.box.exit_z) : 0.0; // a pipe is filled from its end up
+    // A pipe is filled from its end up (or from the exit plane, when that is
+    // higher). Below the pipe's end (or below the outlet, with no pipe) there
+    // is no wall: the outlet is closed while the packing is built, as the box's
+    // orifice is, and what falls through it when the run starts falls freely
+    // to an exit plane lower down.
+    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, -g.box.pipe)) : 0.0;
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
     if (st == GF_OK) gf_gen_snap(&g);

@@ -10,6 +10,7 @@
 #include "geom/celllist.h"
 #include "geom/container.h"
 #include "io/packing_frames.h"
+#include "packing/blame.h"
 #include "packing/layer.h"
 
 int32_t gf_packing_layer_of(double z, double thickness)
@@ -78,21 +79,41 @@ double gf_packing_min_distance(const gf_packing *p)
     return sqrt(best2);
 }
 
+// An imported packing: the lead "FILE:LINE: " of particle `id` and the
+// tail " (packing.file, WHERE)"; both empty for a generated one.
+static void gf_packing_lead(const gf_config *cfg, int64_t id, char *lead, size_t nlead, char *from, size_t nfrom)
+{
+    lead[0] = from[0] = '\0';
+    if (!cfg->packing_file[0]) return;
+    long line = gf_packing_line_of(cfg->packing_file, id);
+    if (line > 0) snprintf(lead, nlead, "%s:%ld: ", cfg->packing_file, line);
+    else snprintf(lead, nlead, "%s: ", cfg->packing_file);
+    char where[GF_PATH_MAX + 32];
+    if (gf_config_where(cfg, "packing.file", where, sizeof where) == GF_OK)
+        snprintf(from, nfrom, " (packing.file, %s)", where);
+}
+
+gf_status gf_packing_blame_highest(const gf_packing *p, const gf_config *cfg, gf_status st)
+{
+    if (p->n == 0) return st;
+    size_t top = 0;
+    for (size_t i = 1; i < p->n; i++)
+        if (p->z[i] > p->z[top]) top = i;
+    char why[1024], lead[GF_PATH_MAX + 32], from[GF_PATH_MAX + 64];
+    snprintf(why, sizeof why, "%s", gf_last_error());
+    gf_packing_lead(cfg, p->id[top], lead, sizeof lead, from, sizeof from);
+    return gf_error_set(st, "%s%s: particle id %lld at (%g, %g, %g) is the highest, and the grid reaches up to it%s",
+                        lead, why, (long long)p->id[top], p->x[top], p->y[top], p->z[top], from);
+}
+
 gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
 {
     gf_container box = gf_container_make(cfg);
     for (size_t i = 0; i < p->n; i++) {
         if (gf_container_contains(&box, p->x[i], p->y[i], p->z[i], 0.0, 0.0)) continue;
         // An imported packing: lead with its file and the particle's line there.
-        char lead[GF_PATH_MAX + 32] = "", from[GF_PATH_MAX + 64] = "";
-        if (cfg->packing_file[0]) {
-            long line = gf_packing_line_of(cfg->packing_file, p->id[i]);
-            if (line > 0) snprintf(lead, sizeof lead, "%s:%ld: ", cfg->packing_file, line);
-            else snprintf(lead, sizeof lead, "%s: ", cfg->packing_file);
-            char where[GF_PATH_MAX + 32];
-            if (gf_config_where(cfg, "packing.file", where, sizeof where) == GF_OK)
-                snprintf(from, sizeof from, " (packing.file, %s)", where);
-        }
+        char lead[GF_PATH_MAX + 32], from[GF_PATH_MAX + 64];
+        gf_packing_lead(cfg, p->id[i], lead, sizeof lead, from, sizeof from);
         return gf_error_set(GF_ERR_PARAM,
                             "%sparticle id %lld at (%g, %g, %g) is outside the container "
                             "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)%s",

@@ -200,6 +200,23 @@ static gf_status gf_render_pictures(gf_render_job *j)
     return st;
 }
 
+// A chosen time must lie within the run, give or take half the interval at
+// its end: "the nearest snapshot" to t = 1e17 was whichever came first in
+// the rounding (t = 0, issue 26), and any far time names no snapshot.
+static gf_status gf_render_check_times(const char *dir, const gf_render_options *o, const gf_series *s)
+{
+    const size_t n = s->nframes;
+    const double t0 = s->frames[0].time, t1 = s->frames[n - 1].time;
+    const double before = n > 1 ? 0.5 * (s->frames[1].time - t0) : 1e-6 * fmax(1.0, fabs(t0));
+    const double after = n > 1 ? 0.5 * (t1 - s->frames[n - 2].time) : 1e-6 * fmax(1.0, fabs(t1));
+    for (size_t t = 0; t < o->ntimes; t++)
+        if (!(o->times[t] >= t0 - before && o->times[t] <= t1 + after))
+            return gf_error_set(GF_ERR_PARAM, "render: no snapshot of %s near t = %g tau: its %zu snapshot%s go%s from "
+                                              "t = %g to %g tau",
+                                dir, o->times[t], n, n == 1 ? "" : "s", n == 1 ? "es" : "", t0, t1);
+    return GF_OK;
+}
+
 gf_status gf_render_dir(const char *dir, const gf_render_options *opt)
 {
     if (!dir || !opt) return gf_error_set(GF_ERR_PARAM, "gf_render_dir: NULL argument");
@@ -210,6 +227,10 @@ gf_status gf_render_dir(const char *dir, const gf_render_options *opt)
     if (s.nframes == 0) {
         gf_series_free(&s);
         return gf_error_set(GF_ERR_STATE, "%s: no snapshots", dir);
+    }
+    if ((st = gf_render_check_times(dir, opt, &s)) != GF_OK) {
+        gf_series_free(&s);
+        return st;
     }
     gf_render_job j = {.o = opt, .s = &s};
     if ((st = gf_render_outdir(dir, opt, j.outdir, sizeof j.outdir)) != GF_OK) {

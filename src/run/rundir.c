@@ -10,7 +10,9 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -44,6 +46,8 @@ typedef struct gf_rundir {
     uint64_t *vtu_index;  // the .vtu snapshots of snapshots.pvd: their indices and times
     double *vtu_time;
     size_t nvtu, vtu_cap;
+    void *reserve;        // memory held for the checkpoint (gf_make_room), freed while one is built
+    size_t reserve_size;
 } gf_rundir;
 
 // A fresh run starts from an empty run directory: everything an earlier run
@@ -75,6 +79,33 @@ static gf_status gf_clear_run(const char *dir)
 // One run at a time per directory: a POSIX record lock on dir/.lock, held
 // until the process ends (the kernel drops it even after kill -9). The file
 // holds the owner's pid for the message of the next one.
+// The refusal of a directory whose lock (open on fd) another run holds; closes fd.
+static gf_status gf_lock_busy(const char *dir, const char *path, int fd)
+{
+    char pid[32] = "";
+    ssize_t n = pread(fd, pid, sizeof pid - 1, 0);
+    pid[n > 0 ? n : 0] = '\0';
+    pid[strcspn(pid, "\n")] = '\0';
+    close(fd);
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
+                        "or use another directory",
+                        dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
+}
+
+gf_status gf_run_dir_check_free(const char *dir)
+{
+    if (!dir) return gf_error_set(GF_ERR_PARAM, "gf_run_dir_check_free: NULL directory");
+    char path[GF_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/.lock", dir);
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return GF_OK; // no lock file (or no directory): nobody runs there
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+    if (fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK) return gf_lock_busy(dir, path, fd);
+    close(fd);
+    return GF_OK;
+}
+
 static gf_status gf_lock_dir(const char *dir, int *fd_out)
 {
     char path[GF_PATH_MAX + 32];
@@ -84,16 +115,8 @@ static gf_status gf_lock_dir(const char *dir, int *fd_out)
     struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
     if (fcntl(fd, F_SETLK, &fl) != 0) {
         int err = errno;
-        char pid[32] = "";
-        ssize_t n = read(fd, pid, sizeof pid - 1);
-        pid[n > 0 ? n : 0] = '\0';
-        pid[strcspn(pid, "\n")] = '\0';
+        if (err == EACCES || err == EAGAIN) return gf_lock_busy(dir, path, fd);
         close(fd);
-        if (err == EACCES || err == EAGAIN)
-            return gf_error_set(GF_ERR_PARAM,
-                                "%s is in use by another granflow run (%s%s%slock %s): wait for it to end, "
-                                "or use another directory",
-                                dir, *pid ? "pid " : "", pid, *pid ? ", " : "", path);
         return gf_error_set(GF_ERR_IO, "%s: cannot lock: %s", path, strerror(err));
     }
     char pid[32];
@@ -296,9 +319,65 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
 {
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
+    // The memory held for the checkpoint since the start is what it is
+    // built in now; held again afterwards, for the next one.
+    if (rd->reserve) gf_free(rd->reserve, rd->reserve_size);
     gf_status st = gf_sim_save(sim, path);
+    rd->reserve = rd->reserve_size ? gf_alloc(rd->reserve_size) : NULL;
     if (st == GF_OK && rd->cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_pvd(rd);
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
+}
+
+static void gf_mb(char *buf, size_t n, double bytes) { snprintf(buf, n, "%.3g MB", bytes / 1e6); }
+
+// What the checkpoint will need at the end of the run, made sure of before
+// the run starts (issue 26: a 200,000-particle run under a 100 MB limit ran to
+// its end, then failed to write its checkpoint): memory to build it in, held
+// from now on; below the file size limit; twice on disk (the new one is
+// written beside the old, then renamed). The snapshots' share of the disk is
+// only estimated, so a shortfall there is a warning.
+static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
+{
+    const double bound = (double)gf_sim_checkpoint_bound(sim);
+    char need[32], have[32];
+    gf_mb(need, sizeof need, bound);
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_FSIZE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && bound > (double)rl.rlim_cur) {
+        gf_mb(have, sizeof have, (double)rl.rlim_cur);
+        return gf_error_set(GF_ERR_IO,
+                            "cannot write checkpoint: File too large: it will take up to %s by the end of the run, "
+                            "over the file size limit of %s (ulimit -f)",
+                            need, have);
+    }
+    struct statvfs fs;
+    if (statvfs(rd->dir, &fs) == 0) {
+        const double free_bytes = (double)fs.f_bavail * (double)fs.f_frsize;
+        gf_mb(have, sizeof have, free_bytes);
+        if (free_bytes < 2.0 * bound)
+            return gf_error_set(GF_ERR_IO,
+                                "cannot write checkpoint: No space left on device: it will take up to %s by the end "
+                                "of the run (twice while one replaces the other), and %s has %s free",
+                                need, rd->dir, have);
+        const gf_config *c = rd->cfg;
+        const double left = c->run_duration - gf_sim_get_stats(sim).time;
+        const double snaps = c->output_format == GF_OUTPUT_VTK ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
+        const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
+        if (free_bytes < 2.0 * bound + dumps) {
+            char total[32];
+            gf_mb(total, sizeof total, 2.0 * bound + dumps);
+            gf_warn("%s has %s free, and this run may write about %s (up to %.0f snapshots and its checkpoint): "
+                    "it may fill the disk before the end",
+                    rd->dir, have, total, snaps);
+        }
+    }
+    rd->reserve_size = (size_t)bound;
+    rd->reserve = gf_alloc(rd->reserve_size);
+    if (!rd->reserve)
+        return gf_error_set(GF_ERR_NOMEM,
+                            "out of memory for the checkpoint: it will take up to %s by the end of the run, and that "
+                            "much cannot be allocated now (a memory limit?)",
+                            need);
+    return GF_OK;
 }
 
 static gf_status gf_on_checkpoint(void *ctx, const gf_sim *sim) { return gf_save_all(ctx, sim); }
@@ -383,11 +462,16 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (stats) memset(stats, 0, sizeof *stats);
     gf_config cfg = *cfg_in;
     gf_status st = gf_config_validate(&cfg);
+    if (st == GF_OK) st = gf_sim_check_config(&cfg); // before a packing is built
     if (st != GF_OK) return st;
     gf_rundir rd = {.cfg = &cfg, .opts = opts, .status = "running", .lock_fd = -1};
     if (snprintf(rd.dir, sizeof rd.dir, "%s", opts->dir) >= (int)sizeof rd.dir)
         return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(opts->dir),
                             GF_PATH_MAX - 1);
+    // A directory another run holds is refused first: before a checkpoint
+    // is read or a packing built (issue 26: a resume of a locked directory
+    // said "no run to resume"; a fresh run built its packing, then failed).
+    if ((st = gf_run_dir_check_free(rd.dir)) != GF_OK) return st;
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
@@ -411,6 +495,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }
+    // config.ini must hold the configuration: refused before the directory is
+    // made (issue 26: a packing.file with a line break left an empty one).
+    if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
     if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
     if (st == GF_OK && opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
@@ -434,16 +521,30 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         .progress_every = 1u << 15,
         .stop = opts->stop,
     };
-    st = gf_sim_run(sim, cfg.run_duration, &hooks);
+    st = gf_make_room(&rd, sim);
+    if (st == GF_OK) st = gf_sim_run(sim, cfg.run_duration, &hooks);
     size_t nexit;
     gf_sim_exits(sim, &nexit);
     double reached = gf_sim_get_stats(sim).time;
     if (rd.stalled && nexit == 0) {
         // Not one particle has left: a silo that cannot drain is an error.
+        // An exit plane far below the outlet (or the pipe's end) is reached
+        // only slowly: below it a particle moves only as spots pass, there
+        // is no free fall, so say so.
+        char deep[256] = "";
+        if (cfg.exit_z < -1.0)
+            snprintf(deep, sizeof deep,
+                     "; the exit plane is %g d below the %s, and a particle on its way there moves only as "
+                     "spots pass (there is no free fall): raise container.exit_z, or run.stall_time to wait "
+                     "longer",
+                     -cfg.exit_z,
+                     cfg.container_shape != GF_SHAPE_CYLINDER ? "orifice"
+                     : cfg.outlet_length > 0.0                ? "end of the outlet pipe"
+                                                              : "outlet");
         st = gf_error_set(GF_ERR_STATE,
                           "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
-                          "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau",
-                          cfg.run_stall_time, reached);
+                          "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau%s",
+                          cfg.run_stall_time, reached, deep);
     } else if (rd.stalled) {
         st = GF_OK;
     }
@@ -491,6 +592,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     GF_DELETE(rd.pass, rd.pass_cap);
     if (rd.vtu_index) GF_DELETE(rd.vtu_index, rd.vtu_cap);
     if (rd.vtu_time) GF_DELETE(rd.vtu_time, rd.vtu_cap);
+    if (rd.reserve) gf_free(rd.reserve, rd.reserve_size);
     gf_sim_destroy(sim);
     return st;
 }

@@ -24,10 +24,15 @@ typedef struct gf_buf {
     unsigned char *data;
     size_t len, cap;
     bool oom;
+    bool count; // only count the bytes (the size of a checkpoint, before it is allocated)
 } gf_buf;
 
 static void gf_put(gf_buf *b, const void *src, size_t n)
 {
+    if (b->count) {
+        b->len += n;
+        return;
+    }
     if (b->oom) return;
     if (b->len + n > b->cap) {
         size_t cap = b->cap ? b->cap : 4096;
@@ -113,11 +118,10 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len,
     return gf_error_set(GF_ERR_NOMEM, "configuration text too long for a checkpoint");
 }
 
-gf_status gf_sim_save(const gf_sim *sim, const char *path)
+// The payload of a checkpoint into b (or its size, with b->count).
+static gf_status gf_ckpt_fill(const gf_sim *sim, gf_buf *b_out)
 {
-    // Saves come between events, when every exit has been put back.
-    if (sim->nreins != 0) return gf_error_set(GF_ERR_STATE, "checkpoint while re-insertions are pending");
-    gf_buf b = {0};
+    gf_buf b = *b_out;
     char *phys = NULL;
     size_t plen = 0, pcap = 0;
     gf_status st = gf_ckpt_physics(&sim->cfg, &phys, &plen, &pcap);
@@ -168,9 +172,37 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
         gf_put(&b, GF_CKPT_CLOCKS, 8);
         gf_put(&b, sim->snext, sizeof(double) * sim->ns);
     }
-    if (b.oom) {
+    *b_out = b;
+    return GF_OK;
+}
+
+// Bytes before the payload: magic, version, byte-order mark, size, CRC.
+#define GF_CKPT_HEADER (8 + 4 + 4 + 8 + 4)
+
+size_t gf_sim_checkpoint_bound(const gf_sim *sim)
+{
+    gf_buf m = {.count = true};
+    if (gf_ckpt_fill(sim, &m) != GF_OK) return 0;
+    // Every particle still inside may yet leave (with recirculation, leave
+    // again: a run that long is beyond this estimate).
+    return GF_CKPT_HEADER + m.len + sizeof(gf_exit) * (sim->cfg.run_recirculate ? sim->n : sim->n_alive);
+}
+
+gf_status gf_sim_save(const gf_sim *sim, const char *path)
+{
+    // Saves come between events, when every exit has been put back.
+    if (sim->nreins != 0) return gf_error_set(GF_ERR_STATE, "checkpoint while re-insertions are pending");
+    // Measured first and allocated once, at its size: a buffer grown by
+    // doubling took up to twice that, at the end of a run (issue 26).
+    gf_buf m = {.count = true};
+    gf_status st = gf_ckpt_fill(sim, &m);
+    if (st != GF_OK) return st;
+    gf_buf b = {.data = gf_alloc(m.len ? m.len : 1), .cap = m.len ? m.len : 1};
+    if (!b.data) return gf_error_set(GF_ERR_NOMEM, "out of memory writing checkpoint %s (%zu bytes)", path, m.len);
+    st = gf_ckpt_fill(sim, &b);
+    if (st != GF_OK || b.oom) {
         gf_free(b.data, b.cap);
-        return gf_error_set(GF_ERR_NOMEM, "out of memory writing checkpoint %s", path);
+        return st != GF_OK ? st : gf_error_set(GF_ERR_NOMEM, "out of memory writing checkpoint %s", path);
     }
 
     char tmp[GF_PATH_MAX + 8];

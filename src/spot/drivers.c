@@ -154,6 +154,7 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
 {
     static const gf_run_hooks none = {0};
     if (!hooks) hooks = &none;
+    if (isnan(until)) return gf_error_set(GF_ERR_PARAM, "gf_sim_run: the end time is NaN"); // would do nothing
     const double dsnap = sim->cfg.output_snapshot_interval, dck = sim->cfg.run_checkpoint_interval;
     const double last_snap = until + 1e-9 * dsnap; // k * dsnap may round just above until
     uint64_t every = hooks->progress_every ? hooks->progress_every : UINT64_MAX;

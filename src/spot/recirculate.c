@@ -19,6 +19,7 @@
 #include <math.h>
 
 #include "core/alloc.h"
+#include "config/where.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
 
@@ -35,13 +36,52 @@ bool gf_sim_reinsert_queue(gf_sim *sim, uint32_t i)
     return true;
 }
 
-// Whether a sphere of radius r may be put back at (x, y).
+// Whether a sphere of radius r may be put back at (x, y) of container `box`.
+static bool gf_zone_allowed(const gf_container *box, const gf_config *cfg, double x, double y, double r)
+{
+    if (!gf_container_inside_xy(box, x, y, r)) return false;
+    if (cfg->run_reinsert != GF_REINSERT_ZONE) return true;
+    double rho = hypot(x, y), rmax = cfg->run_reinsert_rmax;
+    return rho >= cfg->run_reinsert_rmin && (isnan(rmax) || rho < rmax);
+}
+
 static bool gf_reinsert_allowed(const gf_sim *sim, double x, double y, double r)
 {
-    if (!gf_container_inside_xy(&sim->box, x, y, r)) return false;
-    if (sim->cfg.run_reinsert != GF_REINSERT_ZONE) return true;
-    double rho = hypot(x, y), rmax = sim->cfg.run_reinsert_rmax;
-    return rho >= sim->cfg.run_reinsert_rmin && (isnan(rmax) || rho < rmax);
+    return gf_zone_allowed(&sim->box, &sim->cfg, x, y, r);
+}
+
+gf_status gf_sim_check_config(const gf_config *cfg_in)
+{
+    if (!cfg_in) return gf_error_set(GF_ERR_PARAM, "gf_sim_check_config: NULL configuration");
+    gf_config cfg = *cfg_in;
+    gf_status st = gf_config_validate(&cfg);
+    if (st != GF_OK || !cfg.run_recirculate || cfg.run_reinsert != GF_REINSERT_ZONE) return st;
+    // The share of the cross-section where a sphere of radius 1/2 may be put
+    // back, on a 256 x 256 lattice over the bounding box: the targets are
+    // drawn there by rejection, GF_REINSERT_SAMPLES tries each, so a share
+    // that gives fewer than ~50 hits in those tries would fail at some exit
+    // (issue 26: an impossible zone was refused at the first exit, after the
+    // packing was built).
+    const gf_container box = gf_container_make(&cfg);
+    double lo[2], hi[2];
+    gf_container_bounds_xy(&box, lo, hi);
+    const int n = 256;
+    long hits = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++)
+            hits += gf_zone_allowed(&box, &cfg, lo[0] + (hi[0] - lo[0]) * (i + 0.5) / n,
+                                    lo[1] + (hi[1] - lo[1]) * (j + 0.5) / n, 0.5);
+    const double share = (double)hits / ((double)n * n);
+    if (share * GF_REINSERT_SAMPLES >= 50.0) return GF_OK;
+    gf_config_msg m;
+    gf_config_msg_make(&m, &cfg, "run.reinsert_rmin", "run.reinsert_rmax");
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s%s and %s leave %s of the container's cross-section (%s) for re-inserted particles: "
+                        "recirculation could not put them back",
+                        m.lead, m.key[0], m.key[1], hits ? "almost nothing" : "nothing",
+                        box.kind == GF_SHAPE_CYLINDER ? "a sphere's centre within container.radius - 1/2 of the axis"
+                                                      : "a sphere's centre 1/2 inside the walls, |x| <= "
+                                                        "container.width / 2 - 1/2, |y| <= container.depth / 2 - 1/2");
 }
 
 // A target position uniform over the allowed region (rejection from the

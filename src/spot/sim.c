@@ -11,6 +11,7 @@
 #include "core/alloc.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "packing/blame.h"
 #include "spot/sim_internal.h"
 
 void gf_sim_derive(gf_sim *sim)
@@ -97,6 +98,7 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
     if (!sim) return gf_error_set(GF_ERR_NOMEM, "out of memory");
     sim->cfg = *cfg;
     gf_status st = gf_config_validate(&sim->cfg);
+    if (st == GF_OK) st = gf_sim_check_config(&sim->cfg);
     if (st != GF_OK) goto fail;
     gf_sim_derive(sim);
     if ((st = gf_sim_alloc_particles(sim, packing->n)) != GF_OK) goto fail;
@@ -111,7 +113,12 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
     }
     if ((st = gf_packing_check(packing, &sim->cfg)) != GF_OK) goto fail;
     if ((st = gf_nlist_slots(sim)) != GF_OK) goto fail;
-    if ((st = gf_sim_make_grid(sim)) != GF_OK) goto fail;
+    if ((st = gf_sim_make_grid(sim)) != GF_OK) {
+        // The grid spans the packing's height: name the particle that set it
+        // (issue 26: z = 1e300 gave "grid too large" and nothing else).
+        if (st == GF_ERR_PARAM) st = gf_packing_blame_highest(packing, &sim->cfg, st);
+        goto fail;
+    }
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
     if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
     gf_rng_seed(&sim->rng, cfg->run_seed, 0x5350u /* "SP": the spot stream */);
