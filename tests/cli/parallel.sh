@@ -47,7 +47,7 @@ assert 50 < d["memory_bytes_per_particle"] < 5000
 assert d["projected_drain_seconds"] > 0
 EOF
 ok "bench figures are positive and in range"
-gf bench --json --particles 2000 --set container.width=14 --warmup 1 --window 0.2 --spatial --no-large
+gf bench --json --particles 2000 --set container.width=14 --warmup 0.5 --window 0.1 --spatial --no-large
 expect_rc 0 "bench --spatial --no-large"
 grep -q '"engine": "spatial"' out || fail "bench --spatial did not time the spatial engine"
 ok "bench --spatial times the spatial fixed step"
