@@ -176,23 +176,7 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
     q->secs = GF_NEW(double, q->nblock);
     if (!q->sec || !q->blockof || !q->run || !q->runload || !q->mine || !q->rankload || !q->secs)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
-    gf_status st = gf_celllist_keys(&q->bycolour, (size_t)q->nsect, q->nblock);
-    if (st != GF_OK) return st;
-    for (int cz = 0; cz < g->nz; cz++)
-        for (int cy = 0; cy < g->ny; cy++)
-            for (int cx = 0; cx < g->nx; cx++) {
-                size_t bx = (size_t)(cx / q->bs[0]), by = (size_t)(cy / q->bs[1]), bz = (size_t)(cz / q->bs[2]);
-                q->blockof[((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx] =
-                    (uint32_t)((bz * (size_t)q->nb[1] + by) * (size_t)q->nb[0] + bx);
-            }
-    for (size_t b = 0; b < q->nblock; b++) {
-        size_t bx = b % (size_t)q->nb[0], by = b / (size_t)q->nb[0] % (size_t)q->nb[1];
-        size_t bz = b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
-        q->bycolour.cell[b] = (uint32_t)((bx % (size_t)q->nc[0]) +
-                                         (size_t)q->nc[0] * ((by % (size_t)q->nc[1]) + (size_t)q->nc[1] * (bz % (size_t)q->nc[2])));
-    }
-    gf_celllist_sort(&q->bycolour, q->nblock);
-    return GF_OK;
+    return gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
 }
 
 // The workers for the current thread count; the decomposition is made once

@@ -190,22 +190,27 @@ static gf_status gf_par_blocks(gf_sim *sim, gf_par *q)
     q->rankload = GF_NEW(uint64_t, q->nblock);
     if (!q->block || !q->blockof || !q->pstart || !q->run || !q->runload || !q->secs || !q->mine || !q->rankload)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the parallel step");
-    gf_status st = gf_celllist_keys(&q->colours, (size_t)q->ncolour, q->nblock);
+    return gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->colours);
+}
+
+gf_status gf_par_colour_blocks(const gf_grid *g, const int bs[3], const int nb[3], const int nc[3], uint32_t *blockof,
+                               gf_celllist *bycolour)
+{
+    const size_t nblock = (size_t)nb[0] * (size_t)nb[1] * (size_t)nb[2];
+    gf_status st = gf_celllist_keys(bycolour, (size_t)nc[0] * (size_t)nc[1] * (size_t)nc[2], nblock);
     if (st != GF_OK) return st;
     for (int cz = 0; cz < g->nz; cz++)
         for (int cy = 0; cy < g->ny; cy++)
             for (int cx = 0; cx < g->nx; cx++) {
-                size_t bx = (size_t)(cx / q->bs[0]), by = (size_t)(cy / q->bs[1]), bz = (size_t)(cz / q->bs[2]);
-                q->blockof[((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx] =
-                    (uint32_t)((bz * (size_t)q->nb[1] + by) * (size_t)q->nb[0] + bx);
+                size_t bx = (size_t)(cx / bs[0]), by = (size_t)(cy / bs[1]), bz = (size_t)(cz / bs[2]);
+                blockof[((size_t)cz * (size_t)g->ny + (size_t)cy) * (size_t)g->nx + (size_t)cx] =
+                    (uint32_t)((bz * (size_t)nb[1] + by) * (size_t)nb[0] + bx);
             }
-    for (size_t b = 0; b < q->nblock; b++) {
-        size_t bx = b % (size_t)q->nb[0], by = b / (size_t)q->nb[0] % (size_t)q->nb[1];
-        size_t bz = b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
-        q->colours.cell[b] = (uint32_t)((bx % (size_t)q->nc[0]) +
-                                        (size_t)q->nc[0] * ((by % (size_t)q->nc[1]) + (size_t)q->nc[1] * (bz % (size_t)q->nc[2])));
+    for (size_t b = 0; b < nblock; b++) {
+        size_t bx = b % (size_t)nb[0], by = b / (size_t)nb[0] % (size_t)nb[1], bz = b / ((size_t)nb[0] * (size_t)nb[1]);
+        bycolour->cell[b] = (uint32_t)((bx % (size_t)nc[0]) + (size_t)nc[0] * ((by % (size_t)nc[1]) + (size_t)nc[1] * (bz % (size_t)nc[2])));
     }
-    gf_celllist_sort(&q->colours, q->nblock);
+    gf_celllist_sort(bycolour, nblock);
     return GF_OK;
 }
 

@@ -287,6 +287,12 @@ double gf_par_reach(const gf_sim *sim);
 int gf_par_threads(const gf_config *c);
 /// The removal test's column tops, as gf_grid_column_top would answer now.
 void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol);
+struct gf_celllist;
+/// Blocks of bs[a] cells along axis a (nb[a] of them) and their colours,
+/// the block index modulo nc[a] along each axis: blockof[cell] is a cell's
+/// block, and bycolour lists the blocks colour by colour, in index order.
+gf_status gf_par_colour_blocks(const gf_grid *g, const int bs[3], const int nb[3], const int nc[3], uint32_t *blockof,
+                               struct gf_celllist *bycolour);
 /// Adds a region's counters (fixed order: the sums do not depend on threads).
 void gf_par_add(gf_sim_stats *to, const gf_sim_stats *a);
 /// Makespan of jobs of seconds secs[0, n) (heaviest first) on T threads,
