@@ -19,7 +19,11 @@ static char *table_of(int kind, const char *text, size_t max_rows)
     size_t len = 0;
     FILE *out = open_memstream(&buf, &len);
     assert_non_null(out);
-    assert_true(kind == TABLE_CSV ? gf_html_csv_table(out, path, max_rows) : gf_html_json_table(out, path));
+    bool found = false;
+    assert_int_equal(kind == TABLE_CSV ? gf_html_csv_table(out, path, max_rows, &found)
+                                       : gf_html_json_table(out, path, &found),
+                     GF_OK);
+    assert_true(found);
     fclose(out);
     return buf;
 }

@@ -103,7 +103,10 @@ gf_status gf_analyze(const gf_series *s, const gf_analysis_opts *o, const char *
     snprintf(path, sizeof path, "%s/summary.json", outdir);
     gf_summary *sum = GF_NEW(gf_summary, 1);
     if (!sum) return gf_error_set(GF_ERR_NOMEM, "out of memory");
-    if (only) gf_summary_read(sum, path);
+    if (only && (st = gf_summary_read(sum, path)) != GF_OK) {
+        GF_DELETE(sum, 1);
+        return st;
+    }
     double t0, t1;
     gf_analysis_window(o, s, &t0, &t1);
     gf_summary_num(sum, "frames", (double)s->nframes);

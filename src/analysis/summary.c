@@ -2,12 +2,15 @@
 // analysis/summary.json: the headline numbers of gf_analyze, written and read back.
 #include "analysis/summary.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "core/atomic_file.h"
+#include "core/textscan.h"
 #include "core/json.h"
 
 gf_summary_item *gf_summary_slot(gf_summary *s, const char *key)
@@ -40,12 +43,17 @@ void gf_summary_text(gf_summary *s, const char *key, const char *text)
         if (*c == '"' || *c == '\\' || (unsigned char)*c < 0x20) *c = '\'';
 }
 
-void gf_summary_read(gf_summary *s, const char *path)
+gf_status gf_summary_read(gf_summary *s, const char *path)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return;
-    char line[512];
-    while (fgets(line, sizeof line, f)) {
+    struct stat sb;
+    if (stat(path, &sb) != 0 && errno == ENOENT) return GF_OK;
+    gf_textscan ts;
+    gf_status st = gf_textscan_open_regular(&ts, path, (long long)16 * 1024 * 1024);
+    if (st != GF_OK) return st;
+    ts.max_line = GF_TEXTSCAN_MAX_SHORT_LINE;
+    char *line;
+    size_t n;
+    while (gf_textscan_next(&ts, &line, &n, &st) > 0) {
         char key[GF_TABLE_NAME], rest[320];
         if (sscanf(line, " \"%47[^\"]\" : %319[^\n]", key, rest) != 2) continue;
         size_t len = strlen(rest);
@@ -61,7 +69,8 @@ void gf_summary_read(gf_summary *s, const char *path)
             if (end != rest) gf_summary_num(s, key, v);
         }
     }
-    fclose(f);
+    gf_textscan_close(&ts);
+    return st;
 }
 
 gf_status gf_summary_write(const gf_summary *s, const char *path)

@@ -35,9 +35,11 @@ void gf_summary_num(gf_summary *s, const char *key, double v);
 void gf_summary_text(gf_summary *s, const char *key, const char *text);
 
 /// Adds the entries of the summary.json at `path` (one "key": value per line,
-/// as gf_summary_write writes them; other lines are skipped). An absent or
-/// unreadable file adds nothing.
-void gf_summary_read(gf_summary *s, const char *path);
+/// as gf_summary_write writes them; other lines are skipped). An absent file
+/// adds nothing (GF_OK); anything but a regular file of at most 16 MB with
+/// lines of at most 64 kB, a read error or out of memory is an error naming
+/// the file (a FIFO or a link to /dev/zero in its place would never end).
+gf_status gf_summary_read(gf_summary *s, const char *path);
 
 /// Writes the summary to `path` (atomically).
 gf_status gf_summary_write(const gf_summary *s, const char *path);

@@ -4,9 +4,13 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/fs.h"
+#include "core/textscan.h"
 
 void gf_html_text(FILE *out, const char *s)
 {
@@ -24,13 +28,32 @@ void gf_html_text(FILE *out, const char *s)
 gf_status gf_html_base64_file(FILE *out, const char *path)
 {
     static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    FILE *f = fopen(path, "rb");
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    int fd;
+    gf_status st = gf_fs_open_regular(path, GF_HTML_PICTURE_MAX, &fd);
+    if (st != GF_OK) return st;
     unsigned char in[3 * 4096];
     char enc[4 * 4096];
-    size_t n;
-    // Whole groups of 3 bytes per chunk, so only the file's end needs padding.
-    while ((n = fread(in, 1, sizeof in, f)) > 0) {
+    long long total = 0;
+    for (;;) {
+        // Whole groups of 3 bytes per chunk, so only the file's end needs padding.
+        size_t n = 0;
+        while (n < sizeof in) {
+            ssize_t got = read(fd, in + n, sizeof in - n);
+            if (got < 0 && errno == EINTR) continue;
+            if (got < 0) {
+                int e = errno;
+                close(fd);
+                return gf_error_set(GF_ERR_IO, "%s: read error: %s", path, strerror(e));
+            }
+            if (got == 0) break;
+            n += (size_t)got;
+        }
+        total += (long long)n;
+        if (total > GF_HTML_PICTURE_MAX) { // grown since it was opened
+            close(fd);
+            return gf_error_set(GF_ERR_FORMAT, "%s: more than the %lld bytes expected of a picture", path,
+                                (long long)GF_HTML_PICTURE_MAX);
+        }
         size_t w = 0;
         for (size_t i = 0; i < n; i += 3) {
             unsigned v = (unsigned)in[i] << 16 | (i + 1 < n ? (unsigned)in[i + 1] << 8 : 0) |
@@ -43,9 +66,8 @@ gf_status gf_html_base64_file(FILE *out, const char *path)
         fwrite(enc, 1, w, out);
         if (n < sizeof in) break;
     }
-    int err = ferror(f);
-    fclose(f);
-    return err ? gf_error_set(GF_ERR_IO, "%s: read error", path) : GF_OK;
+    close(fd);
+    return GF_OK;
 }
 
 gf_status gf_html_image(FILE *out, const char *path, const char *alt)
@@ -74,14 +96,29 @@ static char *gf_html_trim(char *s, bool json)
     return s;
 }
 
-bool gf_html_json_table(FILE *out, const char *path)
+// Opens a text file of the run for a table: absent is not an error (*found
+// false); anything but a regular file of at most GF_HTML_TEXT_MAX bytes is.
+static gf_status gf_html_open_text(gf_textscan *ts, const char *path, bool *found)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
+    *found = false;
+    struct stat sb;
+    if (stat(path, &sb) != 0 && errno == ENOENT) return GF_OK;
+    gf_status st = gf_textscan_open_regular(ts, path, GF_HTML_TEXT_MAX);
+    if (st != GF_OK) return st;
+    ts->max_line = GF_TEXTSCAN_MAX_SHORT_LINE;
+    *found = true;
+    return GF_OK;
+}
+
+gf_status gf_html_json_table(FILE *out, const char *path, bool *found)
+{
+    gf_textscan ts;
+    gf_status st = gf_html_open_text(&ts, path, found);
+    if (st != GF_OK || !*found) return st;
     fputs("<table class=\"kv\">\n", out);
-    char *line = NULL;
-    size_t cap = 0;
-    while (gf_getline(&line, &cap, f) > 0) {
+    char *line;
+    size_t len;
+    while (gf_textscan_next(&ts, &line, &len, &st) > 0) {
         char *colon = strstr(line, "\":");
         if (!colon) continue; // the braces
         colon[1] = '\0';
@@ -92,20 +129,20 @@ bool gf_html_json_table(FILE *out, const char *path)
         gf_html_text(out, strcmp(value, "null") ? value : "—");
         fputs("</td></tr>\n", out);
     }
-    gf_free(line, cap);
-    fclose(f);
+    gf_textscan_close(&ts);
     fputs("</table>\n", out);
-    return true;
+    return st;
 }
 
-bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
+gf_status gf_html_csv_table(FILE *out, const char *path, size_t max_rows, bool *found)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
+    gf_textscan ts;
+    gf_status st = gf_html_open_text(&ts, path, found);
+    if (st != GF_OK || !*found) return st;
     fputs("<table class=\"csv\">\n", out);
-    char *line = NULL;
-    size_t cap = 0, row = 0;
-    while (gf_getline(&line, &cap, f) > 0 && row <= max_rows) {
+    char *line;
+    size_t len, row = 0;
+    while (row <= max_rows && gf_textscan_next(&ts, &line, &len, &st) > 0) {
         const char *cell = row == 0 ? "th" : "td";
         char *text = gf_html_trim(line, false);
         if (!*text) continue; // a blank line
@@ -121,22 +158,24 @@ bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
         fputs("</tr>\n", out);
         row++;
     }
-    gf_free(line, cap);
-    fclose(f);
+    gf_textscan_close(&ts);
     fputs("</table>\n", out);
-    return true;
+    return st;
 }
 
-bool gf_html_pre_file(FILE *out, const char *path)
+gf_status gf_html_pre_file(FILE *out, const char *path, bool *found)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
+    gf_textscan ts;
+    gf_status st = gf_html_open_text(&ts, path, found);
+    if (st != GF_OK || !*found) return st;
     fputs("<pre>", out);
-    char *line = NULL;
-    size_t cap = 0;
-    while (gf_getline(&line, &cap, f) > 0) gf_html_text(out, line);
-    gf_free(line, cap);
-    fclose(f);
+    char *line;
+    size_t len;
+    while (gf_textscan_next(&ts, &line, &len, &st) > 0) {
+        gf_html_text(out, line);
+        fputc('\n', out);
+    }
+    gf_textscan_close(&ts);
     fputs("</pre>\n", out);
-    return true;
+    return st;
 }

@@ -54,11 +54,17 @@ static bool gf_report_exists(const char *path)
     return stat(path, &sb) == 0;
 }
 
+// Keeps the first failure: the page is then not written (no report.html.tmp left).
+static void gf_report_fail(gf_report *r, gf_status st)
+{
+    if (st != GF_OK && r->st == GF_OK) r->st = st;
+}
+
 static void gf_report_figure(gf_report *r, const char *path, const char *caption)
 {
+    if (r->st != GF_OK) return; // a failed report: no use reading more
     fputs("<figure>", r->out);
-    gf_status st = gf_html_image(r->out, path, caption);
-    if (st != GF_OK && r->st == GF_OK) r->st = st;
+    gf_report_fail(r, gf_html_image(r->out, path, caption));
     fputs("<figcaption>", r->out);
     gf_html_text(r->out, caption);
     fputs("</figcaption></figure>\n", r->out);
@@ -87,7 +93,10 @@ static void gf_report_pictures(gf_report *r, const char *sub, const char *const 
         if (n == cap) {
             size_t grown = cap ? 2 * cap : 32;
             gf_report_name *q = gf_realloc(list, cap * sizeof *list, grown * sizeof *list);
-            if (!q) break; // out of memory: the pictures found so far
+            if (!q) { // out of memory: an error, never a page with pictures left out
+                gf_report_fail(r, gf_error_set(GF_ERR_NOMEM, "%s: out of memory listing its pictures", sub));
+                break;
+            }
             list = q;
             cap = grown;
         }
@@ -121,7 +130,8 @@ static void gf_report_analysis(gf_report *r, const char *dir)
         return;
     }
     fputs("<h2>Analysis</h2>\n", r->out);
-    gf_html_json_table(r->out, path);
+    bool found;
+    gf_report_fail(r, gf_html_json_table(r->out, path, &found));
     fputs("<div class=\"figs\">\n", r->out);
     size_t nm;
     const gf_measure_def *m = gf_measures(&nm);
@@ -152,7 +162,8 @@ static void gf_report_compare(gf_report *r, const char *cmp)
     fputs("<h2>DEM and spot model side by side</h2>\n<p class=\"meta\">From ", r->out);
     gf_html_text(r->out, cmp);
     fputs(" (<code>granflow compare</code>).</p>\n", r->out);
-    gf_html_csv_table(r->out, path, 100);
+    bool found;
+    gf_report_fail(r, gf_html_csv_table(r->out, path, 100, &found));
     gf_report_join(path, sizeof path, cmp, "compare.png");
     if (gf_report_exists(path)) gf_report_figure(r, path, "the measurements of both runs (DEM and spot)");
     gf_report_join(dem, sizeof dem, cmp, "slices_dem.png");
@@ -210,7 +221,9 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     fputs(".</p>\n", r.out);
 
     fputs("<h2>Run</h2>\n", r.out);
-    if (!gf_html_json_table(r.out, sum)) fputs("<p>No summary.json.</p>\n", r.out);
+    bool found;
+    gf_report_fail(&r, gf_html_json_table(r.out, sum, &found));
+    if (r.st == GF_OK && !found) fputs("<p>No summary.json.</p>\n", r.out);
     gf_report_analysis(&r, dir);
     // Pictures: render/ of a spot run; sheet.png and maps/ of an LGA run.
     size_t before = r.info.images;
@@ -225,7 +238,8 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     if (r.info.images == before) fputs("<p>None yet (<code>granflow render DIR</code>).</p>\n", r.out);
     gf_report_compare(&r, cmp);
     fputs("<h2>Configuration</h2>\n", r.out);
-    if (!gf_html_pre_file(r.out, cfg)) fputs("<p>No config.ini.</p>\n", r.out);
+    if (r.st == GF_OK) gf_report_fail(&r, gf_html_pre_file(r.out, cfg, &found));
+    if (r.st == GF_OK && !found) fputs("<p>No config.ini.</p>\n", r.out);
     fputs("</body></html>\n", r.out);
 
     if (r.st != GF_OK) {
