@@ -186,6 +186,17 @@ gf report Z
 expect_rc 0 "report of the same directory made whole again"
 ok "report and analyze read back only regular files: a FIFO or /dev/zero is refused, nothing left"
 
+# More spheres than the process may ever hold: refused before the generator
+# allocates (old: it allocated and zeroed gigabytes, then ran out of memory).
+if ! sanitized; then
+    LAST="granflow pack --set packing.particles=50000000 (ulimit -v 1000000)"
+    (ulimit -v 1000000; exec timeout 60 "$GF" pack -q --set packing.particles=50000000 -o big.dump) >"$T/out" 2>"$T/err"; RC=$?
+    expect_rc 1 "pack of 5e7 spheres under ulimit -v"
+    expect_err "packing: 50000000 particles need about 10.0 GB to generate, more than the 1.0 GB this process may have (ulimit -v)" \
+        "pack of 5e7 spheres under ulimit -v"
+    ok "a packing that cannot fit in memory is refused up front, saying how much it needs"
+fi
+
 # --- 7. messages -------------------------------------------------------------
 gf run -q --set "spot.w=$(printf '1\001\033[31mX\377')" -o M
 expect_rc 2 "--set with binary bytes"
