@@ -124,23 +124,21 @@ int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st)
         char *start = ts->buf + ts->beg;
         size_t avail = ts->end - ts->beg;
         char *nl = memchr(start + scanned, '\n', avail - scanned);
-        size_t n;
+        size_t n = nl ? (size_t)(nl - start) : avail; // the line, or what there is of it so far
+        // The cap, checked before the buffer grows: a file without line ends
+        // (/dev/zero) stops here, whatever memory there is.
+        if (n > ts->max_line) {
+            *st = gf_error_set(GF_ERR_FORMAT, "%s:%ld: line longer than %zu bytes (not a text file?)", ts->path,
+                               ts->line + 1, ts->max_line);
+            return -1;
+        }
         ts->partial = !nl;
         if (nl) {
-            n = (size_t)(nl - start);
             ts->beg += n + 1;
         } else if (ts->eof) {
             if (avail == 0) return 0;
-            n = avail; // last line without a newline
-            ts->beg = ts->end;
+            ts->beg = ts->end; // last line without a newline
         } else {
-            // The cap, checked before the buffer grows: a file without line
-            // ends (/dev/zero) stops here, whatever memory there is.
-            if (avail > ts->max_line) {
-                *st = gf_error_set(GF_ERR_FORMAT, "%s:%ld: line longer than %zu bytes (not a text file?)",
-                                   ts->path, ts->line + 1, ts->max_line);
-                return -1;
-            }
             scanned = avail;
             *st = gf_textscan_fill(ts);
             if (*st != GF_OK) return -1;
