@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The embedding hooks hold for all of src/ (issue 17; include/granflow/core.h):
 #   alloc  - every allocation goes through the core allocator (core/alloc.h:
-#            gf_alloc/gf_free/gf_realloc/gf_getline, behind gf_set_allocator):
+#            gf_alloc/gf_free/gf_realloc, behind gf_set_allocator):
 #            no call of the C library's allocator, nor of a libc function that
 #            returns memory from it (getline, scandir, open_memstream,
 #            realpath(p, NULL), ...). The C++ Voro++ wrapper may use `new`

@@ -372,39 +372,6 @@ static void allocator_counts_a_whole_session(void **state)
     assert_int_equal(gf_bytes_allocated(), bytes0);
 }
 
-// gf_getline, the library's getline(3) on the core allocator: whole lines
-// of any length, the last one without its newline, -1 at the end.
-static void getline_on_the_core_allocator(void **state)
-{
-    (void)state;
-    const size_t bytes0 = gf_bytes_allocated();
-    char longline[1001];
-    memset(longline, 'x', 1000);
-    longline[1000] = '\0';
-    char text[1100];
-    snprintf(text, sizeof text, "a\n\n%s\nlast", longline);
-    const char *path = gf_test_write_file(gf_test_tmpdir(), "lines.txt", text);
-    FILE *f = fopen(path, "r");
-    assert_non_null(f);
-    char *line = NULL;
-    size_t cap = 0;
-    assert_int_equal(gf_getline(&line, &cap, f), 2);
-    assert_string_equal(line, "a\n");
-    assert_int_equal(gf_getline(&line, &cap, f), 1);
-    assert_string_equal(line, "\n");
-    assert_int_equal(gf_getline(&line, &cap, f), 1001);
-    assert_int_equal(strncmp(line, longline, 1000), 0);
-    assert_true(cap >= 1002);
-    assert_int_equal(gf_getline(&line, &cap, f), 4);
-    assert_string_equal(line, "last");
-    assert_int_equal(gf_getline(&line, &cap, f), -1);
-    assert_int_equal(gf_getline(&line, &cap, f), -1);
-    fclose(f);
-    assert_int_equal(gf_bytes_allocated(), bytes0 + cap);
-    gf_free(line, cap);
-    assert_int_equal(gf_bytes_allocated(), bytes0);
-}
-
 static int assert_calls, assert_line;
 static char assert_cond[64], assert_file[256];
 
@@ -525,7 +492,6 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(warnings_are_kept_and_passed_on),
     cmocka_unit_test(allocator_hook_sees_every_block),
     cmocka_unit_test(allocator_counts_a_whole_session),
-    cmocka_unit_test(getline_on_the_core_allocator),
     cmocka_unit_test(assert_hook_is_called),
     cmocka_unit_test(sim_arrays_account_for_every_particle),
 };

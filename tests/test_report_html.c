@@ -33,8 +33,10 @@ static char *table_of(int kind, const char *text, size_t max_rows)
     size_t len = 0;
     FILE *out = open_memstream(&buf, &len);
     assert_non_null(out);
-    if (kind == TABLE_CSV) assert_true(gf_html_csv_table(out, path, max_rows));
-    else assert_int_equal(gf_html_json_table(out, path), GF_OK);
+    bool found = false;
+    if (kind == TABLE_CSV) assert_int_equal(gf_html_csv_table(out, path, max_rows, &found), GF_OK);
+    else assert_int_equal(gf_html_json_table(out, path, &found), GF_OK);
+    assert_true(found);
     fclose(out);
     return buf;
 }
@@ -134,13 +136,14 @@ static void json_malformed_is_an_error(void **state)
     (void)state;
     static const char *const bad[] = {"{\n  \"frames\": 12,\n  \"b_p\": nul\n}\n", "[1, 2]\n",
                                       "{\"a\": 1, \"a\": 2}", "{\"a\": 1} trailing", ""};
+    bool found;
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         const char *path = gf_test_write_file(gf_test_tmpdir(), "bad.json", bad[k]);
         char *buf = NULL;
         size_t len = 0;
         FILE *out = open_memstream(&buf, &len);
         assert_non_null(out);
-        assert_int_equal(gf_html_json_table(out, path), GF_ERR_FORMAT);
+        assert_int_equal(gf_html_json_table(out, path, &found), GF_ERR_FORMAT);
         fclose(out);
         assert_int_equal(len, 0);
         assert_non_null(strstr(gf_last_error(), path));
@@ -148,7 +151,7 @@ static void json_malformed_is_an_error(void **state)
     }
     const char *path = gf_test_write_file(gf_test_tmpdir(), "bad.json", bad[0]);
     FILE *out = fopen("/dev/null", "w");
-    assert_int_equal(gf_html_json_table(out, path), GF_ERR_FORMAT);
+    assert_int_equal(gf_html_json_table(out, path, &found), GF_ERR_FORMAT);
     fclose(out);
     char want[4200];
     snprintf(want, sizeof want, "%s:3:", path); // the line of `nul`

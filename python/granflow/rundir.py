@@ -2,6 +2,7 @@
 """Reading what `granflow run`, `analyze`, `render`, `compare` and `report` write."""
 import json
 import os
+import stat
 from pathlib import Path
 
 import numpy as np
@@ -11,13 +12,31 @@ from .errors import GranflowFileNotFoundError
 from .snapshot import read_snapshot
 
 
+def open_run_file(path):
+    """Opens a file a run wrote, for reading text, if it is a regular file: a
+    FIFO (opened without waiting for a writer), a device such as /dev/zero
+    or a directory in its place raises OSError naming it, as the library does."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = ("a FIFO" if stat.S_ISFIFO(mode) else "a character device" if stat.S_ISCHR(mode)
+                    else "a directory" if stat.S_ISDIR(mode) else "not a file")
+            raise OSError(f"{path}: not a regular file ({kind})")
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "r")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
 def read_csv(path):
     """A granflow CSV file (header line, then numbers; `nan` allowed) as a dict
     of column name -> float64 numpy array, in file order."""
     path = Path(path)
-    with open(path) as f:
+    with open_run_file(path) as f:
         header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        data = np.loadtxt(f, delimiter=",", ndmin=2)
     if data.size == 0:
         data = np.empty((0, len(header)))
     if data.shape[1] != len(header):
@@ -26,7 +45,7 @@ def read_csv(path):
 
 
 def read_json(path):
-    with open(path) as f:
+    with open_run_file(path) as f:
         return json.load(f)
 
 

@@ -42,3 +42,23 @@ def test_analysis_results(rundir):
 def test_not_a_run_directory(tmp_path):
     with pytest.raises(FileNotFoundError, match="no config.ini"):
         granflow.RunDir(tmp_path)
+
+
+def test_run_files_are_read_only_when_regular(tmp_path):
+    # A FIFO or /dev/zero in place of a file a run wrote raises at once,
+    # naming it (issue 26: open() of a FIFO waited for a writer for ever,
+    # and /dev/zero was read until memory ran out).
+    import os
+    d = tmp_path / "run"
+    d.mkdir()
+    (d / "config.ini").write_text("[run]\nseed = 1\n")
+    os.mkfifo(d / "summary.json")
+    os.symlink("/dev/zero", d / "exits.csv")
+    r = granflow.RunDir(d)
+    with pytest.raises(OSError, match="summary.json: not a regular file \\(a FIFO\\)"):
+        r.summary
+    with pytest.raises(OSError, match="exits.csv: not a regular file \\(a character device\\)"):
+        r.exits()
+    (d / "ok.csv").write_text("a,b\n1,2\n3,4\n")
+    t = granflow.read_csv(d / "ok.csv")
+    assert list(t["a"]) == [1.0, 3.0] and list(t["b"]) == [2.0, 4.0]

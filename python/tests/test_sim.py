@@ -1,4 +1,6 @@
 # SPDX-License-Identifier: MIT
+import os
+
 import numpy as np
 
 import granflow
@@ -128,3 +130,77 @@ def test_run_nan_is_refused(small):
         assert sim.time == 0
         assert lib.gf_sim_run(sim._live(), float("nan"), None) != 0  # the library refuses it too
         assert "NaN" in lib.gf_last_error().decode()
+
+
+# One Simulation shared between threads (issue 26). Each case runs in a
+# python of its own: on the tree before the fix it died of SIGSEGV, which
+# would take pytest down with it.
+def _in_subprocess(body):
+    import subprocess
+    import sys
+    import textwrap
+    code = "import granflow, threading, numpy as np\nfrom conftest import SMALL\n" + textwrap.dedent(body)
+    here = os.path.dirname(os.path.abspath(__file__))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([here] + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=240)
+    assert r.returncode == 0, f"rc {r.returncode}\n{r.stdout}\n{r.stderr}"
+    return r.stdout
+
+
+def test_close_from_another_thread_during_run():
+    # threading.Timer(0.5, s.close) while s.run() goes: close waits for the
+    # piece under way, then run raises ValueError; nothing crashes.
+    out = _in_subprocess("""
+        c = granflow.Config(SMALL)
+        c["run.recirculate"] = "on"
+        s = granflow.Simulation(c)
+        t = threading.Timer(0.5, s.close)
+        t.start()
+        try:
+            s.run(10000.0)
+            print("run returned")
+        except ValueError as e:
+            print("ValueError:", e)
+        t.join()
+        try:
+            len(s)
+        except ValueError:
+            print("closed")
+        s.close()  # twice is fine
+    """)
+    assert "ValueError: the simulation is closed" in out and "closed\n" in out
+
+
+def test_two_threads_running_one_simulation():
+    # Two threads each calling s.run(5) while a third reads it: the state is
+    # that of one run(5), bit for bit, and every read is whole.
+    out = _in_subprocess("""
+        s, ref = granflow.Simulation(SMALL), granflow.Simulation(SMALL)
+        ref.run(5.0)
+        bad = []
+        def reader():
+            # The particles first, the exits after: a piece run between the
+            # two can only count a particle twice, never lose one.
+            while not done.is_set():
+                try:
+                    p, e = s.particles(), s.exits()
+                    if len(p["id"]) + len(e["id"]) < SMALL["packing.particles"]:
+                        bad.append((len(p["id"]), len(e["id"])))
+                    s.stats()
+                except Exception as x:
+                    bad.append(repr(x))
+        done = threading.Event()
+        threads = [threading.Thread(target=s.run, args=(5.0,)) for _ in range(2)]
+        r = threading.Thread(target=reader)
+        r.start()
+        for t in threads: t.start()
+        for t in threads: t.join()
+        done.set()
+        r.join()
+        assert not bad, bad
+        assert s.time == ref.time, (s.time, ref.time)
+        assert np.array_equal(s.positions(), ref.positions())
+        assert np.array_equal(s.exits()["time"], ref.exits()["time"])
+        print("same")
+    """)
+    assert "same" in out

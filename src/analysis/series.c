@@ -34,7 +34,7 @@
 #include "granflow/analysis.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
-#include "io/textscan.h"
+#include "core/textscan.h"
 #include "packing/layer.h"
 
 enum { GF_SERIES_PATH = GF_PATH_MAX + 512 };

@@ -37,7 +37,9 @@ void gf_summary_text(gf_summary *s, const char *key, const char *text);
 /// Adds the entries of the summary.json at `path` (a JSON object of numbers,
 /// strings and nulls, in any layout: gf_summary_write's, or compact). An
 /// absent file adds nothing; GF_ERR_FORMAT names the file, and the line or
-/// key, of one that is not such an object; GF_ERR_IO an unreadable one.
+/// key, of one that is not such an object; GF_ERR_IO an unreadable one, or
+/// anything but a regular file (a FIFO or a link to /dev/zero in its place
+/// would never end); a file over 16 MB is refused.
 gf_status gf_summary_read(gf_summary *s, const char *path);
 
 /// Writes the summary to `path` (atomically).

@@ -20,6 +20,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/textscan.h"
 
 // "gfCF": marks a gf_config that came from gf_config_default().
 #define GF_CONFIG_COOKIE 0x67664346u
@@ -59,14 +60,12 @@ gf_config gf_config_default(void)
 // State shared by the line reader and the key handler of one gf_config_load.
 typedef struct gf_config_loader {
     gf_config *cfg;
-    FILE *f;
+    gf_textscan ts; // the file (capped lines: a file without line ends is an error)
     const char *path;
-    char *buf;      // gf_getline buffer
-    size_t cap;     // its capacity
-    int line;       // number of the line last handed to libinih
-    int err_line;   // line of the first error found here (message already set), 0: none
-    gf_status err;  // status of that error
-    int read_errno; // errno of a failed read, 0: none
+    int line;          // number of the line last handed to libinih
+    int err_line;      // line of the first error found here (message already set), 0: none
+    gf_status err;     // status of that error
+    gf_status read_st; // a failed read (message already set: too long a line, out of memory, I/O)
 } gf_config_loader;
 
 static void gf_config_fail(gf_config_loader *ld, gf_status st)
@@ -127,28 +126,27 @@ static bool gf_config_check_line(gf_config_loader *ld, const char *p)
 static char *gf_config_read_line(char *str, int num, void *stream)
 {
     gf_config_loader *ld = stream;
-    if (ld->err_line) return NULL;
-    errno = 0;
-    ssize_t got = gf_getline(&ld->buf, &ld->cap, ld->f);
-    if (got < 0) {
-        if (ferror(ld->f)) ld->read_errno = errno ? errno : EIO;
-        return NULL;
-    }
+    if (ld->err_line || ld->read_st != GF_OK) return NULL;
+    char *p;
+    size_t got;
+    gf_status st;
+    int r = gf_textscan_next(&ld->ts, &p, &got, &st);
+    if (r < 0) ld->read_st = st; // never the end of the file: the defaults would run silently
+    if (r <= 0) return NULL;
     ld->line++;
     // A NUL would end the line for every string function below: "radius =
     // 2\0junk" read as 2 (issue 26). A configuration file is text.
-    const char *nul = memchr(ld->buf, '\0', (size_t)got);
+    const char *nul = memchr(p, '\0', got);
     if (nul) {
         gf_config_fail(ld, gf_error_set(GF_ERR_PARAM, "%s:%d: a NUL byte (\\0) at column %zu: a configuration "
                                                       "file is text",
-                                        ld->path, ld->line, (size_t)(nul - ld->buf) + 1));
+                                        ld->path, ld->line, (size_t)(nul - p) + 1));
         return NULL;
     }
-    char *p = ld->buf;
     if (ld->line == 1 && got >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3; // UTF-8 BOM
     p = gf_config_trim(p);
     if (*p == ';' || *p == '#' || *p == '\0') {
-        str[0] = '\0'; // comment or blank: any length is fine
+        str[0] = '\0'; // comment or blank: any length up to the reader's cap
         return str;
     }
     size_t len = strlen(p);
@@ -196,20 +194,24 @@ gf_status gf_config_load(gf_config *cfg, const char *path)
     gf_status st = gf_config_check(cfg, "gf_config_load");
     if (st != GF_OK) return st;
     if (!path) return gf_error_set(GF_ERR_PARAM, "gf_config_load: path is NULL");
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return gf_error_set(GF_ERR_IO, "cannot open config file '%s': %s", path, strerror(errno));
-    gf_config_loader ld = {.cfg = cfg, .f = f, .path = path};
+    gf_config_loader ld = {.cfg = cfg, .path = path};
+    errno = 0;
+    if (gf_textscan_open(&ld.ts, path) != GF_OK)
+        return gf_error_set(errno ? GF_ERR_IO : GF_ERR_NOMEM, "cannot open config file '%s': %s", path,
+                            errno ? strerror(errno) : "out of memory");
+    ld.ts.max_line = GF_TEXTSCAN_MAX_SHORT_LINE;
     int ret = ini_parse_stream(gf_config_read_line, &ld, gf_config_on_pair, &ld);
-    gf_free(ld.buf, ld.cap);
-    fclose(f);
+    gf_textscan_close(&ld.ts);
+    if (ld.read_st == GF_ERR_FORMAT) { // a line over the cap: a bad configuration (exit 2), same message
+        char msg[1024];
+        snprintf(msg, sizeof msg, "%s", gf_last_error());
+        return gf_error_set(GF_ERR_PARAM, "%s", msg);
+    }
+    if (ld.read_st != GF_OK) return ld.read_st; // out of memory, I/O: the message names the file and line
     if (ld.err_line && (ret <= 0 || ret >= ld.err_line)) return ld.err;
     // libinih found an error our line checks did not anticipate.
     if (ret > 0) return gf_error_set(GF_ERR_PARAM, "%s:%d: syntax error", path, ret);
     if (ret == -2) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory while parsing", path);
-    if (ld.read_errno)
-        return gf_error_set(GF_ERR_IO, "%s:%d: read error: %s", path, ld.line + 1,
-                            strerror(ld.read_errno));
     return GF_OK;
 }
 

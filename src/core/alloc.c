@@ -84,32 +84,3 @@ void *gf_realloc(void *p, size_t old_size, size_t new_size)
 }
 
 size_t gf_bytes_allocated(void) { return atomic_load(&gf_bytes); }
-
-ssize_t gf_getline(char **line, size_t *cap, FILE *f)
-{
-    if (!*line || *cap == 0) {
-        if (!(*line = gf_alloc(128))) {
-            *cap = 0;
-            errno = ENOMEM;
-            return -1;
-        }
-        *cap = 128;
-    }
-    size_t n = 0;
-    int c;
-    while ((c = getc(f)) != EOF) {
-        if (n + 1 >= *cap) { // room for c and the terminating NUL
-            char *q = *cap <= SIZE_MAX / 2 ? gf_realloc(*line, *cap, *cap * 2) : NULL;
-            if (!q) {
-                errno = ENOMEM;
-                return -1;
-            }
-            *line = q;
-            *cap *= 2;
-        }
-        (*line)[n++] = (char)c;
-        if (c == '\n') break;
-    }
-    (*line)[n] = '\0';
-    return n == 0 && c == EOF ? -1 : (ssize_t)n;
-}

@@ -22,12 +22,6 @@ void *gf_realloc(void *p, size_t old_size, size_t new_size);
 void *gf_hook_alloc(size_t size, size_t alignment);
 void gf_hook_free(void *block, size_t size);
 
-/// getline(3) on this allocator: reads one line (with its '\n') of f into
-/// *line, growing it (*cap bytes; start from NULL, 0). Returns its length,
-/// -1 at the end of the file, on a read error or out of memory (errno
-/// ENOMEM). The caller frees the buffer with gf_free(*line, *cap).
-ssize_t gf_getline(char **line, size_t *cap, FILE *f);
-
 /// Typed helpers: n elements of type T.
 #define GF_NEW(T, n) ((T *)gf_alloc_array((size_t)(n), sizeof(T)))
 #define GF_DELETE(p, n) gf_free((p), sizeof(*(p)) * (size_t)(n))

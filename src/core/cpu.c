@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The machine's cores, for thread and rank counts.
+// The machine's cores, for thread and rank counts; its memory, to refuse up
+// front what could never fit.
+#include "core/cpu.h"
+
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "granflow/core.h"
@@ -8,4 +12,24 @@ int gf_cpu_count(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : (int)n;
+}
+
+double gf_cpu_memory(const char **what)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    double best = pages > 0 && page > 0 ? (double)pages * (double)page : 1e300;
+    const char *why = "the machine's memory";
+    static const struct {
+        int resource;
+        const char *name;
+    } limits[] = {{RLIMIT_AS, "ulimit -v"}, {RLIMIT_DATA, "ulimit -d"}};
+    for (int k = 0; k < 2; k++) {
+        struct rlimit rl;
+        if (getrlimit(limits[k].resource, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur < best) {
+            best = (double)rl.rlim_cur;
+            why = limits[k].name;
+        }
+    }
+    if (what) *what = why;
+    return best;
 }

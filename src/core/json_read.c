@@ -10,8 +10,13 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/error.h"
+#include "core/fs.h"
+
+/// The largest JSON file read: summaries and reports are kilobytes.
+#define GF_JSON_READ_MAX ((long long)16 * 1024 * 1024)
 
 static gf_status gf_json_read_value(const char *key, json_t *v, gf_json_member_fn fn, void *ctx)
 {
@@ -55,9 +60,15 @@ static gf_status gf_json_read_value(const char *key, json_t *v, gf_json_member_f
 
 gf_status gf_json_read_members(const char *path, gf_json_member_fn fn, void *ctx)
 {
-    FILE *f = fopen(path, "r");
+    // Only a regular file of bounded size (a FIFO or a link to /dev/zero in
+    // its place would never end: issue 26).
+    int fd = -1;
+    gf_status so = gf_fs_open_regular(path, GF_JSON_READ_MAX, &fd);
+    if (so != GF_OK) return so;
+    FILE *f = fdopen(fd, "r");
     if (!f) {
         int e = errno;
+        close(fd);
         gf_status st = gf_error_set(GF_ERR_IO, "%s: cannot open: %s", path, strerror(e));
         errno = e;
         return st;

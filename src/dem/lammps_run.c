@@ -22,6 +22,7 @@
 #include "core/atomic_file.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "dem/lammps_guard.h"
 #include "dem/lammps_output.h"
 #include "granflow/dem.h"
 
@@ -127,6 +128,7 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
     int fd[2];
     if (pipe(fd) != 0) return gf_error_set(GF_ERR_IO, "cannot make a pipe for LAMMPS: %s", strerror(errno));
     fflush(NULL);
+    pid_t parent = getpid();
     pid_t pid = fork();
     if (pid < 0) {
         close(fd[0]);
@@ -148,8 +150,8 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
             setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
         }
         if (!getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 1);
-        execv(argv[0], (char *const *)argv);
-        _exit(127);
+        // This child stays as LAMMPS' guard: it ends the group if granflow dies.
+        gf_dem_guard_run(parent, (char *const *)argv);
     }
     close(fd[1]);
     setpgid(pid, pid); // as the child does (whichever runs first): its own group, to be stopped as one
@@ -160,7 +162,19 @@ static gf_status gf_dem_run_one(const char *dir, const char *script, const char 
         gf_dem_stop_child(pid, &status);
         return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped on request", dir, script);
     }
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    // LAMMPS has closed its output but may not have ended: still a stop
+    // polled every 0.1 s (a blocking waitpid ignored Ctrl-C until LAMMPS ended).
+    volatile sig_atomic_t *stop = r->o->stop;
+    for (;;) {
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid) break;
+        if (w < 0 && errno != EINTR)
+            return gf_error_set(GF_ERR_IO, "LAMMPS (%s/%s): cannot wait for it: %s", dir, script, strerror(errno));
+        if (stop && *stop) {
+            gf_dem_stop_child(pid, &status);
+            return gf_error_set(GF_ERR_INTERRUPTED, "LAMMPS (%s/%s) stopped on request", dir, script);
+        }
+        gf_dem_nap();
     }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r->error[0]) return GF_OK;
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)

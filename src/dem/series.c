@@ -14,7 +14,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/dem.h"
-#include "io/textscan.h"
+#include "core/textscan.h"
 #include "packing/layer.h"
 
 static int gf_dem_is_dump(const char *name)

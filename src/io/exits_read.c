@@ -10,7 +10,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
-#include "io/textscan.h"
+#include "core/textscan.h"
 
 /// Trims blanks (and a trailing \r) around a field in place.
 static char *gf_exits_trim(char *s)
@@ -108,7 +108,9 @@ gf_status gf_exits_read(const char *path, gf_exit **out, size_t *n)
     gf_textscan ts;
     gf_exit *arr = NULL;
     size_t cnt = 0, cap = 0;
-    gf_status st = gf_textscan_open(&ts, path);
+    // A run wrote it: a regular file (a FIFO or a link to a device in its
+    // place would block or never end).
+    gf_status st = gf_textscan_open_regular(&ts, path, 0);
     if (st == GF_OK) st = gf_exits_parse(&ts, &arr, &cnt, &cap);
     gf_textscan_close(&ts);
     if (st == GF_OK && cnt > 0 && cnt < cap) { // the caller frees exactly cnt elements

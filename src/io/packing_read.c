@@ -21,7 +21,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/packing_frames.h"
-#include "io/textscan.h"
+#include "core/textscan.h"
 
 enum {
     GF_READ_MAX_COLS = 256,     // columns per line we accept (LAMMPS dumps have ~5-20)

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "core/cpu.h"
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/rng.h"
@@ -35,6 +36,14 @@
 #define GF_GEN_SNAP 1e-3          // at the end, closer than this to a wall = on it
 #define GF_GEN_MAX_SWEEPS 200000  // safety net against a relaxation that never ends
 #define GF_GEN_STREAM 0x7061636b696e67ull // "packing": the RNG stream of this module
+// Particles between two looks at the stop flag inside a pass over them
+// (a pass over 5e7 spheres takes tens of seconds; 65,536 of them, ~1 ms).
+#define GF_GEN_POLL ((size_t)1 << 16)
+// Bytes per particle at the generator's peak: its nine coordinate arrays,
+// the neighbour list (8 slots) and its row starts, the cell grid, and the
+// packing it emits with its sort keys, ~200; checked against what the
+// process may have before any of it is allocated.
+#define GF_GEN_BYTES_PER_PARTICLE 200.0
 // Largest footprint width x depth, d^2: 10^4 times the papers' 50 x 8 silo,
 // and small enough that every coordinate and cell count stays exact.
 #define GF_GEN_MAX_FOOTPRINT 4e6
@@ -72,8 +81,11 @@ typedef struct gf_gen {
     double *slab_sum, *slab_strain;
     size_t *slab_count;
     size_t nslab, slab_cap;
-    volatile sig_atomic_t *stop; // polled once per sweep (may be NULL)
+    volatile sig_atomic_t *stop; // polled every sweep and every GF_GEN_POLL particles of a pass (may be NULL)
 } gf_gen;
+
+// Whether a stop was asked; the passes over the particles look every GF_GEN_POLL.
+static inline bool gf_gen_halted(const gf_gen *g) { return g->stop && *g->stop; }
 
 static void gf_gen_release(gf_gen *g)
 {
@@ -145,6 +157,7 @@ static gf_status gf_gen_build(gf_gen *g)
     gf_status st = gf_celllist_grid(cl, corner, inv, nc);
     if (st == GF_OK) st = gf_celllist_bin(cl, g->x, g->y, g->z, n);
     if (st != GF_OK) return st;
+    if (gf_gen_halted(g)) return GF_ERR_INTERRUPTED; // the caller sets the message
     // The particles re-ordered by cell into the scratch arrays, then swapped
     // in: from here on cell c holds the particles start[c] .. start[c + 1] - 1.
     for (size_t k = 0; k < n; k++) {
@@ -166,7 +179,8 @@ static gf_status gf_gen_build(gf_gen *g)
     const double cut2 = cut * cut;
     size_t m = 0;
     for (size_t iz = 0; iz < nz; iz++)
-        for (size_t iy = 0; iy < ny; iy++)
+        for (size_t iy = 0; iy < ny; iy++) {
+            if (gf_gen_halted(g)) return GF_ERR_INTERRUPTED; // each row of cells: a few thousand particles at most
             for (size_t ix = 0; ix < nx; ix++) {
                 size_t c = (iz * ny + iy) * nx + ix;
                 size_t lo[13], hi[13];
@@ -195,6 +209,7 @@ static gf_status gf_gen_build(gf_gen *g)
                     }
                 }
             }
+        }
     g->start[n] = m;
     return GF_OK;
 }
@@ -231,7 +246,11 @@ static double gf_gen_push(gf_gen *g, double *mean)
     memset(uz, 0, sizeof *uz * n);
     const double half = 0.5 * GF_GEN_ALPHA;
     double worst = 0.0, sum = 0.0;
-    for (size_t i = 0; i < n; i++) {
+    // In blocks of GF_GEN_POLL particles with a look at the stop flag between
+    // them (the caller sees it too and drops this half-done sweep); the same
+    // order of operations as one loop, so the same packing.
+    for (size_t i0 = 0; i0 < n && !gf_gen_halted(g); i0 += GF_GEN_POLL)
+    for (size_t i = i0, i1 = i0 + GF_GEN_POLL < n ? i0 + GF_GEN_POLL : n; i < i1; i++) {
         const double xi = x[i], yi = y[i], zi = z[i];
         double ax = 0.0, ay = 0.0, az = 0.0, si = 0.0;
         for (size_t k = start[i]; k < start[i + 1]; k++) {
@@ -370,7 +389,8 @@ static double gf_gen_move(gf_gen *g, double gain)
     strain[nslab - 1] = 0.0;
     double worst = 0.0, ztop = zlo;
     const bool shaped = g->shaped;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i0 = 0; i0 < n && !gf_gen_halted(g); i0 += GF_GEN_POLL) // as gf_gen_push
+    for (size_t i = i0, i1 = i0 + GF_GEN_POLL < n ? i0 + GF_GEN_POLL : n; i < i1; i++) {
         double xi = x[i] + ux[i], yi = y[i] + uy[i], zi = z[i] + uz[i];
         xi = gf_gen_wall(xi, xlo, xhi);
         yi = gf_gen_wall(yi, ylo, yhi);
@@ -437,7 +457,8 @@ static gf_status gf_gen_keep_list(gf_gen *g, double disp2)
 
 static gf_status gf_gen_stopped(const gf_gen *g, long sweeps)
 {
-    if (!g->stop || !*g->stop) return GF_OK;
+    if (!gf_gen_halted(g)) return GF_OK;
+    if (sweeps < 0) return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted before the first relaxation sweep");
     return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted after %ld relaxation sweeps", sweeps);
 }
 
@@ -455,6 +476,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     gf_rng rng;
     gf_rng_seed(&rng, seed, GF_GEN_STREAM);
     for (size_t i = 0; i < n; i++) {
+        if (i % GF_GEN_POLL == 0 && gf_gen_halted(g)) return gf_gen_stopped(g, -1);
         for (long tries = 0;; tries++) { // a shaped container: drawn in its bounding box until inside
             g->x[i] = xhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
             g->y[i] = yhi * (2.0 * gf_rng_uniform(&rng) - 1.0);
@@ -465,6 +487,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
         }
     }
     gf_status st = gf_gen_build(g);
+    if (st == GF_ERR_INTERRUPTED) return gf_gen_stopped(g, -1);
     if (st == GF_OK) st = gf_gen_slabs(g);
     if (st != GF_OK) return st;
 
@@ -475,12 +498,14 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     for (; sweeps < GF_GEN_SETTLE_MAX; sweeps++) {
         if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st;
         double worst = gf_gen_push(g, &mean);
+        if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st; // a sweep cut short
         if (sweeps % GF_GEN_SETTLE_EVERY == 0) {
             GF_GEN_TRACE("lid: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
             if (worst < GF_GEN_TOL || mean > GF_GEN_SETTLE_GAIN * last) break;
             last = mean;
         }
-        if ((st = gf_gen_keep_list(g, gf_gen_move(g, 0.0))) != GF_OK) return st;
+        if ((st = gf_gen_keep_list(g, gf_gen_move(g, 0.0))) != GF_OK)
+            return st == GF_ERR_INTERRUPTED ? gf_gen_stopped(g, sweeps) : st;
     }
 
     // 3. Lift the lid and let the column expand. The sweeps alone would let
@@ -491,6 +516,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
     for (;;) {
         if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st;
         double worst = gf_gen_push(g, &mean);
+        if ((st = gf_gen_stopped(g, sweeps)) != GF_OK) return st; // a sweep cut short
         if (sweeps % 200 == 0)
             GF_GEN_TRACE("open: sweep %ld worst %.4f mean %.5f", sweeps, worst, mean);
         if (worst < GF_GEN_TOL) break;
@@ -500,7 +526,7 @@ static gf_status gf_gen_run(gf_gen *g, uint64_t seed)
                                 "%ld sweeps)",
                                 worst, sweeps);
         if ((st = gf_gen_keep_list(g, gf_gen_move(g, GF_GEN_EXPAND))) != GF_OK)
-            return st;
+            return st == GF_ERR_INTERRUPTED ? gf_gen_stopped(g, sweeps) : st;
     }
     GF_GEN_TRACE("done: %ld sweeps", sweeps);
     return GF_OK;
@@ -647,6 +673,19 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
     return GF_OK;
 }
 
+// Refuses up front a count whose generation could never fit in the memory
+// this process may have (it used to allocate and zero gigabytes first).
+static gf_status gf_gen_fits(size_t count)
+{
+    const char *what;
+    double have = gf_cpu_memory(&what), need = (double)count * GF_GEN_BYTES_PER_PARTICLE;
+    if (need <= have) return GF_OK;
+    return gf_error_set(GF_ERR_NOMEM,
+                        "packing: %zu particles need about %.1f GB to generate, more than the %.1f GB this process "
+                        "may have (%s): lower packing.particles or packing.fill_height",
+                        count, need / 1e9, have / 1e9, what);
+}
+
 gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
 {
     return gf_packing_generate_stoppable(cfg, NULL, out);
@@ -655,8 +694,10 @@ gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
 gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out)
 {
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
+    if (stop && *stop) return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted before it began");
     size_t count = 0;
     gf_status st = gf_gen_count(cfg, &count);
+    if (st == GF_OK) st = gf_gen_fits(count);
     gf_gen g = {0};
     g.width = cfg->container_width;
     g.depth = cfg->container_depth;
@@ -671,6 +712,8 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, -g.box.pipe)) : 0.0;
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
+    if (st == GF_OK && gf_gen_halted(&g)) // before the sort and the checks, long for many spheres
+        st = gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted after its relaxation");
     if (st == GF_OK) gf_gen_snap(&g);
     double zmax = INFINITY;
     if (st == GF_OK && cfg->packing_fill_height > 0.0) {
@@ -683,6 +726,7 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     }
     if (st == GF_OK) st = gf_gen_emit(&g, zmax, cfg, out);
     gf_gen_release(&g);
+    if (st == GF_OK && gf_gen_halted(&g)) st = gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted while checking it");
     if (st == GF_OK) st = gf_gen_check(out, &g, cfg->container_width, cfg->container_depth);
     if (st == GF_OK) st = gf_packing_bidisperse(cfg, out); // packing.radius2, fraction2
     if (st != GF_OK) gf_packing_free(out); // nothing half-made comes back

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "granflow/packing.h"
 #include "io/packing_frames.h"
-#include "io/textscan.h"
+#include "core/textscan.h"
 
 /// The last frame of a LAMMPS dump, with whether it had a `type` column.
 typedef struct gf_import_last {

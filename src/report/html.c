@@ -5,11 +5,14 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "core/json_read.h"
+#include "core/textscan.h"
 #include "report/fields.h"
 
 #define GF_HTML_ENTRIES 256 // keys of one summary.json (the analysis writes up to 256)
@@ -31,13 +34,32 @@ void gf_html_text(FILE *out, const char *s)
 gf_status gf_html_base64_file(FILE *out, const char *path)
 {
     static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    FILE *f = fopen(path, "rb");
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    int fd;
+    gf_status st = gf_fs_open_regular(path, GF_HTML_PICTURE_MAX, &fd);
+    if (st != GF_OK) return st;
     unsigned char in[3 * 4096];
     char enc[4 * 4096];
-    size_t n;
-    // Whole groups of 3 bytes per chunk, so only the file's end needs padding.
-    while ((n = fread(in, 1, sizeof in, f)) > 0) {
+    long long total = 0;
+    for (;;) {
+        // Whole groups of 3 bytes per chunk, so only the file's end needs padding.
+        size_t n = 0;
+        while (n < sizeof in) {
+            ssize_t got = read(fd, in + n, sizeof in - n);
+            if (got < 0 && errno == EINTR) continue;
+            if (got < 0) {
+                int e = errno;
+                close(fd);
+                return gf_error_set(GF_ERR_IO, "%s: read error: %s", path, strerror(e));
+            }
+            if (got == 0) break;
+            n += (size_t)got;
+        }
+        total += (long long)n;
+        if (total > GF_HTML_PICTURE_MAX) { // grown since it was opened
+            close(fd);
+            return gf_error_set(GF_ERR_FORMAT, "%s: more than the %lld bytes expected of a picture", path,
+                                (long long)GF_HTML_PICTURE_MAX);
+        }
         size_t w = 0;
         for (size_t i = 0; i < n; i += 3) {
             unsigned v = (unsigned)in[i] << 16 | (i + 1 < n ? (unsigned)in[i + 1] << 8 : 0) |
@@ -50,9 +72,8 @@ gf_status gf_html_base64_file(FILE *out, const char *path)
         fwrite(enc, 1, w, out);
         if (n < sizeof in) break;
     }
-    int err = ferror(f);
-    fclose(f);
-    return err ? gf_error_set(GF_ERR_IO, "%s: read error", path) : GF_OK;
+    close(fd);
+    return GF_OK;
 }
 
 gf_status gf_html_image(FILE *out, const char *path, const char *alt)
@@ -106,12 +127,23 @@ static gf_status gf_html_json_entry(void *ctx, const gf_json_member *m)
     return GF_OK;
 }
 
-int gf_html_json_read(const char *path, gf_html_entry *e, size_t max)
+// The entries of `path` into e[0, *n): GF_OK with *n = -1 when it is absent.
+static gf_status gf_html_json_load(const char *path, gf_html_entry *e, size_t max, int *n)
 {
-    if (access(path, F_OK) != 0 && errno == ENOENT) return -1;
+    *n = -1;
+    if (access(path, F_OK) != 0 && errno == ENOENT) return GF_OK;
     gf_html_reading r = {e, max, 0};
     // jansson reads the whole file first: on an error no entry was made.
-    return gf_json_read_members(path, gf_html_json_entry, &r) == GF_OK ? (int)r.n : -2;
+    gf_status st = gf_json_read_members(path, gf_html_json_entry, &r);
+    *n = st == GF_OK ? (int)r.n : -2;
+    return st;
+}
+
+int gf_html_json_read(const char *path, gf_html_entry *e, size_t max)
+{
+    int n;
+    gf_html_json_load(path, e, max, &n);
+    return n;
 }
 
 // Whether `s` is a whole number as a summary writes a count: digits, maybe a sign.
@@ -241,15 +273,31 @@ void gf_html_kv_table(FILE *out, const gf_html_entry *e, size_t n, const char *c
     fputs("</ul>\n", out);
 }
 
-gf_status gf_html_json_table(FILE *out, const char *path)
+// Opens a text file of the run for a table: absent is not an error (*found
+// false); anything but a regular file of at most GF_HTML_TEXT_MAX bytes is.
+static gf_status gf_html_open_text(gf_textscan *ts, const char *path, bool *found)
 {
+    *found = false;
+    struct stat sb;
+    if (stat(path, &sb) != 0 && errno == ENOENT) return GF_OK;
+    gf_status st = gf_textscan_open_regular(ts, path, GF_HTML_TEXT_MAX);
+    if (st != GF_OK) return st;
+    ts->max_line = GF_TEXTSCAN_MAX_SHORT_LINE;
+    *found = true;
+    return GF_OK;
+}
+
+gf_status gf_html_json_table(FILE *out, const char *path, bool *found)
+{
+    *found = false;
     gf_html_entry *e = GF_NEW(gf_html_entry, GF_HTML_ENTRIES);
     if (!e) return gf_error_set(GF_ERR_NOMEM, "out of memory");
-    int n = gf_html_json_read(path, e, GF_HTML_ENTRIES);
+    int n;
+    gf_status st = gf_html_json_load(path, e, GF_HTML_ENTRIES, &n); // the error names the file (line, column)
     if (n >= 0) gf_html_kv_table(out, e, (size_t)n, NULL);
     GF_DELETE(e, GF_HTML_ENTRIES);
-    if (n == -1) return gf_error_set(GF_ERR_IO, "%s: no such file", path);
-    return n >= 0 ? GF_OK : GF_ERR_FORMAT; // gf_last_error() names file, line and column
+    *found = n != -1;
+    return st;
 }
 
 // One CSV line's fields, in place: every field, empty ones too (strtok would
@@ -265,15 +313,16 @@ static size_t gf_html_fields(char *text, char **field, size_t max)
     return n;
 }
 
-bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
+gf_status gf_html_csv_table(FILE *out, const char *path, size_t max_rows, bool *found)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
+    gf_textscan ts;
+    gf_status st = gf_html_open_text(&ts, path, found);
+    if (st != GF_OK || !*found) return st;
     fputs("<table class=\"csv\">\n", out);
-    char *line = NULL;
-    size_t cap = 0, row = 0;
+    char *line;
+    size_t len, row = 0;
     bool keyed = false; // a first column of keys: in words, with the unit at the end
-    while (gf_getline(&line, &cap, f) > 0 && row <= max_rows) {
+    while (row <= max_rows && gf_textscan_next(&ts, &line, &len, &st) > 0) {
         char *text = gf_html_trim(line, false);
         if (!*text) continue; // a blank line
         char *field[GF_HTML_COLUMNS];
@@ -313,22 +362,24 @@ bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows)
         fputs("</tr>\n", out);
         row++;
     }
-    gf_free(line, cap);
-    fclose(f);
+    gf_textscan_close(&ts);
     fputs("</table>\n", out);
-    return true;
+    return st;
 }
 
-bool gf_html_pre_file(FILE *out, const char *path)
+gf_status gf_html_pre_file(FILE *out, const char *path, bool *found)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return false;
+    gf_textscan ts;
+    gf_status st = gf_html_open_text(&ts, path, found);
+    if (st != GF_OK || !*found) return st;
     fputs("<pre>", out);
-    char *line = NULL;
-    size_t cap = 0;
-    while (gf_getline(&line, &cap, f) > 0) gf_html_text(out, line);
-    gf_free(line, cap);
-    fclose(f);
+    char *line;
+    size_t len;
+    while (gf_textscan_next(&ts, &line, &len, &st) > 0) {
+        gf_html_text(out, line);
+        fputc('\n', out);
+    }
+    gf_textscan_close(&ts);
     fputs("</pre>\n", out);
-    return true;
+    return st;
 }

@@ -9,6 +9,12 @@
 
 #include "granflow/core.h"
 
+/// Largest picture a report inlines, bytes on disk (the pictures of a run are
+/// below 1 MB; a link to /dev/zero would otherwise fill the disk).
+#define GF_HTML_PICTURE_MAX ((long long)64 * 1024 * 1024)
+/// Largest text file a report shows (summary.json, CSV tables, config.ini).
+#define GF_HTML_TEXT_MAX ((long long)16 * 1024 * 1024)
+
 /// Writes `s` with &, <, >, " escaped.
 void gf_html_text(FILE *out, const char *s);
 
@@ -47,19 +53,22 @@ void gf_html_unit(FILE *out, const char *unit);
 /// with its key, saying why.
 void gf_html_kv_table(FILE *out, const gf_html_entry *e, size_t n, const char *const *why);
 
-/// gf_html_kv_table of the file `path` (gf_html_json_read), nothing left out.
-/// Writes nothing and returns GF_ERR_IO when the file is absent, GF_ERR_FORMAT
-/// (file, line, column) when it is not a JSON object.
-gf_status gf_html_json_table(FILE *out, const char *path);
+// The text readers below: *found false (nothing written, GF_OK) when the file
+// is absent. Only a regular file of at most GF_HTML_TEXT_MAX bytes is read
+// (lines of at most GF_TEXTSCAN_MAX_SHORT_LINE); anything else, a read error
+// or running out of memory is an error naming the file (and line).
+
+/// gf_html_kv_table of the file `path` (gf_html_json_read), nothing left out;
+/// GF_ERR_FORMAT (file, line, column) when it is not a JSON object.
+gf_status gf_html_json_table(FILE *out, const char *path, bool *found);
 
 /// A table of a CSV file (header row, then rows), at most `max_rows` rows;
 /// every field is a cell, empty ones too; blank lines are skipped; numbers
 /// with 4 significant digits. A first column named `key` (compare's
 /// summary.csv) is shown in words, its unit in a last column.
-/// Returns false (writes nothing) when the file is absent.
-bool gf_html_csv_table(FILE *out, const char *path, size_t max_rows);
+gf_status gf_html_csv_table(FILE *out, const char *path, size_t max_rows, bool *found);
 
-/// The whole text file `path` in <pre>. Returns false when absent.
-bool gf_html_pre_file(FILE *out, const char *path);
+/// The whole text file `path` in <pre>.
+gf_status gf_html_pre_file(FILE *out, const char *path, bool *found);
 
 #endif

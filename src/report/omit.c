@@ -5,6 +5,9 @@
 // angle of -0.35 degrees is the packing's, not the flow's.
 #include "report/omit.h"
 
+#include "core/textscan.h"
+#include "report/html.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,20 +31,21 @@ static void gf_omit_surface(gf_report_context *c, const char *dir)
 {
     char path[4352];
     snprintf(path, sizeof path, "%s/analysis/surface.csv", dir);
-    FILE *f = fopen(path, "r");
-    if (!f) return;
-    char *line = NULL;
-    size_t cap = 0, rows = 0;
+    gf_textscan ts;
+    if (gf_textscan_open_regular(&ts, path, GF_HTML_TEXT_MAX) != GF_OK) return; // absent or not a file: no claim
+    ts.max_line = GF_TEXTSCAN_MAX_SHORT_LINE;
+    char *line;
+    size_t len, rows = 0;
+    gf_status st;
     double lo = INFINITY, hi = -INFINITY;
-    while (gf_getline(&line, &cap, f) > 0) {
+    while (gf_textscan_next(&ts, &line, &len, &st) > 0) {
         double t, slope, angle;
         if (sscanf(line, "%lf,%lf,%lf", &t, &slope, &angle) != 3 || !isfinite(angle)) continue;
         lo = fmin(lo, angle);
         hi = fmax(hi, angle);
         rows++;
     }
-    gf_free(line, cap);
-    fclose(f);
+    gf_textscan_close(&ts);
     if (rows >= 2 && hi - lo <= 1e-9) {
         c->surface_still = true;
         snprintf(c->surface_why, sizeof c->surface_why,

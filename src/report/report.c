@@ -208,7 +208,9 @@ static void gf_report_compare(gf_report *r, const char *cmp)
     fputs("<h2>DEM and spot model side by side</h2>\n<p class=\"meta\">From ", r->out);
     gf_html_text(r->out, cmp);
     fputs(" (<code>granflow compare</code>).</p>\n", r->out);
-    gf_html_csv_table(r->out, path, 100);
+    bool found;
+    gf_status st = gf_html_csv_table(r->out, path, 100, &found);
+    if (st != GF_OK && r->st == GF_OK) r->st = st;
     gf_report_join(path, sizeof path, cmp, "compare.png");
     if (gf_report_exists(path)) gf_report_figure(r, path, "the measurements of both runs (DEM and spot)");
     gf_report_join(dem, sizeof dem, cmp, "slices_dem.png");
@@ -300,7 +302,10 @@ gf_status gf_report_write(const char *dir, const gf_report_opts *opts, gf_report
     if (r.info.images == before) fputs("<p>None yet (<code>granflow render DIR</code>).</p>\n", r.out);
     gf_report_compare(&r, cmp);
     fputs("<h2>Configuration</h2>\n", r.out);
-    if (!gf_html_pre_file(r.out, cfg)) fputs("<p>No config.ini.</p>\n", r.out);
+    bool have_cfg;
+    gf_status sc = gf_html_pre_file(r.out, cfg, &have_cfg);
+    if (sc != GF_OK && r.st == GF_OK) r.st = sc;
+    if (sc == GF_OK && !have_cfg) fputs("<p>No config.ini.</p>\n", r.out);
     fputs("</body></html>\n", r.out);
 
     if (r.st != GF_OK) {

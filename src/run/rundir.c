@@ -26,6 +26,9 @@
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
+#ifdef GF_MPI
+#include "spot/par_mpi.h"
+#endif
 
 typedef struct gf_rundir {
     const gf_config *cfg;
@@ -491,7 +494,17 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
+#ifdef GF_MPI
+        // On MPI ranks rank 0 packs and sends the packing; a stop on any rank
+        // stops all of them there together (each packing its own, a rank
+        // stopped meanwhile left the others waiting for it for ever).
+        st = gf_mpi_rank() == 0 ? gf_make_packing(&cfg, opts, &pk) : GF_OK;
+        st = gf_mpi_share_packing(st, &pk, opts->stop);
+        if (st == GF_ERR_INTERRUPTED)
+            gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+#else
         st = gf_make_packing(&cfg, opts, &pk);
+#endif
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
         gf_packing_free(&pk);
     }

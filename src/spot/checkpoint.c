@@ -12,6 +12,7 @@
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
@@ -228,39 +229,6 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-// The whole file in a block of the core allocator (*cap bytes, *len read).
-static gf_status gf_read_all(const char *path, unsigned char **data, size_t *len, size_t *cap)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: cannot open checkpoint: %s", path, strerror(errno));
-    size_t size = 1 << 16, n = 0;
-    unsigned char *buf = gf_alloc(size);
-    while (buf) {
-        size_t got = fread(buf + n, 1, size - n, f);
-        n += got;
-        if (n < size) break;
-        unsigned char *q = size <= SIZE_MAX / 2 ? gf_realloc(buf, size, size * 2) : NULL;
-        if (!q) {
-            gf_free(buf, size);
-            buf = NULL;
-            break;
-        }
-        buf = q;
-        size *= 2;
-    }
-    bool err = ferror(f);
-    fclose(f);
-    if (!buf) return gf_error_set(GF_ERR_NOMEM, "%s: out of memory reading checkpoint", path);
-    if (err) {
-        gf_free(buf, size);
-        return gf_error_set(GF_ERR_IO, "%s: read error", path);
-    }
-    *data = buf;
-    *len = n;
-    *cap = size;
-    return GF_OK;
-}
-
 // The next setting line (a [section] or key = value) of an INI text at p,
 // past comments and blank lines; its length (without the newline) in *len.
 // NULL at the end of the text.
@@ -344,7 +312,9 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     *out = NULL;
     unsigned char *data = NULL;
     size_t len = 0, cap = 0;
-    gf_status st = gf_read_all(path, &data, &len, &cap);
+    // A regular file only (a checkpoint.bin linked to /dev/zero would be read
+    // until memory ran out), as big as it is on disk.
+    gf_status st = gf_fs_read_all(path, 0, &data, &len, &cap);
     if (st != GF_OK) return st;
     const size_t head = 8 + 4 + 4 + 8 + 4;
     uint32_t version, bom, crc;

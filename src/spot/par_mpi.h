@@ -44,6 +44,12 @@ void gf_mpi_release(void);
 /// share them; every rank computes the same split. mine[k] = 1 for this
 /// rank's; scratch holds n entries.
 void gf_mpi_assign(const uint32_t *load, size_t n, uint64_t *scratch, uint8_t *mine);
+/// The initial packing of a run, made by rank 0 alone (`st` its status there;
+/// the others pass GF_OK and an empty `pk`) and sent to every rank
+/// (par_mpi_packing.c). A failure on rank 0 is every rank's, with its message;
+/// a stop asked on any rank meanwhile (*stop) stops all of them here,
+/// together: GF_ERR_INTERRUPTED on every rank. A collective: every rank calls it.
+gf_status gf_mpi_share_packing(gf_status st, struct gf_packing *pk, volatile sig_atomic_t *stop);
 #else
 #define gf_mpi_release() ((void)0)
 #endif

@@ -137,6 +137,66 @@ expect_rc 3 "analyze a series whose particle count grows"
 expect_err "the particle count grows" "analyze a series whose particle count grows"
 ok "analyze on a growing particle count: exit 3"
 
+# --- 6b. reads with an end (issue 26; old: memory grew at ~0.5 GB/s, or ------
+# ENOMEM read as the end of the file and the defaults run, rc 0; report wrote
+# until the disk was full, or waited on a FIFO for ever). A memory limit keeps
+# the old code's growth small; not under ASan, whose shadow memory needs more.
+sanitized() { ldd "$GF" 2>/dev/null | grep -q 'libasan\|libubsan'; }
+limited() { # limited KB CMD...: CMD under ulimit -v KB (none when sanitized) and a 60 s timeout
+    local kb=$1; shift
+    if sanitized; then timeout 60 "$@"; else (ulimit -v "$kb"; exec timeout 60 "$@"); fi
+}
+LAST="granflow run /dev/zero (ulimit -v 2000000)"
+limited 2000000 "$GF" run -q /dev/zero "${TINY[@]}" --set run.duration=0.2 -o Z0 >"$T/out" 2>"$T/err"; RC=$?
+expect_rc 2 "run /dev/zero"
+expect_err "/dev/zero:1: line longer than 65536 bytes" "run /dev/zero"
+[ ! -e Z0 ] || fail "run /dev/zero made its directory"
+ok "a configuration without line ends: exit 2 naming file and line, not the defaults"
+
+gf run -q "${TINY[@]}" --set run.duration=0.2 -o Z
+expect_rc 0 "a short run for the readers"
+mv Z/config.ini Z/config.keep && ln -s /dev/zero Z/config.ini
+LAST="granflow run --resume Z, Z/config.ini -> /dev/zero"
+limited 2000000 "$GF" run -q --resume Z >"$T/out" 2>"$T/err"; RC=$?
+expect_rc 2 "resume with config.ini -> /dev/zero"
+expect_err "Z/config.ini:1: line longer than 65536 bytes" "resume with config.ini -> /dev/zero"
+rm Z/config.ini && mv Z/config.keep Z/config.ini
+ok "resume: a config.ini linked to /dev/zero is refused"
+
+mkdir -p Z/render && ln -s /dev/zero Z/render/x.png
+LAST="granflow report Z, Z/render/x.png -> /dev/zero"
+(ulimit -f 100000; exec timeout 60 "$GF" report Z) >"$T/out" 2>"$T/err"; RC=$?
+expect_rc 1 "report with a picture linked to /dev/zero"
+expect_err "Z/render/x.png: not a regular file (a character device)" "report with a picture linked to /dev/zero"
+[ ! -e Z/report.html.tmp ] && [ ! -e Z/report.html ] || fail "report with a picture linked to /dev/zero left $(ls Z | grep report)"
+rm Z/render/x.png
+mv Z/summary.json Z/summary.keep && mkfifo Z/summary.json
+LAST="granflow report Z, Z/summary.json a FIFO"
+timeout 60 "$GF" report Z >"$T/out" 2>"$T/err"; RC=$?
+expect_rc 1 "report with summary.json a FIFO"
+expect_err "Z/summary.json: not a regular file (a FIFO)" "report with summary.json a FIFO"
+rm Z/summary.json && mv Z/summary.keep Z/summary.json
+mkdir -p Z/analysis && mkfifo Z/analysis/summary.json
+LAST="granflow analyze outflow Z, Z/analysis/summary.json a FIFO"
+timeout 60 "$GF" analyze outflow Z --no-plots >"$T/out" 2>"$T/err"; RC=$?
+expect_rc 1 "analyze NAME with analysis/summary.json a FIFO"
+expect_err "Z/analysis/summary.json: not a regular file (a FIFO)" "analyze NAME with analysis/summary.json a FIFO"
+rm Z/analysis/summary.json
+gf report Z
+expect_rc 0 "report of the same directory made whole again"
+ok "report and analyze read back only regular files: a FIFO or /dev/zero is refused, nothing left"
+
+# More spheres than the process may ever hold: refused before the generator
+# allocates (old: it allocated and zeroed gigabytes, then ran out of memory).
+if ! sanitized; then
+    LAST="granflow pack --set packing.particles=50000000 (ulimit -v 1000000)"
+    (ulimit -v 1000000; exec timeout 60 "$GF" pack -q --set packing.particles=50000000 -o big.dump) >"$T/out" 2>"$T/err"; RC=$?
+    expect_rc 1 "pack of 5e7 spheres under ulimit -v"
+    expect_err "packing: 50000000 particles need about 10.0 GB to generate, more than the 1.0 GB this process may have (ulimit -v)" \
+        "pack of 5e7 spheres under ulimit -v"
+    ok "a packing that cannot fit in memory is refused up front, saying how much it needs"
+fi
+
 # --- 7. messages -------------------------------------------------------------
 gf run -q --set "spot.w=$(printf '1\001\033[31mX\377')" -o M
 expect_rc 2 "--set with binary bytes"

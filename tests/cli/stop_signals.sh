@@ -79,6 +79,9 @@ else
         printf 'ITEM: TIMESTEP\n1000\nITEM: NUM' >snapshots/snap_000001000.dump
     fi
 fi
+# FAKE_CLOSE_OUTPUT: it closes its output first (LAMMPS ending its run but
+# not yet gone): the rest of the wait is granflow's waitpid.
+[ -n "${FAKE_CLOSE_OUTPUT:-}" ] && exec >/dev/null 2>&1
 sleep 60 &
 echo $! >sleep.pid
 echo $$ >lmp.pid
@@ -131,4 +134,33 @@ expect_rc 130 "SIGINT during dem --drain-only before its first snapshot"
 grep -q "^removed: nothing (the newest snapshot, snap_000002000.dump, is older than this drain)" D/interrupted.txt ||
     fail "interrupted.txt does not say the older snapshot was kept: $(cat D/interrupted.txt)"
 ok "dem --drain-only stopped before its first snapshot: an earlier drain's snapshot kept, interrupted.txt says so"
+
+# --- stops that stop (issue 26) ----------------------------------------------
+# LAMMPS closed its output but has not ended: Ctrl-C still stops it (old: a
+# blocking waitpid looped on EINTR until the stand-in's 60 s were over).
+rm -rf D
+FAKE_CLOSE_OUTPUT=1 start dem "${DEM[@]}" -o D --run
+wait_for D/lmp.pid 10 || fail "dem --run (output closed): the stand-in LAMMPS did not start in 10 s"
+sleep 0.5
+kill -INT "$BGPID"
+finish 15
+LAST="granflow dem --run (stand-in LAMMPS closed its output), SIGINT"
+expect_rc 130 "SIGINT during dem --run after LAMMPS closed its output"
+for p in lmp sleep; do alive "$(cat D/$p.pid)" && fail "dem --run (output closed): the stand-in's $p process is still running"; done
+ok "dem --run: SIGINT after LAMMPS closed its output -> exit 130, LAMMPS and its child ended"
+
+# granflow killed with SIGKILL runs no code: its guard ends LAMMPS' group
+# (old: LAMMPS and its child went on, orphaned).
+rm -rf D
+start dem "${DEM[@]}" -o D --run
+wait_for D/lmp.pid 10 || fail "dem --run (kill -9): the stand-in LAMMPS did not start in 10 s"
+kill -KILL "$BGPID"
+finish 5
+gone=
+for ((i = 0; i < 100; i++)); do
+    alive "$(cat D/lmp.pid)" || alive "$(cat D/sleep.pid)" || { gone=1; break; }
+    sleep 0.1
+done
+[ -n "$gone" ] || fail "dem --run killed with SIGKILL: the stand-in LAMMPS or its child still runs 10 s later"
+ok "dem --run: kill -9 of granflow ends LAMMPS and its child within 10 s"
 echo "cli $NAME: $PASS passed, 0 failed"

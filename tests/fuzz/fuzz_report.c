@@ -17,9 +17,10 @@ static char *gf_fuzz_html(int which, const char *path, size_t *len)
     char *buf = NULL;
     FILE *out = open_memstream(&buf, len);
     if (!out) abort();
-    if (which == 0) gf_html_json_table(out, path);
-    else if (which == 1) gf_html_csv_table(out, path, 100);
-    else gf_html_pre_file(out, path);
+    bool found;
+    if (which == 0) gf_html_json_table(out, path, &found);
+    else if (which == 1) gf_html_csv_table(out, path, 100, &found);
+    else gf_html_pre_file(out, path, &found);
     fclose(out);
     return buf;
 }

@@ -145,6 +145,40 @@ ok "SIGINT to mpirun (exit code $STOPRC): both ranks stop at t = $stop_t, rank 0
 interrupt J rank1
 ok "SIGTERM to rank 1 only: both ranks stop at t = $stop_t (exit code $STOPRC), 1 process resumes to the uninterrupted run"
 
+# A signal to one rank while the packing is built (issue 26): every rank
+# stops, exit 130, nothing written. Rank 0 builds the packing and sends it
+# to the others, which agree on a stop asked on any rank meanwhile. (Old:
+# every rank packed its own; the signalled one left, and the others waited
+# for it at the first step for ever.)
+# pack_stop DIR RANK: 2 ranks building 50,000 spheres, SIGTERM to RANK 1 s in.
+pack_stop() {
+    local dir=$1 rank=$2 pid mp k
+    LAST="mpirun -np 2 granflow run (50,000 spheres; SIGTERM to rank $rank while they are packed)"
+    timeout -s KILL 300 "$MPIRUN" --oversubscribe -np 2 "$GF" run -q --set run.mode=fixed --set run.order=spatial \
+        --set packing.particles=50000 --set container.width=10 --set container.depth=10 \
+        --set container.orifice_diameter=4 -o "$dir" >"$T/out" 2>"$T/err" &
+    pid=$!
+    for k in $(seq 200); do
+        mp=$(pgrep -P "$pid")
+        [ -n "$mp" ] && [ "$(pgrep -P "$mp" | wc -l)" -ge 2 ] && break
+        sleep 0.05
+    done
+    sleep 1
+    for k in $(pgrep -P "$mp"); do
+        tr '\0' '\n' <"/proc/$k/environ" 2>/dev/null | grep -q "^OMPI_COMM_WORLD_RANK=$rank\$" && kill -TERM "$k"
+    done
+    wait "$pid"
+    RC=$?
+    [ "$RC" -ne 137 ] || fail "SIGTERM to rank $rank while packing: the ranks hung (killed after 300 s)"
+    expect_rc 130 "SIGTERM to rank $rank while packing"
+    expect_err "interrupted while building the packing; nothing was written to $dir" "SIGTERM to rank $rank while packing"
+    [ ! -e "$dir" ] || fail "SIGTERM to rank $rank while packing: $dir was made"
+}
+pack_stop P0 0
+ok "SIGTERM to rank 0 while the packing is built: both ranks stop, exit 130, nothing written"
+pack_stop P1 1
+ok "SIGTERM to rank 1 while the packing is built: both ranks stop, exit 130, nothing written"
+
 # The event engine is not split between ranks: refused with a message.
 mpi 2 run -q --set packing.particles=500 --set run.duration=0.1 -o E
 [ "$RC" -ne 0 ] || fail "2 ranks with the event engine: expected a refusal"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "io/textscan.h"
+#include "core/textscan.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -12,24 +12,22 @@
 #include <strings.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "core/fs.h"
 
 enum {
-    GF_TEXTSCAN_CHUNK = 1 << 16,            // bytes per gzread
-    GF_TEXTSCAN_MAX_LINE = 64 * 1024 * 1024 // longer lines mean a binary or broken file
+    GF_TEXTSCAN_CHUNK = 1 << 16, // bytes per gzread
 };
 
-gf_status gf_textscan_open(gf_textscan *ts, const char *path)
+// The rest of an open: ts->f and ts->path are set.
+static gf_status gf_textscan_start(gf_textscan *ts)
 {
-    memset(ts, 0, sizeof *ts);
-    ts->path = path;
+    const char *path = ts->path;
     struct stat sb;
-    errno = 0;
-    ts->f = gzopen(path, "rb");
-    if (!ts->f)
-        return gf_error_set(GF_ERR_IO, "cannot open %s: %s", path, errno ? strerror(errno) : "out of memory");
+    ts->max_line = GF_TEXTSCAN_MAX_LINE;
     ts->cap = 2 * (size_t)GF_TEXTSCAN_CHUNK;
     ts->buf = gf_alloc(ts->cap);
     if (!ts->buf) {
@@ -43,6 +41,34 @@ gf_status gf_textscan_open(gf_textscan *ts, const char *path)
     ts->seekable = stat(path, &sb) == 0 && S_ISREG(sb.st_mode);
     ts->gz = !gzdirect(ts->f);
     return GF_OK;
+}
+
+gf_status gf_textscan_open(gf_textscan *ts, const char *path)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->path = path;
+    errno = 0;
+    ts->f = gzopen(path, "rb");
+    if (!ts->f)
+        return gf_error_set(errno && errno != ENOMEM ? GF_ERR_IO : GF_ERR_NOMEM, "cannot open %s: %s", path,
+                            errno ? strerror(errno) : "out of memory");
+    return gf_textscan_start(ts);
+}
+
+gf_status gf_textscan_open_regular(gf_textscan *ts, const char *path, long long max_bytes)
+{
+    memset(ts, 0, sizeof *ts);
+    ts->path = path;
+    int fd;
+    gf_status st = gf_fs_open_regular(path, max_bytes, &fd);
+    if (st != GF_OK) return st;
+    errno = 0;
+    ts->f = gzdopen(fd, "rb");
+    if (!ts->f) {
+        close(fd);
+        return gf_error_set(GF_ERR_NOMEM, "cannot read %s: out of memory", path);
+    }
+    return gf_textscan_start(ts);
 }
 
 void gf_textscan_close(gf_textscan *ts)
@@ -145,10 +171,6 @@ static gf_status gf_textscan_fill(gf_textscan *ts)
         ts->beg = 0;
     }
     if (ts->cap - ts->end < (size_t)GF_TEXTSCAN_CHUNK + 1) {
-        if (ts->cap >= (size_t)GF_TEXTSCAN_MAX_LINE)
-            return gf_error_set(GF_ERR_FORMAT,
-                                "%s:%ld: line longer than %d bytes (not a text file?)", ts->path,
-                                ts->line + 1, GF_TEXTSCAN_MAX_LINE);
         char *nb = gf_realloc(ts->buf, ts->cap, 2 * ts->cap);
         if (!nb) return gf_error_set(GF_ERR_NOMEM, "out of memory reading %s", ts->path);
         ts->buf = nb;
@@ -196,15 +218,20 @@ int gf_textscan_next(gf_textscan *ts, char **line, size_t *len, gf_status *st)
         char *start = ts->buf + ts->beg;
         size_t avail = ts->end - ts->beg;
         char *nl = memchr(start + scanned, '\n', avail - scanned);
-        size_t n;
+        size_t n = nl ? (size_t)(nl - start) : avail; // the line, or what there is of it so far
+        // The cap, checked before the buffer grows: a file without line ends
+        // (/dev/zero) stops here, whatever memory there is.
+        if (n > ts->max_line) {
+            *st = gf_error_set(GF_ERR_FORMAT, "%s:%ld: line longer than %zu bytes (not a text file?)", ts->path,
+                               ts->line + 1, ts->max_line);
+            return -1;
+        }
         ts->partial = !nl;
         if (nl) {
-            n = (size_t)(nl - start);
             ts->beg += n + 1;
         } else if (ts->eof) {
             if (avail == 0) return 0;
-            n = avail; // last line without a newline
-            ts->beg = ts->end;
+            ts->beg = ts->end; // last line without a newline
         } else {
             scanned = avail;
             *st = gf_textscan_fill(ts);
