@@ -106,11 +106,10 @@ static void gf_path(char *out, size_t n, const char *dir, const char *name)
 
 static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim);
 
-static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
+// The snapshot files of one frame (rd->scratch holds its particles).
+static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint64_t index, double time)
 {
-    gf_rundir *rd = ctx;
-    gf_status st = gf_sim_particles(sim, &rd->scratch);
-    if (st != GF_OK) return st;
+    gf_status st = GF_OK;
     const int32_t *pass = NULL;
     if (rd->cfg->run_recirculate) {
         size_t n = rd->scratch.n;
@@ -133,7 +132,14 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
         st = gf_vtk_write_particles(path, &rd->scratch, pass, time);
     }
-    if (st == GF_OK) st = gf_save_progress(rd, sim);
+    return st == GF_OK ? gf_save_progress(rd, sim) : st;
+}
+
+static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
+{
+    gf_rundir *rd = ctx;
+    gf_status st = gf_sim_particles(sim, &rd->scratch);
+    if (st == GF_OK && !rd->opts->replica) st = gf_write_snapshot_files(rd, sim, index, time);
     if (st != GF_OK) return st;
     // A silo that no longer drains would write snapshots of the same heap
     // until run.duration: stop it (run.stall_time, checked at each snapshot).
@@ -230,6 +236,7 @@ static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim)
 
 static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
 {
+    if (rd->opts->replica) return GF_OK;
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
     gf_status st = gf_sim_save(sim, path);
@@ -289,6 +296,7 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
 // configuration written, exits.csv open for appending, summary.json "running".
 static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
 {
+    if (rd->opts->replica) return GF_OK; // the process that writes dir prepares it
     char snaps[GF_PATH_MAX + 32], cfgpath[GF_PATH_MAX + 32], exits[GF_PATH_MAX + 32];
     gf_path(snaps, sizeof snaps, rd->dir, "snapshots");
     gf_path(cfgpath, sizeof cfgpath, rd->dir, "config.ini");
@@ -318,7 +326,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                             GF_PATH_MAX - 1);
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
-    if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
+    if (!opts->resume && !opts->force && !opts->replica && access(ckpt, F_OK) == 0)
         return gf_error_set(GF_ERR_EXISTS,
                             "%s already holds a run (%s exists): resume it, clear it, or use another directory",
                             rd.dir, ckpt);
@@ -340,7 +348,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         gf_packing_free(&pk);
     }
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
+    if (st == GF_OK && !opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP)
+        st = gf_write_container(&rd, sim);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -405,12 +414,12 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         snprintf(why, sizeof why, "%s", gf_last_error());
         gf_append_exits(&rd, sim);
         gf_error_set(st, "%s", why); // the summary carries it
-        gf_write_summary(&rd, sim);
+        if (!opts->replica) gf_write_summary(&rd, sim);
         gf_error_set(st, "%s", why);
     }
     if (stats) *stats = gf_sim_get_stats(sim);
     if (rd.exits) fclose(rd.exits);
-    close(rd.lock_fd);
+    if (rd.lock_fd >= 0) close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
     GF_DELETE(rd.pass, rd.pass_cap);
     gf_sim_destroy(sim);
