@@ -201,7 +201,8 @@ int gf_mpi_app_agree(const gf_config *cfg, const char *resume_dir)
         fprintf(stderr, "granflow run: error: the MPI ranks do not run the same settings (every rank needs the same "
                         "configuration, granflow version and checkpoint; only run.threads may differ):\n");
         for (int r = 1; r < R; r++)
-            if (all[(size_t)r * GF_LINE]) fprintf(stderr, "  rank %d has %.*s\n", r, GF_LINE, all + (size_t)r * GF_LINE);
+            if (all[(size_t)r * GF_LINE])
+                fprintf(stderr, "  rank %d has %.*s\n", r, GF_LINE, all + (size_t)r * GF_LINE);
     }
     free(all);
     free(ref);

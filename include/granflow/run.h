@@ -36,8 +36,8 @@ typedef struct gf_run_opts {
     void (*progress)(void *ctx, const gf_run_progress *p); ///< may be NULL
     void *ctx;            ///< passed to progress
     /// Non-zero: run in step with another process that writes dir (an MPI
-    /// rank other than 0), reading dir/config.ini's run from dir/checkpoint.bin
-    /// on resume but writing nothing, taking no lock and clearing nothing.
+    /// rank other than 0): on resume read dir/checkpoint.bin, but write
+    /// nothing, take no lock and clear nothing.
     int replica;
 } gf_run_opts;
 

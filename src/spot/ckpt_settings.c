@@ -103,7 +103,8 @@ static const char *gf_ckpt_value(const gf_ckpt_line *l, size_t *len)
     return l->line + at;
 }
 
-#define GF_CKPT_RESUMABLE "(on resume only run.duration, run.checkpoint_interval, run.stall_time and run.threads may change)"
+#define GF_CKPT_RESUMABLE \
+    "(on resume only run.duration, run.checkpoint_interval, run.stall_time and run.threads may change)"
 
 gf_status gf_ckpt_compare_settings(const char *path, const char *stored, size_t slen, const char *mine, size_t mlen,
                                    const char *def, size_t dlen)
@@ -125,8 +126,12 @@ gf_status gf_ckpt_compare_settings(const char *path, const char *stored, size_t 
         else if (a->seen)
             st = gf_error_set(GF_ERR_FORMAT, "%s: the checkpoint's configuration lists %.*s.%.*s twice", path, sl,
                               s.sec, kl, s.line);
-        else if ((a->seen = true, a->len != s.len || memcmp(a->line, s.line, s.len) != 0))
-            st = gf_error_set(GF_ERR_PARAM, "%s: %.*s.%.*s differs from the configuration the checkpoint was made with " GF_CKPT_RESUMABLE,
+        if (st != GF_OK) break;
+        a->seen = true;
+        if (a->len != s.len || memcmp(a->line, s.line, s.len) != 0)
+            st = gf_error_set(GF_ERR_PARAM,
+                              "%s: %.*s.%.*s differs from the configuration the checkpoint was made with "
+                              GF_CKPT_RESUMABLE,
                               path, sl, s.sec, kl, s.line);
     }
     // This version's keys the checkpoint does not list: the older version that

@@ -75,7 +75,8 @@ gf_status gf_mpi_records_check(const gf_sim *sim, const unsigned char *msg, size
                 memcpy(&r, o, sizeof r);
                 if (r.cell != GF_NO_CELL && r.cell >= sim->grid.ncell)
                     return gf_mpi_bad(from, k, e, "cell", r.cell, sim->grid.ncell);
-                if (r.cell != GF_NO_CELL && r.slot >= GF_CELL_CAP) return gf_mpi_bad(from, k, e, "slot", r.slot, GF_CELL_CAP);
+                if (r.cell != GF_NO_CELL && r.slot >= GF_CELL_CAP)
+                    return gf_mpi_bad(from, k, e, "slot", r.slot, GF_CELL_CAP);
                 if (r.alive > 1) return gf_mpi_bad(from, k, e, "alive flag", r.alive, 2);
             } else if (k == GF_TOUCH_ROW) {
                 uint32_t n;
