@@ -84,15 +84,15 @@ int gf_cmd_run(int argc, char **argv)
         return GF_EXIT_USAGE;
     }
 #ifdef GF_MPI
-    // Only rank 0 writes the run directory; the others run into a scratch one.
+    // The ranks run the same settings, version and checkpoint, or all stop
+    // here. Only rank 0 writes the run directory: the others run in step
+    // with it and write nothing (no scratch copy to leave behind if killed).
+    if (gf_mpi_app_agree(&cfg, cli.resume ? dir : NULL) != 0) return GF_EXIT_USAGE;
     if (gf_mpi_app_check(&cfg) != 0) return GF_EXIT_USAGE;
-    char scratch[GF_PATH_MAX + 64] = "";
-    const char *shown = dir;
-    if (gf_mpi_app_rank() > 0) {
-        if (!gf_mpi_app_scratch(dir, cli.resume != NULL, scratch, sizeof scratch)) return GF_EXIT_FAIL;
-        dir = scratch;
-        cli.quiet = true;
-    }
+    const bool replica = gf_mpi_app_rank() > 0;
+    if (replica) cli.quiet = true;
+#else
+    const bool replica = false;
 #endif
     volatile sig_atomic_t *stop = gf_cli_catch_stop();
 
@@ -104,19 +104,12 @@ int gf_cmd_run(int argc, char **argv)
         .stop = stop,
         .progress = gf_show_progress,
         .ctx = &pc,
+        .replica = replica,
     };
     gf_sim_stats s;
     gf_status st = gf_run_dir(&cfg, &opts, &s);
-#ifdef GF_MPI
-    if (scratch[0]) {
-        gf_mpi_app_scratch_remove(scratch);
-        dir = shown;
-    }
-#endif
     if (st == GF_ERR_INTERRUPTED) {
-#ifdef GF_MPI
-        if (scratch[0]) return GF_EXIT_INTERRUPTED; // rank 0 says where the run stopped
-#endif
+        if (replica) return GF_EXIT_INTERRUPTED; // rank 0 says where the run stopped
         fprintf(stderr, "\ngranflow run: %s\n", gf_last_error());
         if (s.particles_initial > 0) // the run had begun: its checkpoint is on disk
             fprintf(stderr, "granflow run: continue with: granflow run --resume %s\n", dir);

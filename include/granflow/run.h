@@ -35,6 +35,10 @@ typedef struct gf_run_opts {
     volatile sig_atomic_t *stop; ///< set non-zero (e.g. by SIGINT) to checkpoint and stop
     void (*progress)(void *ctx, const gf_run_progress *p); ///< may be NULL
     void *ctx;            ///< passed to progress
+    /// Non-zero: run in step with another process that writes dir (an MPI
+    /// rank other than 0): on resume read dir/checkpoint.bin, but write
+    /// nothing, take no lock and clear nothing.
+    int replica;
 } gf_run_opts;
 
 /// The defaults: a fresh run, no progress callback, no stop flag; set `dir`.

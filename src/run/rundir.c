@@ -193,11 +193,10 @@ static gf_status gf_find_vtus(gf_rundir *rd)
     return st;
 }
 
-static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
+// The snapshot files of one frame (rd->scratch holds its particles).
+static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint64_t index, double time)
 {
-    gf_rundir *rd = ctx;
-    gf_status st = gf_sim_particles(sim, &rd->scratch);
-    if (st != GF_OK) return st;
+    gf_status st = GF_OK;
     const int32_t *pass = NULL;
     if (rd->cfg->run_recirculate) {
         size_t n = rd->scratch.n;
@@ -223,7 +222,14 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
         // Rewriting the .pvd at every snapshot costs the square of their number (core/limits.h).
         if (st == GF_OK && rd->nvtu <= GF_PVD_EVERY_SNAPSHOT) st = gf_write_pvd(rd);
     }
-    if (st == GF_OK) st = gf_save_progress(rd, sim);
+    return st == GF_OK ? gf_save_progress(rd, sim) : st;
+}
+
+static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
+{
+    gf_rundir *rd = ctx;
+    gf_status st = gf_sim_particles(sim, &rd->scratch);
+    if (st == GF_OK && !rd->opts->replica) st = gf_write_snapshot_files(rd, sim, index, time);
     if (st != GF_OK) return st;
     // A silo that no longer drains would write snapshots of the same heap
     // until run.duration: stop it (run.stall_time, checked at each snapshot).
@@ -320,6 +326,7 @@ static gf_status gf_save_progress(gf_rundir *rd, const gf_sim *sim)
 
 static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
 {
+    if (rd->opts->replica) return GF_OK;
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "checkpoint.bin");
     // The memory held for the checkpoint since the start is what it is
@@ -443,6 +450,7 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
 // configuration written, exits.csv open for appending, summary.json "running".
 static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
 {
+    if (rd->opts->replica) return GF_OK; // the process that writes dir prepares it
     char snaps[GF_PATH_MAX + 32], cfgpath[GF_PATH_MAX + 32], exits[GF_PATH_MAX + 32];
     gf_path(snaps, sizeof snaps, rd->dir, "snapshots");
     gf_path(cfgpath, sizeof cfgpath, rd->dir, "config.ini");
@@ -477,7 +485,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if ((st = gf_run_dir_check_free(rd.dir)) != GF_OK) return st;
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
-    if (!opts->resume && !opts->force && access(ckpt, F_OK) == 0)
+    if (!opts->resume && !opts->force && !opts->replica && access(ckpt, F_OK) == 0)
         return gf_error_set(GF_ERR_EXISTS,
                             "%s already holds a run (%s exists): resume it, clear it, or use another directory",
                             rd.dir, ckpt);
@@ -512,8 +520,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     // made (issue 26: a packing.file with a line break left an empty one).
     if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
-    if (st == GF_OK && opts->resume && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
+    if (st == GF_OK && !opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP)
+        st = gf_write_container(&rd, sim);
+    if (st == GF_OK && opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -595,12 +604,12 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         snprintf(why, sizeof why, "%s", gf_last_error());
         gf_append_exits(&rd, sim);
         gf_error_set(st, "%s", why); // the summary carries it
-        gf_write_summary(&rd, sim);
+        if (!opts->replica) gf_write_summary(&rd, sim);
         gf_error_set(st, "%s", why);
     }
     if (stats) *stats = gf_sim_get_stats(sim);
     if (rd.exits) fclose(rd.exits);
-    close(rd.lock_fd);
+    if (rd.lock_fd >= 0) close(rd.lock_fd);
     gf_packing_free(&rd.scratch);
     GF_DELETE(rd.pass, rd.pass_cap);
     if (rd.vtu_index) GF_DELETE(rd.vtu_index, rd.vtu_cap);

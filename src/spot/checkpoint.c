@@ -229,49 +229,6 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-// The next setting line (a [section] or key = value) of an INI text at p,
-// past comments and blank lines; its length (without the newline) in *len.
-// NULL at the end of the text.
-static const char *gf_ckpt_setting(const char *p, const char *end, size_t *len)
-{
-    while (p < end) {
-        const char *nl = memchr(p, '\n', (size_t)(end - p));
-        size_t n = nl ? (size_t)(nl - p) : (size_t)(end - p);
-        if (n > 0 && p[0] != '#' && p[0] != ';') {
-            *len = n;
-            return p;
-        }
-        p += n + (nl ? 1 : 0);
-    }
-    return NULL;
-}
-
-// Whether setting `line` (len bytes) of section `section` is, word for word,
-// a setting of that section in `def` (the defaults' text): a key that a
-// checkpoint of an older version does not list, at its default, changes
-// nothing the older version did.
-static bool gf_ckpt_is_default(const char *line, size_t len, const char *section, const char *def, size_t dlen)
-{
-    char sec[64] = "";
-    const char *p = def, *end = def + dlen;
-    size_t n = 0;
-    while ((p = gf_ckpt_setting(p, end, &n)) != NULL) {
-        if (p[0] == '[' && n < sizeof sec) snprintf(sec, sizeof sec, "%.*s", (int)n - 2, p + 1);
-        else if (n == len && !memcmp(p, line, len) && !strcmp(sec, section)) return true;
-        p += n;
-    }
-    return false;
-}
-
-// The key of setting `s` (len bytes): its length up to " =".
-static size_t gf_ckpt_key_len(const char *s, size_t len)
-{
-    const char *eq = memchr(s, '=', len);
-    size_t kl = eq ? (size_t)(eq - s) : len;
-    while (kl > 0 && s[kl - 1] == ' ') kl--;
-    return kl;
-}
-
 static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, size_t cap, gf_status st)
 {
     gf_free(data, cap);
@@ -368,52 +325,13 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
         gf_free(mine, mcap);
         return gf_ckpt_fail(sim, data, cap, st);
     }
-    bool ok = !r.bad && plen <= r.len - r.pos;
-    // The two INI texts are compared setting by setting: comments and blank
-    // lines are skipped, so a key's documentation may change between
-    // versions without stranding checkpoints, and a key (or a section) this
-    // version added is passed over where the checkpoint's text does not have
-    // it and it is at its default; the first key that differs is named.
-    char key[160] = "", section[64] = "";
-    const char *a = ok ? (const char *)r.data + r.pos : "", *b = mine;
-    const char *ae = a + (ok ? plen : 0), *be = mine + mlen;
-    size_t al = 0, bl = 0;
-    for (;;) {
-        a = gf_ckpt_setting(a, ae, &al);
-        b = gf_ckpt_setting(b, be, &bl);
-        if (b && b[0] == '[' && bl < sizeof section) snprintf(section, sizeof section, "%.*s", (int)bl - 2, b + 1);
-        if (b && b[0] == '[' && (!a || al != bl || memcmp(a, b, bl) != 0)) {
-            b += bl; // a section the checkpoint's version did not have: its keys are checked one by one below
-            continue;
-        }
-        const size_t kl = b ? gf_ckpt_key_len(b, bl) : 0;
-        if (b && b[0] != '[' && (!a || a[0] == '[' || gf_ckpt_key_len(a, al) != kl || memcmp(a, b, kl) != 0) &&
-            gf_ckpt_is_default(b, bl, section, def, dlen)) {
-            b += bl; // a key the checkpoint's version did not have, at its default
-            continue;
-        }
-        if (!a || !b) {
-            if (a || b) snprintf(key, sizeof key, "%s", "the list of keys");
-            break;
-        }
-        if (al != bl || memcmp(a, b, al) != 0) {
-            snprintf(key, sizeof key, "%s.%.*s", section, (int)kl, b);
-            break;
-        }
-        a += al;
-        b += bl;
-    }
+    if (r.bad || plen > r.len - r.pos)
+        st = gf_error_set(GF_ERR_FORMAT, "%s: the checkpoint's configuration text runs past its payload", path);
+    else
+        st = gf_ckpt_compare_settings(path, (const char *)r.data + r.pos, (size_t)plen, mine, mlen, def, dlen);
     gf_free(def, dcap);
-    if (!ok || key[0]) {
-        if (!key[0]) snprintf(key, sizeof key, "%s", "the configuration");
-        gf_free(mine, mcap);
-        return gf_ckpt_fail(sim, data, cap,
-                            gf_error_set(GF_ERR_PARAM, "%s: %s differs from the configuration the checkpoint "
-                                                       "was made with (on resume only run.duration, "
-                                                       "run.checkpoint_interval, run.stall_time and run.threads may change)",
-                                         path, key));
-    }
     gf_free(mine, mcap);
+    if (st != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
     r.pos += plen;
     gf_sim_derive(sim);
 

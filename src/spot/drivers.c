@@ -160,6 +160,9 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
     uint64_t every = hooks->progress_every ? hooks->progress_every : UINT64_MAX;
     uint64_t countdown = every;
     gf_status st = GF_OK;
+#ifdef GF_MPI
+    if ((st = gf_mpi_agree(sim)) != GF_OK) return st; // the ranks start from one state, or not at all
+#endif
     for (;;) {
         if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
         gf_sim_draw_pending(sim);

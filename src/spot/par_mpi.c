@@ -13,6 +13,7 @@
 // compares a hash of the whole state across ranks after every phase.
 #include <mpi.h>
 #include <inttypes.h>
+#include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,31 +21,8 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "spot/mpi_records.h"
 #include "spot/par_mpi.h"
-
-/// A particle's record in the exchange, followed by its list row.
-typedef struct gf_mpi_part {
-    uint32_t i, cell, slot, alive;
-    gf_pos p;
-    gf_ref p0;
-} gf_mpi_part;
-
-/// A cell's record, followed by its GF_CELL_CAP slots.
-typedef struct gf_mpi_cell {
-    uint32_t c, count;
-} gf_mpi_cell;
-
-/// A moved particle's record: its position only.
-typedef struct gf_mpi_pos {
-    uint32_t i, pad_;
-    double x, y, z;
-} gf_mpi_pos;
-
-/// A spot's record.
-typedef struct gf_mpi_spot {
-    double x, y, z, next; ///< next: the time of its next move (the domain engine's clock)
-    uint32_t k, count, dead, pad_;
-} gf_mpi_spot;
 
 static struct {
     unsigned char *out, *whole, *in; ///< this rank's message; every rank's chunk; every rank's message
@@ -219,6 +197,39 @@ static uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes)
     return h;
 }
 
+gf_status gf_mpi_agree(const gf_sim *sim)
+{
+    if (gf_mpi_size() < 2) return GF_OK;
+    const size_t n = sim->n, ns = sim->ns;
+    uint64_t h = 0xcbf29ce484222325ull, counts[5] = {sim->n, sim->n_alive, sim->n_initial, sim->ns, sim->nexit};
+    h = gf_mpi_hash(h, counts, sizeof counts);
+    h = gf_mpi_hash(h, &sim->t, sizeof sim->t);
+    h = gf_mpi_hash(h, &sim->fstep, sizeof sim->fstep);
+    h = gf_mpi_hash(h, &sim->next_snap, sizeof sim->next_snap);
+    h = gf_mpi_hash(h, &sim->rng.s, sizeof sim->rng.s);
+    h = gf_mpi_hash(h, sim->p, n * sizeof *sim->p);
+    h = gf_mpi_hash(h, sim->p0, n * sizeof *sim->p0);
+    h = gf_mpi_hash(h, sim->id, n * sizeof *sim->id);
+    h = gf_mpi_hash(h, sim->layer, n * sizeof *sim->layer);
+    h = gf_mpi_hash(h, sim->alive, n * sizeof *sim->alive);
+    h = gf_mpi_hash(h, sim->hist, n * sizeof *sim->hist);
+    h = gf_mpi_hash(h, sim->sx, ns * sizeof *sim->sx);
+    h = gf_mpi_hash(h, sim->sy, ns * sizeof *sim->sy);
+    h = gf_mpi_hash(h, sim->sz, ns * sizeof *sim->sz);
+    h = gf_mpi_hash(h, sim->scount, ns * sizeof *sim->scount);
+    h = gf_mpi_hash(h, sim->exits, sim->nexit * sizeof *sim->exits);
+    uint64_t h0 = h;
+    MPI_Bcast(&h0, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    int mine = h != h0 ? gf_mpi_rank() : INT_MAX, first = INT_MAX;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first == INT_MAX) return GF_OK;
+    return gf_error_set(GF_ERR_STATE,
+                        "the MPI ranks do not hold the same state before the first step (t = %g): rank %d differs from "
+                        "rank 0 (a packing file or checkpoint that differs between nodes, or builds of granflow "
+                        "that compute differently)",
+                        sim->t, first);
+}
+
 static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void *blocks, size_t block_bytes)
 {
     const size_t n = sim->n;
@@ -251,24 +262,6 @@ static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void
     return GF_OK;
 }
 
-// Entry limits and record sizes of each kind of log (GF_TOUCH_*).
-static void gf_mpi_kinds(const gf_sim *sim, size_t nblock, size_t block_size, size_t limit[GF_TOUCH_KINDS],
-                         size_t rec[GF_TOUCH_KINDS])
-{
-    const size_t row = sim->use_nlist && sim->nl ? sizeof(uint32_t) << sim->nl_shift : 0;
-    limit[GF_TOUCH_PARTICLE] = limit[GF_TOUCH_ROW] = row ? sim->n : 0;
-    limit[GF_TOUCH_PARTICLE] = limit[GF_TOUCH_MOVED] = sim->n;
-    limit[GF_TOUCH_CELL] = sim->grid.ncell;
-    limit[GF_TOUCH_SPOT] = sim->ns;
-    limit[GF_TOUCH_BLOCK] = nblock;
-    rec[GF_TOUCH_PARTICLE] = sizeof(gf_mpi_part);
-    rec[GF_TOUCH_MOVED] = sizeof(gf_mpi_pos);
-    rec[GF_TOUCH_ROW] = sizeof(uint32_t) + row;
-    rec[GF_TOUCH_CELL] = sizeof(gf_mpi_cell) + GF_CELL_CAP * sizeof(uint32_t);
-    rec[GF_TOUCH_SPOT] = sizeof(gf_mpi_spot);
-    rec[GF_TOUCH_BLOCK] = sizeof(uint32_t) + block_size;
-}
-
 // This rank's message: its length, the number of records of each kind, then
 // the records kind by kind (each entry once, as this rank's blocks left it).
 static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint8_t *dead, const void *blocks,
@@ -276,7 +269,7 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
 {
     const gf_grid *g = &sim->grid;
     size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS], logged = 0;
-    gf_mpi_kinds(sim, nblock, block_size, limit, rec);
+    gf_mpi_records_kinds(sim, nblock, block_size, limit, rec);
     for (int t = 0; t < threads; t++)
         for (int k = 0; k < GF_TOUCH_KINDS; k++) logged += work[t].touched[k].n;
     size_t flags = sim->n > g->ncell ? sim->n : g->ncell;
@@ -353,85 +346,6 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
     return GF_OK;
 }
 
-// Another rank's message, applied: every kind but the cells (cells = false),
-// or the cells (cells = true), whose slots also give the cell and slot of
-// every particle in them (taken last, over the particles' own records).
-static void gf_mpi_apply(gf_sim *sim, const unsigned char *o, uint8_t *dead, void *blocks, size_t nblock,
-                         size_t block_size, bool cells)
-{
-    gf_grid *g = &sim->grid;
-    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS];
-    gf_mpi_kinds(sim, nblock, block_size, limit, rec);
-    uint32_t head[1 + GF_TOUCH_KINDS];
-    memcpy(head, o, sizeof head);
-    o += sizeof head;
-    const size_t row = rec[GF_TOUCH_ROW] - sizeof(uint32_t), cell_row = GF_CELL_CAP * sizeof(uint32_t);
-    for (int k = 0; k < GF_TOUCH_KINDS; k++) {
-        if ((k == GF_TOUCH_CELL) != cells) {
-            o += head[1 + k] * rec[k];
-            continue;
-        }
-        for (size_t e = 0; e < head[1 + k]; e++, o += rec[k]) {
-            switch (k) {
-            case GF_TOUCH_PARTICLE: {
-                gf_mpi_part r;
-                memcpy(&r, o, sizeof r);
-                g->cell_of[r.i] = r.cell;
-                g->slot_of[r.i] = r.slot;
-                sim->alive[r.i] = (uint8_t)r.alive;
-                sim->p[r.i] = r.p;
-                sim->p0[r.i] = r.p0;
-                break;
-            }
-            case GF_TOUCH_MOVED: {
-                gf_mpi_pos r;
-                memcpy(&r, o, sizeof r);
-                sim->p[r.i].x = r.x;
-                sim->p[r.i].y = r.y;
-                sim->p[r.i].z = r.z;
-                break;
-            }
-            case GF_TOUCH_ROW: {
-                uint32_t i;
-                memcpy(&i, o, sizeof i);
-                memcpy(sim->nl + ((size_t)i << sim->nl_shift), o + sizeof i, row);
-                break;
-            }
-            case GF_TOUCH_CELL: {
-                gf_mpi_cell r;
-                memcpy(&r, o, sizeof r);
-                uint32_t *s = g->slot + (size_t)r.c * GF_CELL_CAP;
-                memcpy(s, o + sizeof r, cell_row);
-                g->count[r.c] = r.count;
-                for (uint32_t j = 0; j < r.count; j++) {
-                    g->cell_of[s[j]] = r.c;
-                    g->slot_of[s[j]] = j;
-                }
-                break;
-            }
-            case GF_TOUCH_SPOT: {
-                gf_mpi_spot r;
-                memcpy(&r, o, sizeof r);
-                sim->sx[r.k] = r.x;
-                sim->sy[r.k] = r.y;
-                sim->sz[r.k] = r.z;
-                sim->scount[r.k] = r.count;
-                sim->snext[r.k] = r.next;
-                dead[r.k] = (uint8_t)r.dead;
-                break;
-            }
-            default: {
-                uint32_t b;
-                memcpy(&b, o, sizeof b);
-                memcpy((unsigned char *)blocks + b * block_size, o + sizeof b, block_size);
-            }
-            }
-        }
-        if (k == GF_TOUCH_PARTICLE || k == GF_TOUCH_MOVED) gf_mpi_st.applied_p += head[1 + k];
-        if (k == GF_TOUCH_CELL) gf_mpi_st.applied_c += head[1 + k];
-    }
-}
-
 // Every rank's message into gf_mpi_st.in, rank r's from in + displs[r]. One
 // collective in the common case: every rank sends `chunk` bytes (its message,
 // or the head of it); the longer messages' tails follow in a second one. The
@@ -449,6 +363,12 @@ static gf_status gf_mpi_swap(size_t mine)
     for (int r = 0; r < R; r++) {
         uint32_t len;
         memcpy(&len, gf_mpi_st.whole + (size_t)r * C, sizeof len);
+        // Every rank sees every length: a bad one is refused by all of them.
+        if (len < sizeof(gf_mpi_head) || len > INT_MAX || total + len > INT_MAX)
+            return gf_error_set(GF_ERR_STATE,
+                                "MPI exchange: rank %d announces a message of %u bytes (%zu before it): the ranks are "
+                                "out of step",
+                                r, len, total);
         gf_mpi_st.displs[r] = (int)total;
         gf_mpi_st.counts[r] = (int)len;
         total += len;
@@ -497,10 +417,17 @@ gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dea
     if ((st = gf_mpi_swap(mine)) != GF_OK) return st;
     gf_mpi_st.wait += MPI_Wtime() - t0;
     gf_mpi_st.phases++;
+    // Every rank checks every message (its own too) before applying any:
+    // all come to the same verdict, and fail together, with no collective more.
+    for (int r = 0; r < R; r++)
+        if ((st = gf_mpi_records_check(sim, gf_mpi_st.in + gf_mpi_st.displs[r], (size_t)gf_mpi_st.counts[r], nblock,
+                                       block_size, r)) != GF_OK)
+            return st;
     for (int pass = 0; pass < 2; pass++)
         for (int r = 0; r < R; r++) {
             if (r == me) continue;
-            gf_mpi_apply(sim, gf_mpi_st.in + gf_mpi_st.displs[r], dead, blocks, nblock, block_size, pass == 1);
+            gf_mpi_records_apply(sim, gf_mpi_st.in + gf_mpi_st.displs[r], dead, blocks, nblock, block_size, pass == 1,
+                                 &gf_mpi_st.applied_p, &gf_mpi_st.applied_c);
             if (pass == 0) gf_mpi_st.applied += (uint64_t)gf_mpi_st.counts[r];
         }
     return gf_mpi_st.check ? gf_mpi_check(sim, dead, blocks, nblock * block_size) : GF_OK;

@@ -19,6 +19,12 @@ int gf_mpi_size(void);
 /// Ranks on this machine (MPI_COMM_TYPE_SHARED), 1 before MPI_Init: with
 /// run.threads = 0 each rank takes its share of the cores, not all of them.
 int gf_mpi_local_size(void);
+/// Before the first step of a run (gf_sim_run): every rank hashes the
+/// engine's state (particles, spots, exits, clock, random stream) and all
+/// compare; GF_ERR_STATE on every rank, naming the first rank that differs
+/// from rank 0, when they do not hold the same state (a packing file or a
+/// checkpoint that differs between nodes, builds that compute differently).
+gf_status gf_mpi_agree(const gf_sim *sim);
 /// Before a colour phase: empties the workers' logs of what their moves
 /// change (gf_work.touched) and has them log.
 gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads);

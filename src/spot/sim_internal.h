@@ -320,5 +320,12 @@ gf_status gf_spot_move(gf_sim *sim, size_t k);
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
 gf_status gf_sim_make_grid(gf_sim *sim);
+/// On resume (checkpoint.c): the configuration text a checkpoint stored
+/// (slen bytes, from the file) against the one this run would store (mine)
+/// and the defaults' (def), setting by setting (ckpt_settings.c). GF_OK, or
+/// the refusal naming the first key that differs, is missing while not at
+/// its default, is unknown here or is listed twice.
+gf_status gf_ckpt_compare_settings(const char *path, const char *stored, size_t slen, const char *mine, size_t mlen,
+                                   const char *def, size_t dlen);
 
 #endif

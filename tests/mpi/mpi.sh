@@ -63,7 +63,6 @@ for np in 1 2 4; do
         ok "$np ranks x $t threads: the single process's snapshots, exits, summary and checkpoint"
     done
 done
-[ -z "$(ls -d "${TMPDIR:-/tmp}"/granflow-rank* 2>/dev/null)" ] || echo "note: scratch dirs left in ${TMPDIR:-/tmp}"
 
 # run.threads = 0 (every core) under mpirun: the machine's cores are shared
 # by its ranks (4 ranks on 2 cores: one thread each, where every rank took
