@@ -127,8 +127,7 @@ static gf_status gf_html_json_entry(void *ctx, const gf_json_member *m)
     return GF_OK;
 }
 
-// The entries of `path` into e[0, *n): GF_OK with *n = -1 when it is absent.
-static gf_status gf_html_json_load(const char *path, gf_html_entry *e, size_t max, int *n)
+gf_status gf_html_json_load(const char *path, gf_html_entry *e, size_t max, int *n)
 {
     *n = -1;
     if (access(path, F_OK) != 0 && errno == ENOENT) return GF_OK;

@@ -37,6 +37,10 @@ typedef struct gf_html_entry {
 /// read or is not a JSON object (gf_last_error() names the file, line and
 /// column; no entry is made).
 int gf_html_json_read(const char *path, gf_html_entry *e, size_t max);
+/// gf_html_json_read with the reason of a failure: the entries of `path` into
+/// e[0, *n); GF_OK with *n = -1 when it is absent; on an error *n = -2 and the
+/// status says what (GF_ERR_IO: not a regular file or unreadable; GF_ERR_FORMAT: not JSON).
+gf_status gf_html_json_load(const char *path, gf_html_entry *e, size_t max, int *n);
 
 /// Writes the number `text` (as a summary writes it) with 4 significant
 /// digits: 1.412 x 10<sup>-7</sup>, 39.69, 68970. Whole numbers written

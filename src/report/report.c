@@ -141,9 +141,10 @@ static bool gf_report_summary(gf_report *r, const char *path)
 {
     gf_html_entry *e = GF_NEW(gf_html_entry, GF_REPORT_ENTRIES);
     const char **why = GF_NEW(const char *, GF_REPORT_ENTRIES);
-    int n = e && why ? gf_html_json_read(path, e, GF_REPORT_ENTRIES) : -1;
-    // Not JSON (gf_last_error names file, line, column): the page is not written.
-    if (n == -2 && r->st == GF_OK) r->st = GF_ERR_FORMAT;
+    int n = -1;
+    gf_status st = e && why ? gf_html_json_load(path, e, GF_REPORT_ENTRIES, &n) : GF_OK;
+    // Not JSON, or not a regular file (gf_last_error names it): the page is not written.
+    if (st != GF_OK && r->st == GF_OK) r->st = st;
     if (n >= 0) {
         gf_report_omit(&r->ctx, e, (size_t)n, why);
         gf_html_kv_table(r->out, e, (size_t)n, why);
