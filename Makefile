@@ -77,7 +77,7 @@ test-san: build-san
 
 # The MPI tests only (label mpi): 1, 2 and 4 ranks give the single process's run directory.
 test-mpi: build-mpi
-	cd $(BUILD_MPI) && ctest --output-on-failure -L mpi
+	cd $(BUILD_MPI) && ctest --output-on-failure -L '^mpi$$'
 
 test-fuzz: build-fuzz
 	FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) bash scripts/fuzz.sh $(BUILD_FUZZ)
