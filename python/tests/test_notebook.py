@@ -4,7 +4,6 @@ as files, particles as tables, read_snapshot through the C reader, and one
 exception hierarchy."""
 import gzip
 import shutil
-import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
