@@ -4,6 +4,8 @@
 // (bit for bit, resume included); sectors of one index really run side by
 // side; the decomposition follows parallel.domain_size and parallel.sectors
 // and refuses domains too small to keep sectors independent.
+// ctest: nosan-case thread_count_does_not_change_the_result
+// ctest: nosan-case resume_under_another_thread_count
 #include "support.h"
 
 #include <stdio.h>
