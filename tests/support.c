@@ -8,6 +8,8 @@
 #include "core/alloc.h"
 #include "granflow/analysis.h"
 #include "granflow/granflow.h"
+#include "run_outcome.h"
+#include "spot/sim_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -202,4 +204,42 @@ gf_series gf_test_series(size_t nframes, double W, double D)
     assert_non_null(s.frames);
     for (size_t k = 0; k < nframes; k++) s.frames[k].time = (double)k;
     return s;
+}
+
+gf_test_outcome gf_test_run_outcome(gf_config c)
+{
+    gf_sim *sim = gf_test_generated_sim(&c);
+    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
+    gf_test_outcome o = {.st = gf_sim_get_stats(sim), .shared_phases = gf_par_shared_phases(sim),
+                         .prof = gf_sim_par_profile(sim)};
+    assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
+    const gf_exit *e = gf_sim_exits(sim, &o.nex);
+    o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
+    assert_non_null(o.ex);
+    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    gf_sim_destroy(sim);
+    return o;
+}
+
+void gf_test_same_outcome(const gf_test_outcome *a, const gf_test_outcome *b)
+{
+    assert_int_equal(a->pk.n, b->pk.n);
+    assert_memory_equal(a->pk.id, b->pk.id, sizeof(int64_t) * a->pk.n);
+    assert_memory_equal(a->pk.x, b->pk.x, sizeof(double) * a->pk.n);
+    assert_memory_equal(a->pk.y, b->pk.y, sizeof(double) * a->pk.n);
+    assert_memory_equal(a->pk.z, b->pk.z, sizeof(double) * a->pk.n);
+    assert_int_equal(a->nex, b->nex);
+    assert_memory_equal(a->ex, b->ex, sizeof(gf_exit) * a->nex);
+    assert_int_equal(a->st.spot_moves, b->st.spot_moves);
+    assert_int_equal(a->st.relax_calls, b->st.relax_calls);
+    assert_int_equal(a->st.spots_deleted, b->st.spots_deleted);
+    // The counters' floating-point sums are made block by block, in block order.
+    assert_memory_equal(&a->st.spot_dz, &b->st.spot_dz, sizeof(double));
+    assert_memory_equal(&a->st.relax_dz, &b->st.relax_dz, sizeof(double));
+}
+
+void gf_test_outcome_free(gf_test_outcome *o)
+{
+    gf_packing_free(&o->pk);
+    free(o->ex);
 }

@@ -7,6 +7,7 @@
 // ctest: nosan-case thread_count_does_not_change_the_result
 // ctest: nosan-case resume_under_another_thread_count
 #include "support.h"
+#include "run_outcome.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,50 +37,7 @@ static gf_config tall_silo(int64_t threads)
     return c;
 }
 
-typedef struct outcome {
-    gf_packing pk;
-    gf_exit *ex;
-    size_t nex;
-    gf_sim_stats st;
-    uint64_t shared_phases;
-    gf_par_profile prof;
-} outcome;
-
-static outcome run_config(gf_config c)
-{
-    gf_sim *sim = gf_test_generated_sim(&c);
-    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
-    outcome o = {.st = gf_sim_get_stats(sim), .shared_phases = gf_par_shared_phases(sim), .prof = gf_sim_par_profile(sim)};
-    assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
-    const gf_exit *e = gf_sim_exits(sim, &o.nex);
-    o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
-    assert_non_null(o.ex);
-    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
-    gf_sim_destroy(sim);
-    return o;
-}
-
-static void same_outcome(const outcome *a, const outcome *b)
-{
-    assert_int_equal(a->pk.n, b->pk.n);
-    assert_memory_equal(a->pk.id, b->pk.id, sizeof(int64_t) * a->pk.n);
-    assert_memory_equal(a->pk.x, b->pk.x, sizeof(double) * a->pk.n);
-    assert_memory_equal(a->pk.y, b->pk.y, sizeof(double) * a->pk.n);
-    assert_memory_equal(a->pk.z, b->pk.z, sizeof(double) * a->pk.n);
-    assert_int_equal(a->nex, b->nex);
-    assert_memory_equal(a->ex, b->ex, sizeof(gf_exit) * a->nex);
-    assert_int_equal(a->st.spot_moves, b->st.spot_moves);
-    assert_int_equal(a->st.relax_calls, b->st.relax_calls);
-    assert_int_equal(a->st.spots_deleted, b->st.spots_deleted);
-    assert_memory_equal(&a->st.spot_dz, &b->st.spot_dz, sizeof(double));
-    assert_memory_equal(&a->st.relax_dz, &b->st.relax_dz, sizeof(double));
-}
-
-static void free_outcome(outcome *o)
-{
-    gf_packing_free(&o->pk);
-    free(o->ex);
-}
+static gf_test_outcome run_config(gf_config c) { return gf_test_run_outcome(c); }
 
 // 1, 2 and 3 threads (3 on a 2-core machine: oversubscribed) give the same
 // particles, exits and counters to the last bit; the run did flow, and many
@@ -87,7 +45,7 @@ static void free_outcome(outcome *o)
 static void thread_count_does_not_change_the_result(void **state)
 {
     (void)state;
-    outcome o1 = run_config(tall_silo(1)), o2 = run_config(tall_silo(2)), o3 = run_config(tall_silo(3));
+    gf_test_outcome o1 = run_config(tall_silo(1)), o2 = run_config(tall_silo(2)), o3 = run_config(tall_silo(3));
     print_message("domains: %d x %d x %d sectors, %d indices, %zu domains; %zu exited, %llu moves, %llu shared phases\n",
                   o1.prof.blocks_along[0], o1.prof.blocks_along[1], o1.prof.blocks_along[2], o1.prof.colours,
                   o1.prof.domains, o1.nex, (unsigned long long)o1.st.spot_moves,
@@ -95,11 +53,11 @@ static void thread_count_does_not_change_the_result(void **state)
     assert_true(o1.nex > 50);
     assert_true(o2.shared_phases > 50);
     assert_true(o1.prof.blocks_along[2] > 4); // more sectors up the column than indices
-    same_outcome(&o1, &o2);
-    same_outcome(&o1, &o3);
-    free_outcome(&o1);
-    free_outcome(&o2);
-    free_outcome(&o3);
+    gf_test_same_outcome(&o1, &o2);
+    gf_test_same_outcome(&o1, &o3);
+    gf_test_outcome_free(&o1);
+    gf_test_outcome_free(&o2);
+    gf_test_outcome_free(&o3);
 }
 
 // Exits carry the time of the move that let them out, within the run, in
@@ -107,7 +65,7 @@ static void thread_count_does_not_change_the_result(void **state)
 static void exits_are_timed_and_ordered(void **state)
 {
     (void)state;
-    outcome o = run_config(tall_silo(2));
+    gf_test_outcome o = run_config(tall_silo(2));
     assert_true(o.nex > 50);
     for (size_t k = 0; k < o.nex; k++) {
         assert_true(o.ex[k].time > 0.0 && o.ex[k].time <= 6.0 + 1e-12);
@@ -120,7 +78,7 @@ static void exits_are_timed_and_ordered(void **state)
         off += fabs(c - (double)llround(c)) > 1e-6;
     }
     assert_true(off > o.nex / 2);
-    free_outcome(&o);
+    gf_test_outcome_free(&o);
 }
 
 // Recirculation: exits are put back after the cycle in id order, so 1 and 2
@@ -130,13 +88,13 @@ static void recirculation_does_not_depend_on_threads(void **state)
     (void)state;
     gf_config c1 = tall_silo(1), c2 = tall_silo(2);
     c1.run_recirculate = c2.run_recirculate = 1;
-    outcome o1 = run_config(c1), o2 = run_config(c2);
+    gf_test_outcome o1 = run_config(c1), o2 = run_config(c2);
     assert_true(o1.nex > 50);
     assert_int_equal(o1.pk.n, 4000);
     assert_int_equal(o1.st.particles_reinserted, o1.nex);
-    same_outcome(&o1, &o2);
-    free_outcome(&o1);
-    free_outcome(&o2);
+    gf_test_same_outcome(&o1, &o2);
+    gf_test_outcome_free(&o1);
+    gf_test_outcome_free(&o2);
 }
 
 // The decomposition depends on the keys: another window or sector count
@@ -148,12 +106,12 @@ static void keys_set_the_decomposition(void **state)
     gf_config a = tall_silo(2), b = tall_silo(2);
     b.parallel_sectors = 2;
     a.run_duration = b.run_duration = 3.0;
-    outcome oa = run_config(a), ob = run_config(b);
+    gf_test_outcome oa = run_config(a), ob = run_config(b);
     assert_int_equal(oa.prof.colours, 4 * 4); // cut in y? no: 6 d deep holds one sector; x and z cut
     assert_true(ob.prof.colours <= 4);
     assert_true(oa.nex > 0 && ob.nex > 0);
-    free_outcome(&oa);
-    free_outcome(&ob);
+    gf_test_outcome_free(&oa);
+    gf_test_outcome_free(&ob);
 
     gf_config c = tall_silo(1);
     c.parallel_domain_size = 4.0;
