@@ -361,6 +361,7 @@ static gf_status gf_dom_merge_exits(gf_sim *sim, gf_dom *q)
     for (int t = 0; t < q->threads; t++) {
         gf_work *w = &q->work[t];
         if (w->exit_failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
+        if (w->nexit == 0) continue; // (its exits[] may not exist yet)
         memcpy(sim->exits + sim->nexit, w->exits, w->nexit * sizeof(gf_exit));
         for (size_t k = 0; k < w->nexit; k++)
             if (w->exit_slot[k] != UINT32_MAX && !gf_sim_reinsert_queue(sim, w->exit_slot[k]))
