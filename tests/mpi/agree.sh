@@ -9,9 +9,9 @@
 # with full snapshots per rank).
 # usage: bash tests/mpi/agree.sh GRANFLOW_BINARY(MPI build) TESTS_DATA_DIR [MPIRUN]
 NAME=mpi_agree
-source "$(dirname "$0")/../cli/lib.bash" "$1" "$2"
-MPIRUN=${3:-mpirun}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+HERE=$(cd "$(dirname "$0")" && pwd)
+source "$HERE/../cli/lib.bash" "$1" "$2"
+source "$HERE/lib.bash" "${3:-}"
 mkdir -p "$T/tmp"
 export TMPDIR=$T/tmp
 TINY=(--set container.width=12 --set container.depth=6 --set container.orifice_diameter=4

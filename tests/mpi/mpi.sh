@@ -8,16 +8,9 @@
 # CRC that covers them.
 # usage: bash tests/mpi/mpi.sh GRANFLOW_BINARY(MPI build) TESTS_DATA_DIR [MPIRUN]
 NAME=mpi
-source "$(dirname "$0")/../cli/lib.bash" "$1" "$2"
-MPIRUN=${3:-mpirun}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
-mpi() { # mpi NP ARGS...: granflow on NP ranks
-    local np=$1
-    shift
-    LAST="mpirun -np $np granflow $*"
-    "$MPIRUN" --oversubscribe -np "$np" "$GF" "$@" >"$T/out" 2>"$T/err"
-    RC=$?
-}
+HERE=$(cd "$(dirname "$0")" && pwd)
+source "$HERE/../cli/lib.bash" "$1" "$2"
+source "$HERE/lib.bash" "${3:-}"
 
 # A wide slit (44 of 50 d) starts spots in every column of blocks at once, so
 # every colour phase has several busy blocks and every rank runs some of them
@@ -28,9 +21,6 @@ SILO=(--set container.width=50 --set container.depth=4 --set container.orifice_s
       --set spot.step_z=0.2 --set run.mode=fixed --set run.order=spatial
       --set output.snapshot_interval=0.5)
 export GF_MPI_STATS=1
-# took: the words rank 0 took from the other ranks in the last mpi run (> 0:
-# the others ran blocks and their changes were exchanged).
-took() { sed -n 's/.*rank 0 took \([0-9]*\) words.*/\1/p' "$T/err"; }
 # same A B: the two run directories hold the same results.
 same() {
     local a=$1 b=$2 f

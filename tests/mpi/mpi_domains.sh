@@ -8,16 +8,9 @@
 # checkpoint written before it resumes.
 # usage: bash tests/mpi/mpi_domains.sh GRANFLOW_BINARY(MPI build) TESTS_DATA_DIR [MPIRUN]
 NAME=mpi_domains
-source "$(dirname "$0")/../cli/lib.bash" "$1" "$2"
-MPIRUN=${3:-mpirun}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
-mpi() { # mpi NP ARGS...: granflow on NP ranks
-    local np=$1
-    shift
-    LAST="mpirun -np $np granflow $*"
-    "$MPIRUN" --oversubscribe -np "$np" "$GF" "$@" >"$T/out" 2>"$T/err"
-    RC=$?
-}
+HERE=$(cd "$(dirname "$0")" && pwd)
+source "$HERE/../cli/lib.bash" "$1" "$2"
+source "$HERE/lib.bash" "${3:-}"
 
 # A wide slit (44 of 50 d) starts spots over most of the width at once, and
 # 4 sectors per axis (~5.5 d) cut the silo into 9 x 18 sectors: every phase
@@ -27,7 +20,6 @@ SILO=(--set container.width=50 --set container.depth=4 --set container.orifice_s
       --set spot.step_z=0.2 --set run.mode=fixed --set run.order=domains --set parallel.sectors=4
       --set output.snapshot_interval=0.5)
 export GF_MPI_STATS=1
-took() { sed -n 's/.*rank 0 took \([0-9]*\) words.*/\1/p' "$T/err"; }
 same() {
     local a=$1 b=$2 f
     for f in $(cd "$a" && ls snapshots/*) exits.csv; do
