@@ -160,6 +160,12 @@ GF_API void gf_measure_free(gf_measure_out *o);
 // ---------------------------------------------------------------------------
 // Options: regions, heights and windows, the papers' values by default.
 
+/// Which frames each v_z(x) profile averages (velocity.window).
+typedef enum gf_vel_window {
+    GF_VEL_WINDOW_HEIGHT, ///< per height: the pairs of the window where the flow at that height is steady
+    GF_VEL_WINDOW_RUN,    ///< every pair of the window (the outflow's steady window), at every height
+} gf_vel_window;
+
 typedef struct gf_analysis_opts {
     double t0, t1;            ///< time window for steady-state averages, tau; NaN = auto:
                               ///< from a quarter of the way through the run to its end
@@ -169,6 +175,7 @@ typedef struct gf_analysis_opts {
     double vel_heights[16];   ///< heights of the v_z(x) profiles, d (10, 20, ..., 60)
     size_t vel_nheights;
     double vel_band;          ///< half-thickness of the band around each height, d (1)
+    int vel_window;           ///< gf_vel_window: frames of each profile (height)
     double vely_xhalf;        ///< v_z(y) region |x| < this (10)
     double vely_z0, vely_z1;  ///< v_z(y) region in z (50, 70)
     // diffusion

@@ -249,6 +249,8 @@ typedef struct gf_dem_flowstats {
     size_t nz;                         ///< velocity heights
     double z[GF_DEM_FS_MAXZ];          ///< their heights, d
     gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of the profile there, d^2
+    double var_t0[GF_DEM_FS_MAXZ];     ///< the profile there averaged the frames from this time to t1
+                                       ///< (velocity.window = height), tau; NaN: no steady frames there
     const char *profile;               ///< that profile's name, gf_velocity_profile_name: v_z(x) or v_z(r)
     gf_dem_value bp;                   ///< particle diffusion length b_p, d
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
@@ -273,6 +275,11 @@ GF_API bool gf_dem_flowstats_measured(gf_dem_value v, double tol);
 /// (gf_dem_flowstats_measured with var_tol; at least one).
 GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                                    double var_tol);
+
+/// Whether height z of `fs` had steady frames (velocity.window = height): a
+/// height with none in the spot run is not tested (the run was too short
+/// for its flow to settle there), as a DEM height too noisy is not.
+GF_API bool gf_dem_flowstats_steady(const gf_dem_flowstats *fs, size_t z);
 /// Prints the table DEM | spot | difference with its uncertainty | verdict
 /// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
 /// each Var; the other rows have none). The residence-time rows follow when
