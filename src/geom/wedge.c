@@ -85,8 +85,8 @@ static double gf_wedge_clamp(double v, double lo, double hi) { return v < lo ? l
 static void gf_wedge_spot_clamp(const gf_container *c, double n[3], double dw)
 {
     const gf_wedge_params *w = &c->u.wedge;
+    n[1] = gf_wedge_clamp(n[1], c->ylo + dw, c->yhi - dw); // the flat walls reach down the chute
     if (n[2] < 0.0) return; // below the slit the walk keeps over the birth band (the caller)
-    n[1] = gf_wedge_clamp(n[1], c->ylo + dw, c->yhi - dw);
     double lo = c->xlo + dw, hi = c->xhi - dw;
     const double out = n[2] * w->cos_a / w->sin_a - dw / w->sin_a;
     if (n[2] < w->top[0]) lo = fmax(lo, c->ox - c->hole - out);
