@@ -298,8 +298,10 @@ static inline bool gf_container_clear(const gf_container *c, double x, double y,
 /// The slice y = 0 up to ztop, for pictures.
 void gf_container_outline(const gf_container *c, double ztop, gf_outline *o);
 
-/// The region of the bulk packing fraction: `inset` d inside the walls, from
-/// 2 d above the funnel (or base) to 3 d below `top`.
+/// The region of the bulk packing fraction (gf_packing_bulk_fraction): from
+/// 2 d above the funnel (or base) to 3 d below `top`, 2 d inside flat walls
+/// (the bounding box's), or for a radial shape the annulus 3 d inside its
+/// radii (curved walls order the layers next to them further in).
 void gf_container_bulk(const gf_container *c, double top, gf_bulk_region *b);
 
 /// The LAMMPS walls of `granflow dem` (see gf_shape_ops).
