@@ -76,7 +76,7 @@ static void cylinder_flat_base_by_hand(void **state)
     gf_config cfg = cylinder(10, 0, 6, 0, 0);
     assert_true(cfg.container_width == 20 && cfg.container_depth == 20 && cfg.orifice_diameter == 6);
     gf_container c = gf_container_make(&cfg);
-    assert_true(c.kind == GF_SHAPE_CYLINDER && c.z_top == 0.0);
+    assert_true(c.type == &gf_cylinder_shape && c.z_col == 0.0);
     assert_hit(one_hit(&c, 9.7, 0, 5, 0.5), 0.3, -1, 0, 0, true);
     const double s = sqrt(0.5); // at 45 degrees of azimuth
     assert_hit(one_hit(&c, 9.6 * s, 9.6 * s, 5, 0.5), 0.4, -s, -s, 0, true);
@@ -110,7 +110,7 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     // 45 degrees from radius 10 down to the outlet radius 3: the funnel's top is at z = 7.
     gf_config cfg = cylinder(10, 45, 6, 4, 2);
     gf_container c = gf_container_make(&cfg);
-    gf_assert_near(c.z_top, 7, 1e-12);
+    gf_assert_near(c.z_col, 7, 1e-12);
     gf_assert_near(c.exit_z, -4, 0);
     const double s = sqrt(0.5);
     // (rho, z) = (5, 2.5) is 0.5 / sqrt(2) off the funnel line z = rho - 3.

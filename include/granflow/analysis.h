@@ -74,7 +74,8 @@ GF_API gf_status gf_series_load_in(const char *path, double dump_dt, const gf_se
 /// + radius of a particle at or above the exit plane in any frame, each only
 /// when `cfg` does not have it from a file or an assignment
 /// (gf_config_is_set), and then marked as set by "particle extent"
-/// (gf_config_where). A cylinder, or a series without particles, is left as it is.
+/// (gf_config_where). Another shape (a cylinder, a wedge: walls not at its
+/// bounding box), or a series without particles, is left as it is.
 GF_API gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg);
 GF_API void gf_series_free(gf_series *s);
 /// Exits of a series without exits.csv (the dumps of a DEM drain), read off
@@ -276,7 +277,8 @@ GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, g
 GF_API gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 
 /// Whether the velocity profiles of a run in `cfg`'s container are radial,
-/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width.
+/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width
+/// (the box, the wedge): the container's profile coordinate.
 GF_API bool gf_velocity_radial(const gf_config *cfg);
 /// The name of those profiles in labels, tables and notes: "v_z(r)" or "v_z(x)".
 GF_API const char *gf_velocity_profile_name(const gf_config *cfg);

@@ -25,6 +25,7 @@ typedef enum gf_orifice_shape {
 typedef enum gf_container_shape {
     GF_SHAPE_BOX = 0,      ///< walls at x = +-width/2, y = +-depth/2, flat base z = 0 with an orifice
     GF_SHAPE_CYLINDER = 1, ///< wall at radius `radius` about the z axis, optional conical funnel, outlet pipe, inner column
+    GF_SHAPE_WEDGE = 2,    ///< plane-flow hopper: walls at y = +-depth/2, two walls inclined at hopper_angle down to a slit, chute
 } gf_container_shape;
 
 /// Where the ball of a spot step is centred (thesis Sec. 3.4).
@@ -118,11 +119,11 @@ typedef struct gf_config {
     double orifice_x;                  ///< x of the orifice centre (circle) or mid-line (slit), d; default 0
     double orifice_y;                  ///< y of the orifice centre (circle only), d; default 0
     double exit_z;                     ///< particles whose centre falls below this leave, d; default 0
-    gf_container_shape container_shape; ///< box (default) or cylinder
+    gf_container_shape container_shape; ///< box (default), cylinder or wedge
     double container_radius;           ///< cylinder: radius of the wall, d; default 12.5
-    double hopper_angle;               ///< cylinder: funnel angle to the horizontal, degrees; 0 = flat base (default)
+    double hopper_angle;               ///< cylinder, wedge: funnel (wall) angle to the horizontal, degrees; 0 = flat base (default)
     double outlet_diameter;            ///< cylinder: diameter of the outlet (and pipe), d; default 8
-    double outlet_length;              ///< cylinder: length of the straight pipe below z = 0, d; default 0
+    double outlet_length;              ///< cylinder, wedge: length of the straight pipe (chute) below z = 0, d; default 0
     double inner_radius;               ///< cylinder: radius of a solid central column (0: none, default), d
 
     // [packing]

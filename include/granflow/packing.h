@@ -44,7 +44,7 @@ typedef struct gf_packing_import_report {
 /// reads it (the last frame of a multi-frame LAMMPS dump), keeps only the atom
 /// types of `packing.types` (a LAMMPS dump with a `type` column; empty: all;
 /// a DEM floor of frozen particles is typically another type), drops every
-/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe; counted as already
+/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe or a wedge's chute; counted as already
 /// exited), and tags the layers by height. `rep` (may be NULL) gets the counts.
 /// GF_ERR_PARAM when packing.types is set and the file has no type column,
 /// or when no particle is left.
@@ -74,8 +74,8 @@ GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, dou
 /// Bulk packing fraction of a packing in the container of `cfg`, centres
 /// counted 2 d clear of every wall, from 2 d above the base (or the funnel's
 /// top) to 3 d below the highest centre: a box (gf_packing_fraction) for the
-/// box, the annulus 2 d inside the wall (and outside a column) for a
-/// cylinder. NaN when that region is empty.
+/// box and the wedge, the annulus 3 d inside the wall (and outside a column)
+/// for a cylinder. NaN when that region is empty.
 GF_API double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).

@@ -31,6 +31,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
@@ -251,7 +252,8 @@ static double gf_series_reach(const gf_series *s, int axis, double zmin)
 gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg)
 {
     if (!s || !cfg) return gf_error_set(GF_ERR_PARAM, "gf_series_fit_walls: NULL series or config");
-    if (cfg->container_shape != GF_SHAPE_BOX) return GF_OK;
+    const gf_container c = gf_container_make(cfg);
+    if (!gf_container_rectangular(&c)) return GF_OK; // the walls of other shapes are not where particles reach
     static const char *const keys[2] = {"container.width", "container.depth"};
     for (int axis = 0; axis < 2; axis++) {
         if (gf_config_is_set(cfg, keys[axis])) continue;

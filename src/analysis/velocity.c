@@ -13,6 +13,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 
 /// Bin of the depth profile, d. Centres lie within |y| <= D/2 - 0.5 = 3.5 of an
@@ -284,7 +285,8 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
 
 bool gf_velocity_radial(const gf_config *cfg)
 {
-    return cfg->container_shape == GF_SHAPE_CYLINDER && cfg->container_radius > 0.0;
+    const gf_container c = gf_container_make(cfg);
+    return gf_container_profile_radial(&c) && gf_container_outer_radius(&c) > 0.0;
 }
 
 const char *gf_velocity_profile_name(const gf_config *cfg) { return gf_velocity_radial(cfg) ? "v_z(r)" : "v_z(x)"; }
@@ -305,8 +307,9 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     a.ox = s->cfg.orifice_x;
     if (gf_velocity_radial(&s->cfg)) {
         a.radial = true; // bins of r out to the wall
-        a.mirror = !(s->cfg.inner_radius > 0.0);
-        a.np = (size_t)ceil(s->cfg.container_radius / o->vel_bin);
+        const gf_container c = gf_container_make(&s->cfg);
+        a.mirror = !(gf_container_inner_radius(&c) > 0.0);
+        a.np = (size_t)ceil(gf_container_outer_radius(&c) / o->vel_bin);
     }
     double depth = s->cfg.container_depth;
     a.npairs = k1 > k0 + 1 ? k1 - k0 - 1 : 0;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The run directory: the engine's snapshot and checkpoint hooks turned into files.
+#include "geom/container.h"
 #include "granflow/run.h"
 
 #include <dirent.h>
@@ -554,15 +555,14 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         // only slowly: below it a particle moves only as spots pass, there
         // is no free fall, so say so.
         char deep[256] = "";
+        const gf_container ctr = gf_container_make(&cfg);
         if (cfg.exit_z < -1.0)
             snprintf(deep, sizeof deep,
                      "; the exit plane is %g d below the %s, and a particle on its way there moves only as "
                      "spots pass (there is no free fall): raise container.exit_z, or run.stall_time to wait "
                      "longer",
                      -cfg.exit_z,
-                     cfg.container_shape != GF_SHAPE_CYLINDER ? "orifice"
-                     : cfg.outlet_length > 0.0                ? "end of the outlet pipe"
-                                                              : "outlet");
+                     gf_container_outlet_name(&ctr));
         st = gf_error_set(GF_ERR_STATE,
                           "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
                           "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau%s",
