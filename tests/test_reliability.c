@@ -156,7 +156,7 @@ static void long_calls_stop_on_the_flag(void **state)
         assert_int_equal(st, GF_ERR_INTERRUPTED);
     }
     gf_series_free(&s);
-    gf_render_options rd = gf_render_options_default();
+    gf_render_dir_opts rd = gf_render_dir_opts_default();
     rd.stop = &stop;
     assert_int_equal(gf_render_dir(dir, &rd), GF_ERR_INTERRUPTED);
 }
