@@ -474,7 +474,7 @@ static void options_defaults(void **state)
     assert_true(!o.out && !o.compare && !o.title);
     gf_dem_refine_opts ro = gf_dem_refine_opts_default();
     assert_true(ro.max_iter == 0 && ro.flow_tol == 0 && ro.var_tol == 0 && !ro.progress && !ro.stop && !ro.start);
-    gf_run_hooks h = gf_run_hooks_default();
+    gf_sim_hooks h = gf_sim_hooks_default();
     assert_true(!h.ctx && !h.snapshot && !h.checkpoint && !h.progress && h.progress_every == 0 && !h.stop);
     // The analysis defaults, by value: the values docs/analysis.md gives.
     gf_analysis_opts a = gf_analysis_opts_default();

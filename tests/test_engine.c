@@ -51,7 +51,7 @@ static void drain_with(gf_config c)
     c.output_snapshot_interval = 1.0;
     gf_sim *sim = gf_test_generated_sim(&c);
     inv_ctx ic = {.worst_wall = INFINITY, .worst_pair = INFINITY};
-    gf_run_hooks hooks = {.ctx = &ic, .snapshot = check_snapshot};
+    gf_sim_hooks hooks = {.ctx = &ic, .snapshot = check_snapshot};
     // Spots reach the top (z ~ 17) after ~6 tau: 12 tau is well into steady flow.
     assert_int_equal(gf_sim_run(sim, 12.0, &hooks), GF_OK);
     gf_sim_stats s = gf_sim_get_stats(sim);
@@ -202,7 +202,7 @@ static void outflow_matches_mass_balance(void **state)
     gf_sim *sim = gf_test_generated_sim(&c);
     // Spots reach the top (z ~ 27) after ~10 tau; measure from 11 to 21 tau.
     mb_ctx m = {.t0 = 11.0};
-    gf_run_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
+    gf_sim_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
     assert_int_equal(gf_sim_run(sim, m.t0, &hooks), GF_OK);
     gf_sim_stats a = gf_sim_get_stats(sim);
     const double T = 10.0;

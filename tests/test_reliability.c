@@ -104,7 +104,7 @@ static void snapshot_burst_stops_on_the_flag(void **state)
     gf_sim *sim = gf_test_generated_sim(&c);
     volatile sig_atomic_t stop = 0;
     snap_ctx s = {&stop, 0};
-    gf_run_hooks h = {.ctx = &s, .snapshot = stop_at_first_snapshot, .stop = &stop};
+    gf_sim_hooks h = {.ctx = &s, .snapshot = stop_at_first_snapshot, .stop = &stop};
     assert_int_equal(gf_sim_run(sim, c.run_duration, &h), GF_ERR_INTERRUPTED);
     assert_int_equal(s.calls, 1);
     gf_sim_destroy(sim);

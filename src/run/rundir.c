@@ -535,7 +535,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     rd.moves0 = gf_sim_get_stats(sim).spot_moves;
     rd.t0 = rd.flow_t0 = gf_sim_get_stats(sim).time;
     rd.wall0 = gf_clock_now();
-    gf_run_hooks hooks = {
+    gf_sim_hooks hooks = {
         .ctx = &rd,
         .snapshot = gf_on_snapshot,
         .checkpoint = gf_on_checkpoint,
