@@ -431,7 +431,8 @@ static void lammps_output_lines(void **state)
     gf_dem_reader r = {.o = &o, .t_phase = NAN};
     char l1[] = "granflow-phase fill 4000 20\n", l2[] = "0 10 0 0", l3[] = "1000 11.5 1200 0.25\r\n";
     gf_dem_line(&r, l1);
-    assert_string_equal(last.phase, "fill");
+    assert_int_equal(last.phase, GF_DEM_PHASE_FILL);
+    assert_string_equal(gf_dem_phase_name(last.phase), "fill");
     assert_int_equal(last.target, 4000);
     gf_dem_line(&r, l2);
     gf_dem_line(&r, l3);
@@ -441,13 +442,22 @@ static void lammps_output_lines(void **state)
     gf_dem_line(&r, l4);
     assert_int_equal(last.particles, INT64_C(1) << 62);
     gf_dem_line(&r, l5);
-    assert_string_equal(last.phase, "drain");
+    assert_int_equal(last.phase, GF_DEM_PHASE_DRAIN);
+    assert_string_equal(gf_dem_phase_name(last.phase), "drain");
     assert_int_equal(last.target, INT64_C(1) << 62);
     gf_dem_line(&r, l6);
     assert_int_equal(last.particles, 0);
     char l7[] = "ERROR: Lost atoms (src/thermo.cpp:488)\n";
     gf_dem_line(&r, l7);
     assert_string_equal(r.error, "ERROR: Lost atoms (src/thermo.cpp:488)");
+    // "settled" ends the settle phase: still settle (one phase, not a new one).
+    char l8[] = "granflow-phase settle 0 50", l9[] = "granflow-phase settled 3000 0.001";
+    gf_dem_line(&r, l8);
+    assert_int_equal(last.phase, GF_DEM_PHASE_SETTLE);
+    gf_dem_line(&r, l9);
+    assert_int_equal(last.phase, GF_DEM_PHASE_SETTLE);
+    assert_string_equal(gf_dem_phase_name(GF_DEM_PHASE_DONE), "done");
+    assert_string_equal(gf_dem_phase_name((gf_dem_phase)99), "?");
 }
 
 static const struct CMUnitTest tests[] = {

@@ -55,9 +55,22 @@ GF_API gf_status gf_dem_write_inputs(const gf_config *cfg, const char *dir, gf_d
 GF_API gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg, const char *dir, volatile sig_atomic_t *stop,
                                                gf_dem_plan *plan);
 
+/// The phases of a LAMMPS run (its inputs print a marker as each begins).
+typedef enum gf_dem_phase {
+    GF_DEM_PHASE_NONE = 0, ///< no marker seen yet
+    GF_DEM_PHASE_FILL,     ///< pouring the particles in
+    GF_DEM_PHASE_SETTLE,   ///< letting them come to rest
+    GF_DEM_PHASE_DRAIN,    ///< the orifice open
+    GF_DEM_PHASE_DONE,     ///< the inputs ran to their end
+} gf_dem_phase;
+
+/// The phase's name ("fill", "settle", "drain", "done"); "none" for
+/// GF_DEM_PHASE_NONE, "?" for a value outside the enum.
+GF_API const char *gf_dem_phase_name(gf_dem_phase phase);
+
 /// One progress report of a LAMMPS run.
 typedef struct gf_dem_progress {
-    const char *phase;  ///< "fill", "settle", "drain" or "done"
+    gf_dem_phase phase; ///< fill, settle, drain or done (never none)
     double time;        ///< LAMMPS time of the phase, tau
     double until;       ///< planned end of the phase, tau (0: unknown)
     int64_t particles;  ///< flowing particles now

@@ -397,7 +397,7 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
-    gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
+    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
                          wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
 }
@@ -439,7 +439,7 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
                  "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types "
                  "dropped%s)",
                  pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types, units);
-        gf_run_progress p = {.phase = "imported", .until = cfg->run_duration, .initial = pk->n, .note = note};
+        gf_run_progress p = {.phase = GF_RUN_PHASE_IMPORTED, .until = cfg->run_duration, .initial = pk->n, .note = note};
         opts->progress(opts->ctx, &p);
     }
     return st;
@@ -498,7 +498,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                               cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0, NULL};
+            gf_run_progress p = {cfg.packing_file[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING, 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0, NULL};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -586,13 +586,13 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                      "stopped at t = %.4g tau with %zu particles left",
                      gf_sim_exits(sim, &nexit)[nexit - 1].time, cfg.run_stall_time, reached,
                      gf_sim_get_stats(sim).particles_remaining);
-            gf_run_progress p = {.phase = "stalled", .time = reached, .until = cfg.run_duration, .note = note};
+            gf_run_progress p = {.phase = GF_RUN_PHASE_STALLED, .time = reached, .until = cfg.run_duration, .note = note};
             opts->progress(opts->ctx, &p);
         }
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_clock_now() - rd.wall0;
-            gf_run_progress p = {"done", s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
+            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
                                  wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
             opts->progress(opts->ctx, &p);
         }
@@ -620,6 +620,12 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
 }
 
 gf_run_opts gf_run_opts_default(void) { return (gf_run_opts){.dir = NULL}; }
+
+const char *gf_run_phase_name(gf_run_phase phase)
+{
+    static const char *const names[] = {"packing", "reading", "imported", "running", "stalled", "done"};
+    return (unsigned)phase < sizeof names / sizeof names[0] ? names[phase] : "?";
+}
 
 gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
 {
