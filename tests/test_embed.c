@@ -19,6 +19,7 @@
 static void other_value(const gf_key *k, char *buf, size_t n)
 {
     switch (k->type) {
+    case GF_KEY_SET: // every name but the default's first, as a list ("vtk")
     case GF_KEY_ENUM: {
         size_t m = 0;
         while (k->names[m]) m++;

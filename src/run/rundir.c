@@ -211,11 +211,11 @@ static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint6
     }
     char path[GF_PATH_MAX + 64];
     const gf_output_format fmt = rd->cfg->output_format;
-    if (fmt != GF_OUTPUT_VTK) {
+    if (fmt & GF_OUTPUT_DUMP) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
         st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, pass, time, gf_sim_get_stats(sim).events);
     }
-    if (st == GF_OK && fmt != GF_OUTPUT_DUMP) {
+    if (st == GF_OK && (fmt & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
         st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->cfg->output_vtk_encoding);
         if (st == GF_OK) st = gf_add_vtu(rd, index, time);
@@ -334,7 +334,7 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
     if (rd->reserve) gf_free(rd->reserve, rd->reserve_size);
     gf_status st = gf_sim_save(sim, path);
     rd->reserve = rd->reserve_size ? gf_alloc(rd->reserve_size) : NULL;
-    if (st == GF_OK && rd->cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_pvd(rd);
+    if (st == GF_OK && (rd->cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_pvd(rd);
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
 }
 
@@ -370,7 +370,7 @@ static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
                                 need, rd->dir, have);
         const gf_config *c = rd->cfg;
         const double left = c->run_duration - gf_sim_get_stats(sim).time;
-        const double snaps = c->output_format == GF_OUTPUT_VTK ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
+        const double snaps = !(c->output_format & GF_OUTPUT_DUMP) ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
         const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
         if (free_bytes < 2.0 * bound + dumps) {
             char total[32];
@@ -520,9 +520,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     // made (issue 26: a packing.file with a line break left an empty one).
     if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP)
+    if (st == GF_OK && !opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK))
         st = gf_write_container(&rd, sim);
-    if (st == GF_OK && opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
+    if (st == GF_OK && opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK)) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -644,16 +644,16 @@ gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
         return gf_error_set(GF_ERR_EXISTS, "%s already holds a run (%s exists): clear it, force, or use another directory",
                             rd.dir, path);
     gf_status st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_container(&rd, sim);
     // The snapshot of now, numbered on the snapshot grid as gf_run_dir numbers
     // them, so that a resumed run's next snapshots follow it.
     const double t = gf_sim_get_stats(sim).time, dsnap = cfg->output_snapshot_interval;
     const uint64_t index = dsnap > 0 ? (uint64_t)floor(t / dsnap + 1e-9) : 0;
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_VTK) {
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_DUMP)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd.dir, index);
         st = gf_sim_write_snapshot(sim, path);
     }
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) {
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd.dir, index);
         st = gf_sim_write_vtk(sim, path);
     }
