@@ -370,7 +370,8 @@ static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
                                 need, rd->dir, have);
         const gf_config *c = rd->cfg;
         const double left = c->run_duration - gf_sim_get_stats(sim).time;
-        const double snaps = !(c->output_format & GF_OUTPUT_DUMP) ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
+        const double snaps =
+            (c->output_format & GF_OUTPUT_DUMP) ? floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0 : 0.0;
         const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
         if (free_bytes < 2.0 * bound + dumps) {
             char total[32];
@@ -397,8 +398,8 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
-    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
-                         wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
+    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->cfg->run_duration, rd->t0, s.particles_initial,
+                         s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
 }
 
@@ -498,7 +499,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                               cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {cfg.packing_file[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING, 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0, NULL};
+            gf_run_progress p = {.phase = cfg.packing_file[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING,
+                                 .until = cfg.run_duration};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -592,8 +594,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_clock_now() - rd.wall0;
-            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
-                                 wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
+            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, cfg.run_duration, rd.t0, s.particles_initial,
+                                 s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
             opts->progress(opts->ctx, &p);
         }
     }
