@@ -70,7 +70,7 @@ int gf_cmd_dem(int argc, char **argv)
             return GF_EXIT_USAGE;
         }
         gf_dem_plan plan;
-        gf_status st = gf_dem_write_inputs_stoppable(&cfg, cli.out, stop, &plan);
+        gf_status st = gf_dem_write_inputs(&cfg, cli.out, &(gf_packing_opts){.stop = stop}, &plan);
         if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", "nothing written");
         if (st != GF_OK) return gf_cli_fail("dem", st);
         if (!cli.quiet)

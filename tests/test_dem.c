@@ -40,7 +40,7 @@ static void lammps_run_gives_readable_dumps(void **state)
     char dir[900];
     snprintf(dir, sizeof dir, "%s", path_in("dem"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     assert_int_equal(plan.particles, 300);
     assert_int_equal(plan.snapshot_steps, 1000);
     assert_int_equal(plan.drain_steps, 3000);
@@ -113,7 +113,7 @@ static void lammps_hopper_walls_hold(void **state)
     char dir[900];
     snprintf(dir, sizeof dir, "%s", path_in("dem_hopper"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     char in[1300];
     snprintf(in, sizeof in, "%s/in.drain", dir);
     char *text = gf_test_read_file(in, NULL);
@@ -229,7 +229,7 @@ static void run_and_dem_get_the_same_packing(void **state)
     snprintf(c.packing_types, sizeof c.packing_types, "1");
     gf_packing ref = {0}, snap = {0};
     gf_packing_import_report rep;
-    assert_int_equal(gf_packing_for_config(&c, &ref, &rep), GF_OK);
+    assert_int_equal(gf_packing_for_config(&c, NULL, &ref, &rep), GF_OK);
     assert_int_equal(ref.n, 60);
     assert_int_equal(rep.other_types, 8);
     assert_int_equal(rep.below_base, 1);
@@ -252,7 +252,7 @@ static void run_and_dem_get_the_same_packing(void **state)
 
     snprintf(dir, sizeof dir, "%s", path_in("typed_dem"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     assert_int_equal(plan.particles, 60);
     snprintf(path, sizeof path, "%s/fill.data", dir);
     FILE *f = fopen(path, "r");

@@ -104,12 +104,10 @@ GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 
 /// Creates a simulation of the packing `cfg` asks for (packing.file imported,
 /// else generated; see gf_packing_for_config). `cfg` is validated on a copy.
-/// Dropped particles of an import are reported through gf_warning().
-GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out);
-/// gf_sim_create_from_config with the packing built by
-/// gf_packing_for_config_stoppable: once *stop (may be NULL) is non-zero,
+/// Dropped particles of an import are reported through gf_warning(). The
+/// packing is built with `opts` (may be NULL): once opts->stop is non-zero,
 /// GF_ERR_INTERRUPTED and no simulation.
-GF_API gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_sim **out);
+GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts *opts, gf_sim **out);
 
 /// Creates a simulation of `n` particles given as flat arrays under `cfg`
 /// (validated on a copy; its packing.* keys other than layer_thickness are

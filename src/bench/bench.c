@@ -74,7 +74,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     *out = (gf_bench_spot){0};
     double t0 = gf_clock_now();
     gf_sim *sim = NULL;
-    gf_status st = gf_sim_create_from_config_stoppable(cfg, o->stop, &sim); // gf_packing_for_config, as a run
+    gf_status st = gf_sim_create_from_config(cfg, &(gf_packing_opts){.stop = o->stop}, &sim); // gf_packing_for_config, as a run
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
     out->pack_s = gf_clock_now() - t0;

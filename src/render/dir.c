@@ -223,7 +223,7 @@ gf_status gf_render_dir(const char *dir, const gf_render_dir_opts *opt)
     gf_status st = gf_render_check(opt);
     if (st != GF_OK) return st;
     gf_series s;
-    if ((st = gf_series_load_stoppable(dir, 0.0, opt->stop, &s)) != GF_OK) return st;
+    if ((st = gf_series_load(dir, 0.0, &(gf_series_opts){.stop = opt->stop}, &s)) != GF_OK) return st;
     if (s.nframes == 0) {
         gf_series_free(&s);
         return gf_error_set(GF_ERR_STATE, "%s: no snapshots", dir);

@@ -426,7 +426,7 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
     gf_packing_import_report rep;
-    gf_status st = gf_packing_for_config_stoppable(cfg, opts->stop, pk, &rep);
+    gf_status st = gf_packing_for_config(cfg, &(gf_packing_opts){.stop = opts->stop}, pk, &rep);
     if (st == GF_ERR_INTERRUPTED)
         gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
     // A DEM packing may hold other atom types (a frozen floor) and particles
