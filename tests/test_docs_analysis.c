@@ -224,7 +224,7 @@ static gf_series flowing_silo(void)
     c.packing_particles = 1200;
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_packing p0 = {0};
-    assert_int_equal(gf_packing_generate(&c, &p0), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, NULL, &p0), GF_OK);
     gf_series s;
     memset(&s, 0, sizeof s);
     s.cfg = c;

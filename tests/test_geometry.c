@@ -213,7 +213,7 @@ static void cylinder_packings_keep_the_promises(void **state)
         gf_config c = cylinder(cases[k].R, cases[k].angle, cases[k].outlet, cases[k].pipe, cases[k].inner);
         c.packing_particles = cases[k].n;
         gf_packing pk = {0};
-        assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+        assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
         assert_int_equal(pk.n, (size_t)cases[k].n);
         gf_container box = gf_container_make(&c);
         double zmin = INFINITY;
@@ -248,7 +248,7 @@ static void cylinder_packing_ignores_a_deep_exit_plane(void **state)
             c.packing_particles = 1500;
             assert_int_equal(gf_config_validate(&c), GF_OK);
             gf_packing pk = {0};
-            assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+            assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
             assert_int_equal(pk.n, 1500);
             gf_container box = gf_container_make(&c);
             double zmin = INFINITY, floor = fmax(box.exit_z, -pipes[k]) + 0.5;

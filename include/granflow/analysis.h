@@ -54,21 +54,26 @@ typedef struct gf_series_units {
     double gravity;  ///< gravity in the dumps' units (1 with diameter 1: times in tau; 9.81 in SI)
 } gf_series_units;
 
+/// Options of gf_series_load. A NULL `opts` means gf_series_opts_default().
+typedef struct gf_series_opts {
+    /// The dumps' units (NULL, default: d and tau): positions, radii, the box
+    /// and exits.csv are divided by units->diameter, times (ITEM: TIME,
+    /// TIMESTEP x dump_dt, exits.csv) by sqrt(diameter / gravity); dump_dt is
+    /// then in the dumps' time unit (seconds for an SI dump).
+    const gf_series_units *units;
+    /// Polled at every frame: once non-zero, GF_ERR_INTERRUPTED with nothing
+    /// loaded. NULL (default): never.
+    volatile sig_atomic_t *stop;
+} gf_series_opts;
+
+/// The defaults listed in gf_series_opts.
+GF_API gf_series_opts gf_series_opts_default(void);
+
 /// Loads a run directory (config.ini, snapshots/*.dump, exits.csv), a
 /// directory of LAMMPS dumps, or one (multi-frame) LAMMPS dump. Frames come in
 /// time order; `dump_dt` converts TIMESTEP to tau when a dump has no ITEM: TIME
-/// (0: frames without it are an error).
-GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out);
-/// gf_series_load polling *stop (may be NULL) at every frame: once it is
-/// non-zero, GF_ERR_INTERRUPTED with nothing loaded.
-GF_API gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop,
-                                          gf_series *out);
-/// gf_series_load_stoppable of dumps in `units` (NULL: d and tau): positions,
-/// radii, the box and exits.csv are divided by units->diameter, times (ITEM:
-/// TIME, TIMESTEP x dump_dt, exits.csv) by sqrt(diameter / gravity); dump_dt
-/// is then in the dumps' time unit (seconds for an SI dump).
-GF_API gf_status gf_series_load_in(const char *path, double dump_dt, const gf_series_units *units,
-                                   volatile sig_atomic_t *stop, gf_series *out);
+/// (0: frames without it are an error). `opts` may be NULL.
+GF_API gf_status gf_series_load(const char *path, double dump_dt, const gf_series_opts *opts, gf_series *out);
 /// The walls of a box container (`cfg` with container.shape = box) where the
 /// particles of `s` end: container.width (depth) = twice the largest |x| (|y|)
 /// + radius of a particle at or above the exit plane in any frame, each only

@@ -88,11 +88,12 @@ typedef enum gf_reinsert {
     GF_REINSERT_ZONE = 1,   ///< uniformly over the annulus run.reinsert_rmin <= r < run.reinsert_rmax
 } gf_reinsert;
 
-/// What a run writes at each snapshot (output.format).
+/// What a run writes at each snapshot (output.format, a list such as
+/// `dump,vtk`): a bit set, one bit per format; at least one is set.
 typedef enum gf_output_format {
-    GF_OUTPUT_DUMP = 0, ///< LAMMPS text dumps (snapshots/snap_NNNNNN.dump)
-    GF_OUTPUT_VTK = 1,  ///< VTK XML unstructured grids (snapshots/snap_NNNNNN.vtu)
-    GF_OUTPUT_BOTH = 2, ///< both
+    GF_OUTPUT_DUMP = 1 << 0, ///< LAMMPS text dumps (snapshots/snap_NNNNNN.dump)
+    GF_OUTPUT_VTK = 1 << 1,  ///< VTK XML unstructured grids (snapshots/snap_NNNNNN.vtu)
+    GF_OUTPUT_BOTH = GF_OUTPUT_DUMP | GF_OUTPUT_VTK, ///< both (output.format = both, or dump,vtk)
 } gf_output_format;
 
 /// How the VTK XML files of a run store their arrays (output.vtk_encoding).
@@ -184,7 +185,7 @@ typedef struct gf_config {
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
-    gf_output_format output_format;    ///< dump (default), vtk or both
+    gf_output_format output_format;    ///< bits of GF_OUTPUT_*: dump (default), vtk or both
     gf_vtk_encoding output_vtk_encoding; ///< binary (default) or ascii
 
     // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:

@@ -22,15 +22,23 @@ extern "C" {
 /// Sets every layer tag from the current z: 1 + floor(z / thickness).
 GF_API void gf_packing_tag_layers(gf_packing *p, double thickness);
 
+/// Options of building a packing: gf_packing_generate, gf_packing_for_config
+/// and what builds one through them (gf_sim_create_from_config,
+/// gf_dem_write_inputs). A NULL `opts` means gf_packing_opts_default().
+typedef struct gf_packing_opts {
+    /// Polled at every relaxation sweep (and every 65,536 spheres of each pass
+    /// over them): once non-zero, GF_ERR_INTERRUPTED with nothing built
+    /// (safe to set from a signal handler). NULL (default): never.
+    volatile sig_atomic_t *stop;
+} gf_packing_opts;
+
+/// The defaults listed in gf_packing_opts.
+GF_API gf_packing_opts gf_packing_opts_default(void);
+
 /// Builds a random packing for `cfg` (packing.particles or packing.fill_height,
 /// run.seed): no pair closer than 0.99 d, no centre closer than 0.5 d to a wall
-/// or the base, bulk packing fraction 0.58-0.64.
-GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
-
-/// gf_packing_generate that polls `stop` (may be NULL) at every relaxation
-/// sweep: once it is non-zero, returns GF_ERR_INTERRUPTED with nothing built.
-GF_API gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop,
-                                              gf_packing *out);
+/// or the base, bulk packing fraction 0.58-0.64. `opts` may be NULL.
+GF_API gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out);
 
 /// What gf_packing_import read and dropped.
 typedef struct gf_packing_import_report {
@@ -52,14 +60,11 @@ GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_pac
 
 /// The initial packing of a run of `cfg`: packing.file imported
 /// (gf_packing_import; `rep`, may be NULL, gets its counts), else generated
-/// (gf_packing_generate; `rep` zeroed). The one way every user of a config's
-/// packing (a run, the DEM inputs, `granflow pack`, a binding) gets it.
-GF_API gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
-
-/// gf_packing_for_config whose generation polls `stop` (may be NULL) as
-/// gf_packing_generate_stoppable does.
-GF_API gf_status gf_packing_for_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out,
-                                                 gf_packing_import_report *rep);
+/// (gf_packing_generate with `opts`, may be NULL; `rep` zeroed). The one way
+/// every user of a config's packing (a run, the DEM inputs, `granflow pack`,
+/// a binding) gets it.
+GF_API gf_status gf_packing_for_config(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out,
+                                       gf_packing_import_report *rep);
 
 /// Checks that every centre lies in the container of `cfg`: between the side
 /// walls, and above the base unless over the orifice. GF_ERR_PARAM naming the

@@ -33,7 +33,9 @@ static const char *const gf_keys_order_names[] = {"random", "newest", "spatial",
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
-static const char *const gf_keys_format_names[] = {"dump", "vtk", "both", NULL};
+// output.format: bit i of gf_output_format is names[i] (a third format is one more name and bit).
+static const char *const gf_keys_format_names[] = {"dump", "vtk", NULL};
+static const char *const gf_keys_format_aliases[] = {"both", "dump,vtk", NULL};
 static const char *const gf_keys_vtk_encoding_names[] = {"binary", "ascii", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
@@ -185,8 +187,10 @@ const gf_key gf_keys[] = {
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long; at most 10^5 per run.duration"},
-    {"output", "format", GF_KEY_ENUM, GF_OFF(output_format), .names = gf_keys_format_names, .def = "dump",
-     .unit = "", .doc = "snapshot files: dump (LAMMPS text), vtk (VTK XML .vtu and snapshots.pvd for ParaView) or both"},
+    {"output", "format", GF_KEY_SET, GF_OFF(output_format), .names = gf_keys_format_names,
+     .aliases = gf_keys_format_aliases, .def = "dump", .unit = "",
+     .doc = "snapshot files, a list: dump (LAMMPS text), vtk (VTK XML .vtu and snapshots.pvd for ParaView); "
+            "both = dump,vtk"},
     {"output", "vtk_encoding", GF_KEY_ENUM, GF_OFF(output_vtk_encoding), .names = gf_keys_vtk_encoding_names,
      .def = "binary", .unit = "",
      .doc = "arrays of the VTK XML files: binary (zlib-compressed, appended) or ascii (inline text)"},

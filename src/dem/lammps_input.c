@@ -156,13 +156,8 @@ static gf_status gf_dem_write_data(const gf_config *c, const char *dir, const gf
     return gf_atomic_commit(f, tmp, path);
 }
 
-gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_plan *plan_out)
-{
-    return gf_dem_write_inputs_stoppable(cfg_in, dir, NULL, plan_out);
-}
-
-gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir, volatile sig_atomic_t *stop,
-                                        gf_dem_plan *plan_out)
+gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf_packing_opts *opts,
+                              gf_dem_plan *plan_out)
 {
     gf_config cv = *cfg_in;
     gf_config *c = &cv;
@@ -177,7 +172,7 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
     double area = box.ops->section_area(&box, box.z_col), vp = GF_DEM_PI / 6.0;
     gf_packing pk = {0};
     if (c->dem_fill_method == GF_DEM_GENERATE) {
-        if ((st = gf_packing_for_config_stoppable(c, stop, &pk, NULL)) != GF_OK) return st;
+        if ((st = gf_packing_for_config(c, opts, &pk, NULL)) != GF_OK) return st;
         plan.particles = (int64_t)pk.n;
     } else if (c->packing_fill_height > 0) {
         plan.particles = (int64_t)floor(GF_DEM_PHI_FILL * area * c->packing_fill_height / vp + 0.5);

@@ -61,7 +61,7 @@ static gf_status gf_ref_run(const gf_series *dem, const gf_packing *start, const
     gf_status st = gf_sim_create(cfg, start, &sim);
     if (st != GF_OK) return st;
     gf_ref_capture cap = {.s = out, .t_first = dem->frames[0].time};
-    gf_run_hooks h = {.ctx = &cap, .snapshot = gf_ref_snapshot, .stop = stop};
+    gf_sim_hooks h = {.ctx = &cap, .snapshot = gf_ref_snapshot, .stop = stop};
     st = gf_sim_run(sim, until - dem->frames[0].time, &h);
     // The exits too, as a run directory's exits.csv: the outflow is then
     // measured exactly as on `granflow run`'s output.

@@ -170,7 +170,8 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if (st != GF_OK) return st;
     const gf_series_units u = {cfg.dump_diameter, cfg.dump_gravity};
     const bool converted = u.diameter != 1.0 || u.gravity != 1.0;
-    st = gf_series_load_in(path, src->dump_dt, &u, src->stop, out);
+    const gf_series_opts so = {.units = &u, .stop = src->stop};
+    st = gf_series_load(path, src->dump_dt, &so, out);
     if (st != GF_OK) return st;
     char mark[GF_PATH_MAX + 32];
     struct stat sb;

@@ -674,13 +674,11 @@ static gf_status gf_gen_fits(size_t count)
                         count, need / 1e9, have / 1e9, what);
 }
 
-gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
-{
-    return gf_packing_generate_stoppable(cfg, NULL, out);
-}
+gf_packing_opts gf_packing_opts_default(void) { return (gf_packing_opts){.stop = NULL}; }
 
-gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out)
+gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out)
 {
+    volatile sig_atomic_t *stop = opts ? opts->stop : NULL;
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
     if (stop && *stop) return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted before it began");
     size_t count = 0;
