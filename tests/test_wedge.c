@@ -219,7 +219,7 @@ static void wedge_packing_keeps_the_promises(void **state)
     gf_config c = wedge(16, 16, 60, 4, 2);
     c.packing_particles = 8000;
     gf_packing pk = {0};
-    assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
     assert_int_equal(pk.n, 8000);
     gf_container box = gf_container_make(&c);
     double zmin = INFINITY;
