@@ -346,6 +346,41 @@ static void rtd_per_layer(void **state)
     gf_series_free(&s);
 }
 
+// A recirculating run puts an exited particle back on the surface under the
+// same id, and it exits again (exits.csv then holds several rows per id, one
+// per pass). Its residence time ends at its first exit: as rtd_per_layer,
+// plus later passes of ids 1 (at 9 and 11) and 4 (at 11.5), which must not
+// count (the old code counted them: 8 exits, mean 5.94).
+static void rtd_counts_the_first_exit(void **state)
+{
+    (void)state;
+    const double times[2] = {2, 12};
+    gf_series s;
+    series_init(&s, 2, times);
+    for (int i = 1; i <= 6; i++) push(&s.frames[0].pk, i, i <= 3 ? 1 : 2, 0.0, 5.0 * i);
+    push(&s.frames[1].pk, 6, 2, 0.0, 1.0);
+    s.n_initial = 6;
+    const gf_exit e[] = {{.id = 6, .time = 1.0, .pass = 1},  {.id = 1, .time = 3.0, .pass = 1},
+                         {.id = 99, .time = 4.0, .pass = 1}, {.id = 2, .time = 5.0, .pass = 1},
+                         {.id = 4, .time = 6.0, .pass = 1},  {.id = 5, .time = 8.0, .pass = 1},
+                         {.id = 1, .time = 9.0, .pass = 2},  {.id = 3, .time = 10.0, .pass = 1},
+                         {.id = 1, .time = 11.0, .pass = 3}, {.id = 4, .time = 11.5, .pass = 2}};
+    series_exits(&s, e, sizeof e / sizeof e[0]);
+    s.cfg.run_recirculate = true;
+    gf_analysis_opts o = gf_analysis_opts_default();
+    gf_measure_out out = {0};
+    assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
+    const gf_table *t = gf_test_table(&out, "rtd");
+    assert_int_equal(t->nrow, 2);
+    const double want[2][6] = {{1, 3, 4, sqrt(13.0), 3, 1}, {2, 2, 5, sqrt(2.0), 5, 4}};
+    for (size_t r = 0; r < 2; r++)
+        for (size_t c = 0; c < 6; c++) gf_assert_near(cell(t, r, c), want[r][c], 1e-12);
+    gf_assert_near(gf_test_value(&out, "rtd_mean"), 4.4, 1e-12);
+    assert_true(gf_test_value(&out, "rtd_exited") == 5.0);
+    gf_measure_free(&out);
+    gf_series_free(&s);
+}
+
 static void rtd_needs_exits(void **state)
 {
     (void)state;
@@ -474,6 +509,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(density_counts_the_slice),
     cmocka_unit_test(surface_angle_regression),
     cmocka_unit_test(rtd_per_layer),
+    cmocka_unit_test(rtd_counts_the_first_exit),
     cmocka_unit_test(rtd_needs_exits),
     cmocka_unit_test(exits_read_off_frames),
     cmocka_unit_test(derived_rtd_within_resolution),

@@ -477,9 +477,12 @@ static void diffusion_recovers_random_walk(void **state)
 // region. The old estimator (dx about a regression on x0 and x0 (z0 - zbar),
 // particles with |x| < 5) took the decoys and the drift's non-linear part:
 // b_p 0.058, 19x. Tolerance as diffusion_recovers_random_walk (5 sd, 5.6%).
-static void diffusion_tangential_in_a_cylinder(void **state)
+// With `recirc` > 0 that fraction of the tracked particles exits at a random
+// frame after the start (listed in the series' exits) and is put back on the
+// surface (z = 110, anywhere in r < 12) under the same id, as a recirculating
+// run does; the others are untouched, so b is recovered as before.
+static void diffusion_cylinder_case(double recirc)
 {
-    (void)state;
     enum { NF = 13, N = 16000, NOUT = 2000 };
     const double b = 3e-3, c = 0.004;
     double times[NF];
@@ -490,7 +493,10 @@ static void diffusion_tangential_in_a_cylinder(void **state)
     gf_rng rng;
     gf_rng_seed(&rng, 2025, 5);
     double *p0 = malloc(sizeof(double) * 3 * (N + NOUT)), *d = calloc(2 * (N + NOUT), sizeof(double));
-    assert_true(p0 && d);
+    int *back = calloc(N + NOUT, sizeof(int)); // frame at which a tracked particle is back on the surface (0: never)
+    gf_exit *ex = calloc(N + NOUT, sizeof(gf_exit));
+    size_t nex = 0;
+    assert_true(p0 && d && back && ex);
     for (int i = 0; i < N + NOUT; i++) {
         double *q = p0 + 3 * i;
         if (i < N) {
@@ -502,7 +508,12 @@ static void diffusion_tangential_in_a_cylinder(void **state)
             q[1] = (i % 2 ? 1.0 : -1.0) * (5.5 + 4.0 * gf_rng_uniform(&rng));
         }
         q[2] = 60.0 + 40.0 * gf_rng_uniform(&rng) + 1e-9;
+        if (recirc > 0.0 && i < N && gf_rng_uniform(&rng) < recirc) back[i] = 5 + (int)(7.0 * gf_rng_uniform(&rng));
     }
+    // Exited between frames back[i] - 1 and back[i] (times 2 k), in time order.
+    for (int k = 1; k < NF; k++)
+        for (int i = 0; i < N; i++)
+            if (back[i] == k) ex[nex++] = (gf_exit){.id = i + 1, .time = 2.0 * k - 1.0, .pass = 1};
     for (int k = 0; k < NF; k++) {
         int j = k - 3; // frames after the start frame (k = 3, t = 6)
         for (int i = 0; i < N + NOUT; i++) {
@@ -516,21 +527,51 @@ static void diffusion_tangential_in_a_cylinder(void **state)
                 for (int a = 0; a < 2; a++)
                     d[2 * i + a] += -c * q[a] * (1.0 + r2 / 4.0) * 2.0 + wide * sqrt(2.0 * b * 2.0) * normal(&rng);
             }
+            if (back[i] && k >= back[i]) {
+                double r = 12.0 * sqrt(gf_rng_uniform(&rng)), a = 6.283185307179586 * gf_rng_uniform(&rng);
+                push(&s.frames[k], i + 1, r * cos(a), r * sin(a), 110.0 - 2.0 * (k - back[i]));
+                continue;
+            }
             push(&s.frames[k], i + 1, q[0] + d[2 * i], q[1] + d[2 * i + 1], q[2] - 2.0 * j);
         }
+    }
+    if (nex) {
+        s.exits = GF_NEW(gf_exit, nex);
+        assert_non_null(s.exits);
+        memcpy(s.exits, ex, sizeof *ex * nex);
+        s.nexits = nex;
+        s.has_exits = true;
+        s.cfg.run_recirculate = 1;
     }
     gf_analysis_opts o;
     o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_diffusion(&s, &o, &out), GF_OK);
-    print_message("cylinder: b_p %.4g (walk %.4g), %g particles\n", gf_test_value(&out, "diffusion_length"), b,
-                  gf_test_value(&out, "diffusion_particles"));
+    print_message("cylinder%s: b_p %.4g (walk %.4g), %g particles, %zu put back\n", recirc > 0.0 ? " (recirculating)" : "",
+                  gf_test_value(&out, "diffusion_length"), b, gf_test_value(&out, "diffusion_particles"), nex);
     gf_assert_near(gf_test_value(&out, "diffusion_particles"), N, 0.0);
     gf_assert_near(gf_test_value(&out, "diffusion_length"), b, 5.0 * sqrt(2.0 / N) * b);
     gf_measure_free(&out);
     gf_series_free(&s);
     free(p0);
     free(d);
+    free(back);
+    free(ex);
+}
+
+static void diffusion_tangential_in_a_cylinder(void **state)
+{
+    (void)state;
+    diffusion_cylinder_case(0.0);
+}
+
+// The tracked particles that a recirculating run put back on the surface
+// since the start frame leave the measurement at their exit (the old code
+// kept them: their jump to a random surface position made b_p 33x).
+static void diffusion_drops_recirculated_particles(void **state)
+{
+    (void)state;
+    diffusion_cylinder_case(0.1);
 }
 
 // ---------------------------------------------------------------------------
@@ -694,6 +735,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(correlation_recovers_length),
     cmocka_unit_test(correlation_ignores_bursts),
     cmocka_unit_test(diffusion_tangential_in_a_cylinder),
+    cmocka_unit_test(diffusion_drops_recirculated_particles),
     cmocka_unit_test(correlation_about_radial_mean_in_a_cylinder),
 };
 

@@ -21,6 +21,7 @@ typedef struct gf_diff_work {
     gf_idmap map;     ///< id -> index in `start`
     size_t cap;
     double *dx, *dz, *c1, *c2; ///< displacements and two regressors, per present particle
+    double *tout;              ///< per tracked particle: its first exit after the start frame (INFINITY: none)
 } gf_diff_work;
 
 static void gf_diff_free(gf_diff_work *w)
@@ -32,6 +33,7 @@ static void gf_diff_free(gf_diff_work *w)
         GF_DELETE(w->dz, w->cap);
         GF_DELETE(w->c1, w->cap);
         GF_DELETE(w->c2, w->cap);
+        GF_DELETE(w->tout, w->cap);
     }
 }
 
@@ -92,9 +94,12 @@ static double gf_diff_resid_var(double *dx, double *c1, double *c2, size_t n)
 }
 
 /// Selects the particles of frame `f` with |x - ox| < xhalf, above the
-/// orifice at x = ox (r < xhalf in a cylinder), and z > z0.
-static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bool radial, double ox,
-                                gf_diff_work *w)
+/// orifice at x = ox (r < xhalf in a cylinder), and z > z0, and notes when
+/// each first exits after `f` (exits sorted by time): a recirculating run
+/// puts an exited particle back on the free surface under the same id, and
+/// its jump there is no displacement of the flow.
+static gf_status gf_diff_select(const gf_frame *f, const gf_exit *exits, size_t nexits, const gf_analysis_opts *o,
+                                bool radial, double ox, gf_diff_work *w)
 {
     const gf_packing *pk = &f->pk;
     gf_status st = GF_OK;
@@ -110,7 +115,16 @@ static gf_status gf_diff_select(const gf_frame *f, const gf_analysis_opts *o, bo
         w->dz = GF_NEW(double, n);
         w->c1 = GF_NEW(double, n);
         w->c2 = GF_NEW(double, n);
-        if (!w->dx || !w->dz || !w->c1 || !w->c2) st = gf_error_set(GF_ERR_NOMEM, "diffusion: out of memory");
+        w->tout = GF_NEW(double, n);
+        if (!w->dx || !w->dz || !w->c1 || !w->c2 || !w->tout)
+            st = gf_error_set(GF_ERR_NOMEM, "diffusion: out of memory");
+    }
+    if (st == GF_OK && n) {
+        for (size_t i = 0; i < n; i++) w->tout[i] = INFINITY;
+        for (size_t e = nexits; e-- > 0 && exits[e].time > f->time;) {
+            size_t i = gf_idmap_find(&w->map, exits[e].id);
+            if (i != SIZE_MAX) w->tout[i] = exits[e].time; // backwards: the earliest is written last
+        }
     }
     return st;
 }
@@ -135,7 +149,7 @@ static bool gf_diff_frame(const gf_frame *f, gf_diff_work *w, bool radial, doubl
     double adz = 0.0, mx = 0.0;
     for (size_t j = 0; j < pk->n; j++) {
         size_t i = gf_idmap_find(&w->map, pk->id[j]);
-        if (i == SIZE_MAX) continue;
+        if (i == SIZE_MAX || w->tout[i] <= f->time) continue; // not tracked, or exited (and put back) since
         w->dx[n] = pk->x[j] - s0->x[i];
         w->dz[n] = pk->z[j] - s0->z[i];
         w->c1[n] = s0->x[i] - ox; // the drift grows with the distance from the orifice's x
@@ -173,7 +187,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     const gf_container ctr = gf_container_make(&s->cfg);
     bool radial = gf_container_profile_radial(&ctr);
     gf_diff_work w = {0};
-    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, radial, s->cfg.orifice_x, &w) : GF_OK;
+    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], s->exits, s->nexits, o, radial, s->cfg.orifice_x, &w) : GF_OK;
     gf_table *t = &out->tables[out->ntables];
     if (st == GF_OK && (st = gf_table_init(t, "diffusion", "time_tau,mean_dz_d,var_dx_d2,particles,var_dx_raw_d2")) == GF_OK)
         out->ntables++;

@@ -18,7 +18,7 @@ enum { GF_RTD_BINS = 40 }; // histogram bins over the run length
 typedef struct gf_rtd_rec {
     int64_t id;
     int32_t layer;
-    double t; ///< residence time, tau (records of the first frame: unused)
+    double t; ///< residence time, tau (records of the first frame: 1 once the particle's first exit is counted)
 } gf_rtd_rec;
 
 static int gf_rtd_by_id(const void *pa, const void *pb)
@@ -145,11 +145,14 @@ gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, gf_measu
         for (size_t i = 0; i < n0; i++) first[i] = (gf_rtd_rec){p0->id[i], p0->layer[i], 0.0};
         qsort(first, n0, sizeof *first, gf_rtd_by_id);
         // Exits of particles not in the first frame, or before it, have no known entry time.
+        // A particle's residence time ends at its first exit (exits sorted by time): in a
+        // recirculating run it comes back and exits again, a later pass (`zones` measures those).
         for (size_t e = 0; e < s->nexits; e++) {
             if (s->exits[e].time < t_first || s->exits[e].time - t_first > tmax_cut) continue;
             gf_rtd_rec key = {s->exits[e].id, 0, 0.0};
-            const gf_rtd_rec *hit = n0 ? bsearch(&key, first, n0, sizeof *first, gf_rtd_by_id) : NULL;
-            if (!hit) continue;
+            gf_rtd_rec *hit = n0 ? bsearch(&key, first, n0, sizeof *first, gf_rtd_by_id) : NULL;
+            if (!hit || hit->t != 0.0) continue;
+            hit->t = 1.0; // its first exit is counted
             rec[n++] = (gf_rtd_rec){key.id, hit->layer, s->exits[e].time - t_first};
         }
         qsort(rec, n, sizeof *rec, gf_rtd_by_layer_time);
