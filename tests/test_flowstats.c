@@ -291,6 +291,17 @@ static void surface_angle_regression(void **state)
 // ---------------------------------------------------------------------------
 // Residence times.
 
+/// Frames at t = 2 and 12: ids 1-3 in layer 1 and 4-6 in layer 2 at z = 5 i
+/// in the first; only id 6 (z = 1) in the last.
+static void rtd_series(gf_series *s)
+{
+    const double times[2] = {2, 12};
+    series_init(s, 2, times);
+    for (int i = 1; i <= 6; i++) push(&s->frames[0].pk, i, i <= 3 ? 1 : 2, 0.0, 5.0 * i);
+    push(&s->frames[1].pk, 6, 2, 0.0, 1.0);
+    s->n_initial = 6;
+}
+
 // First frame at t = 2: ids 1-3 in layer 1, ids 4-6 in layer 2. Exits (hand
 // placed): 1 at 3, 2 at 5, 3 at 10, 4 at 6, 5 at 8; id 99 was not in the
 // first frame and id 6 left before it: neither counts. Residence times:
@@ -300,12 +311,8 @@ static void surface_angle_regression(void **state)
 static void rtd_per_layer(void **state)
 {
     (void)state;
-    const double times[2] = {2, 12};
     gf_series s;
-    series_init(&s, 2, times);
-    for (int i = 1; i <= 6; i++) push(&s.frames[0].pk, i, i <= 3 ? 1 : 2, 0.0, 5.0 * i);
-    push(&s.frames[1].pk, 6, 2, 0.0, 1.0);
-    s.n_initial = 6;
+    rtd_series(&s);
     const gf_exit e[] = {{.id = 6, .time = 1.0}, {.id = 1, .time = 3.0}, {.id = 99, .time = 4.0}, {.id = 2, .time = 5.0},
                          {.id = 4, .time = 6.0}, {.id = 5, .time = 8.0}, {.id = 3, .time = 10.0}};
     series_exits(&s, e, sizeof e / sizeof e[0]);
@@ -354,12 +361,8 @@ static void rtd_per_layer(void **state)
 static void rtd_counts_the_first_exit(void **state)
 {
     (void)state;
-    const double times[2] = {2, 12};
     gf_series s;
-    series_init(&s, 2, times);
-    for (int i = 1; i <= 6; i++) push(&s.frames[0].pk, i, i <= 3 ? 1 : 2, 0.0, 5.0 * i);
-    push(&s.frames[1].pk, 6, 2, 0.0, 1.0);
-    s.n_initial = 6;
+    rtd_series(&s);
     const gf_exit e[] = {{.id = 6, .time = 1.0, .pass = 1},  {.id = 1, .time = 3.0, .pass = 1},
                          {.id = 99, .time = 4.0, .pass = 1}, {.id = 2, .time = 5.0, .pass = 1},
                          {.id = 4, .time = 6.0, .pass = 1},  {.id = 5, .time = 8.0, .pass = 1},

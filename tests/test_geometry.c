@@ -5,6 +5,7 @@
 // then invariants of short runs in a hopper: spots and particle centres stay
 // inside, the run does not depend on the thread count.
 #include "support.h"
+#include "wall_hits.h"
 
 #include <math.h>
 #include <string.h>
@@ -30,36 +31,17 @@ static gf_config cylinder(double R, double angle, double outlet, double pipe, do
     return c;
 }
 
-// The one hit of walls() at p within reach; asserts there is exactly one.
-static gf_wall_hit one_hit(const gf_container *c, double x, double y, double z, double reach)
-{
-    gf_wall_hit hit[GF_WALL_HITS];
-    const double p[3] = {x, y, z};
-    int n = gf_container_walls(c, p, reach, hit);
-    if (n != 1) fail_msg("%d walls within %g of (%g, %g, %g), expected 1", n, reach, x, y, z);
-    return hit[0];
-}
-
-static void assert_hit(gf_wall_hit h, double gap, double nx, double ny, double nz, bool side)
-{
-    gf_assert_near(h.gap, gap, eps);
-    gf_assert_near(h.n[0], nx, eps);
-    gf_assert_near(h.n[1], ny, eps);
-    gf_assert_near(h.n[2], nz, eps);
-    assert_int_equal(h.side, side);
-}
-
 static void box_walls_by_hand(void **state)
 {
     (void)state;
     gf_config cfg = gf_config_default(); // 50 x 8, circular orifice of diameter 8
     assert_int_equal(gf_config_validate(&cfg), GF_OK);
     gf_container c = gf_container_make(&cfg);
-    assert_hit(one_hit(&c, -24.7, 0, 10, 0.5), 0.3, 1, 0, 0, true);
-    assert_hit(one_hit(&c, 0, 3.8, 10, 0.5), 0.2, 0, -1, 0, true);
-    assert_hit(one_hit(&c, 10, 0, 0.4, 0.5), 0.4, 0, 0, 1, false); // the base, off the orifice
+    gf_test_assert_hit(gf_test_one_hit(&c, -24.7, 0, 10, 0.5), 0.3, 1, 0, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, 3.8, 10, 0.5), 0.2, 0, -1, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 10, 0, 0.4, 0.5), 0.4, 0, 0, 1, false); // the base, off the orifice
     // Over the orifice near its rim (radius 4): the vector from the rim point (4, 0, 0) is (-0.3, 0, 0.4).
-    assert_hit(one_hit(&c, 3.7, 0, 0.4, 0.6), 0.5, -0.6, 0, 0.8, false);
+    gf_test_assert_hit(gf_test_one_hit(&c, 3.7, 0, 0.4, 0.6), 0.5, -0.6, 0, 0.8, false);
     // The corner: two side walls and the base.
     gf_wall_hit hit[GF_WALL_HITS];
     assert_int_equal(gf_container_walls(&c, (double[3]){24.8, -3.9, 0.2}, 0.5, hit), 3);
@@ -77,11 +59,11 @@ static void cylinder_flat_base_by_hand(void **state)
     assert_true(cfg.container_width == 20 && cfg.container_depth == 20 && cfg.orifice_diameter == 6);
     gf_container c = gf_container_make(&cfg);
     assert_true(c.type == &gf_cylinder_shape && c.z_col == 0.0);
-    assert_hit(one_hit(&c, 9.7, 0, 5, 0.5), 0.3, -1, 0, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 9.7, 0, 5, 0.5), 0.3, -1, 0, 0, true);
     const double s = sqrt(0.5); // at 45 degrees of azimuth
-    assert_hit(one_hit(&c, 9.6 * s, 9.6 * s, 5, 0.5), 0.4, -s, -s, 0, true);
-    assert_hit(one_hit(&c, 0, 6, 0.2, 0.5), 0.2, 0, 0, 1, false); // the base plate
-    assert_hit(one_hit(&c, 0, -2.7, 0.4, 0.6), 0.5, 0, 0.6, 0.8, false); // the rim at radius 3
+    gf_test_assert_hit(gf_test_one_hit(&c, 9.6 * s, 9.6 * s, 5, 0.5), 0.4, -s, -s, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, 6, 0.2, 0.5), 0.2, 0, 0, 1, false); // the base plate
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, -2.7, 0.4, 0.6), 0.5, 0, 0.6, 0.8, false); // the rim at radius 3
     assert_int_equal(gf_container_walls(&c, (double[3]){0, 0, 5}, 2.6, (gf_wall_hit[GF_WALL_HITS]){0}), 0);
     // Push (SPEC 1.3): alpha (r - gap) along the normal.
     double d[3] = {0, 0, 0};
@@ -114,13 +96,13 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     gf_assert_near(c.exit_z, -4, 0);
     const double s = sqrt(0.5);
     // (rho, z) = (5, 2.5) is 0.5 / sqrt(2) off the funnel line z = rho - 3.
-    assert_hit(one_hit(&c, 5, 0, 2.5, 0.5), 0.5 * s, -s, 0, s, true);
-    assert_hit(one_hit(&c, 0, 5, 2.5, 0.5), 0.5 * s, 0, -s, s, true);
-    assert_hit(one_hit(&c, 0, -2.7, -2, 0.5), 0.3, 0, 1, 0, true);           // the pipe
-    assert_hit(one_hit(&c, 2.3, 0, 10, 0.5), 0.3, 1, 0, 0, true);            // the column's side
-    assert_hit(one_hit(&c, 0, 1, 6.6, 0.5), 0.4, 0, 0, -1, false);           // its bottom
-    assert_hit(one_hit(&c, 2.3, 0, 6.6, 0.6), 0.5, 0.6, 0, -0.8, false);     // its bottom rim
-    assert_hit(one_hit(&c, 9.7, 0, 20, 0.5), 0.3, -1, 0, 0, true);           // the wall above the funnel
+    gf_test_assert_hit(gf_test_one_hit(&c, 5, 0, 2.5, 0.5), 0.5 * s, -s, 0, s, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, 5, 2.5, 0.5), 0.5 * s, 0, -s, s, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, -2.7, -2, 0.5), 0.3, 0, 1, 0, true);           // the pipe
+    gf_test_assert_hit(gf_test_one_hit(&c, 2.3, 0, 10, 0.5), 0.3, 1, 0, 0, true);            // the column's side
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, 1, 6.6, 0.5), 0.4, 0, 0, -1, false);           // its bottom
+    gf_test_assert_hit(gf_test_one_hit(&c, 2.3, 0, 6.6, 0.6), 0.5, 0.6, 0, -0.8, false);     // its bottom rim
+    gf_test_assert_hit(gf_test_one_hit(&c, 9.7, 0, 20, 0.5), 0.3, -1, 0, 0, true);           // the wall above the funnel
     // Mirrors: reflecting (5, 2.5) in the line z = rho - 3 gives (5.5, 2).
     double m[GF_WALL_HITS][3];
     assert_int_equal(c.ops->mirrors(&c, (double[3]){5, 0, 2.5}, 1.0, m), 1);

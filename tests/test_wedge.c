@@ -6,6 +6,7 @@
 // and short runs (event and fixed steps) in which every particle and spot
 // stays inside and every exit is through the slit.
 #include "support.h"
+#include "wall_hits.h"
 
 #include <math.h>
 #include <string.h>
@@ -32,24 +33,6 @@ static gf_config wedge(double width, double depth, double angle, double slit, do
     return c;
 }
 
-static gf_wall_hit one_hit(const gf_container *c, double x, double y, double z, double reach)
-{
-    gf_wall_hit hit[GF_WALL_HITS];
-    const double p[3] = {x, y, z};
-    int n = gf_container_walls(c, p, reach, hit);
-    if (n != 1) fail_msg("%d walls within %g of (%g, %g, %g), expected 1", n, reach, x, y, z);
-    return hit[0];
-}
-
-static void assert_hit(gf_wall_hit h, double gap, double nx, double ny, double nz, bool side)
-{
-    gf_assert_near(h.gap, gap, 1e-12);
-    gf_assert_near(h.n[0], nx, 1e-12);
-    gf_assert_near(h.n[1], ny, 1e-12);
-    gf_assert_near(h.n[2], nz, 1e-12);
-    assert_true(h.side == side);
-}
-
 static void wedge_walls_by_hand(void **state)
 {
     (void)state;
@@ -62,18 +45,18 @@ static void wedge_walls_by_hand(void **state)
     gf_assert_near(c.exit_z, -3, 0);
     gf_assert_near(c.z_bottom, -3, 0);
     // The right inclined wall z = x - 2: (5, 0, 5) is (5 - 3) / sqrt(2) above it.
-    assert_hit(one_hit(&c, 5, 0, 5, 2), sqrt(2.0), -s, 0, s, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 5, 0, 5, 2), sqrt(2.0), -s, 0, s, true);
     // The left one, mirrored.
-    assert_hit(one_hit(&c, -5, 0, 5, 2), sqrt(2.0), s, 0, s, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, -5, 0, 5, 2), sqrt(2.0), s, 0, s, true);
     // The vertical wall above it (z = 12 > 8), and the flat wall y = 3.
-    assert_hit(one_hit(&c, 9.5, 0, 12, 1), 0.5, -1, 0, 0, true);
-    assert_hit(one_hit(&c, 0, 2.8, 20, 1), 0.2, 0, -1, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 9.5, 0, 12, 1), 0.5, -1, 0, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 0, 2.8, 20, 1), 0.2, 0, -1, 0, true);
     // The slit's edge (2, 0): a convex edge, not a side wall.
     double d = hypot(0.2, 0.1);
-    assert_hit(one_hit(&c, 1.8, 0, 0.1, 0.5), d, -0.2 / d, 0, 0.1 / d, false);
+    gf_test_assert_hit(gf_test_one_hit(&c, 1.8, 0, 0.1, 0.5), d, -0.2 / d, 0, 0.1 / d, false);
     // The chute below it.
-    assert_hit(one_hit(&c, 1.7, 0, -1, 0.5), 0.3, -1, 0, 0, true);
-    assert_hit(one_hit(&c, -1.6, 0, -2, 0.5), 0.4, 1, 0, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, 1.7, 0, -1, 0.5), 0.3, -1, 0, 0, true);
+    gf_test_assert_hit(gf_test_one_hit(&c, -1.6, 0, -2, 0.5), 0.4, 1, 0, 0, true);
     // The corner of the inclined and vertical walls: both.
     gf_wall_hit hit[GF_WALL_HITS];
     const double corner[3] = {9.6, 0, 8.2};

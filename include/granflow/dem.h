@@ -288,11 +288,6 @@ GF_API bool gf_dem_flowstats_measured(gf_dem_value v, double tol);
 /// (gf_dem_flowstats_measured with var_tol; at least one).
 GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                                    double var_tol);
-
-/// Whether height z of `fs` had steady frames (velocity.window = height): a
-/// height with none in the spot run is not tested (the run was too short
-/// for its flow to settle there), as a DEM height too noisy is not.
-GF_API bool gf_dem_flowstats_steady(const gf_dem_flowstats *fs, size_t z);
 /// Prints the table DEM | spot | difference with its uncertainty | verdict
 /// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
 /// each Var; the other rows have none). The residence-time rows follow when
