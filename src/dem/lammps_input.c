@@ -207,6 +207,16 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
     gf_status st = gf_config_validate(c);
     if (st != GF_OK) return st;
     if (!dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_dem_write_inputs: no directory");
+    if (c->container_shape == GF_SHAPE_MESH) {
+        char where[GF_PATH_MAX + 32];
+        gf_config_where(c, "container.shape", where, sizeof where);
+        return gf_error_set(GF_ERR_PARAM,
+                            "%s: container.shape = mesh: granflow dem cannot model it: LAMMPS' granular walls "
+                            "(fix wall/gran, wall/gran/region) take planes, cylinders and regions, not a "
+                            "triangle mesh (%s); run the spot model on it (granflow run), or describe the "
+                            "container as a box or cylinder for DEM",
+                            where, c->container_mesh);
+    }
     gf_dem_plan plan = {0};
     const bool cyl = c->container_shape == GF_SHAPE_CYLINDER;
     if (cyl && c->inner_radius > 0.0 && c->dem_fill_method == GF_DEM_POUR)

@@ -2,6 +2,8 @@
 // The container of a configuration, and what shapes share (docs/geometry.md).
 #include "geom/container.h"
 
+#include "geom/meshshape.h"
+
 static const double gf_deg = 3.14159265358979323846 / 180.0;
 
 gf_container gf_container_make(const gf_config *cfg)
@@ -36,6 +38,7 @@ gf_container gf_container_make(const gf_config *cfg)
         c.z_top = (R - ro) * c.sin_a / c.cos_a;
         c.cone_len = (R - ro) / c.cos_a;
     }
+    if (cfg->container_shape == GF_SHAPE_MESH) gf_meshshape_fill(&c, cfg); // the outlet: the orifice keys'
     return c;
 }
 

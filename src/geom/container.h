@@ -66,6 +66,8 @@ struct gf_container {
     double pipe;               ///< length of the outlet pipe below z = 0
     double sin_a, cos_a;       ///< funnel angle to the horizontal
     double cone_len;           ///< length of the funnel's slant, rim to wall
+    // Mesh (meshshape.c): the loaded walls, shared by every copy (NULL: none could be read).
+    const struct gf_meshshape *mesh;
 };
 
 extern const gf_shape_ops gf_box_ops;

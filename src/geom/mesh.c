@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/meshshape.h"
 
 #define GF_MESH_PI 3.14159265358979323846
 
@@ -90,10 +91,29 @@ static bool gf_mesh_cylinder(const gf_container *c, double top, int n, gf_mesh *
     return ok;
 }
 
+// A mesh container (meshshape.c): its own triangles, whatever the height.
+static bool gf_mesh_copy(const gf_container *c, gf_mesh *m)
+{
+    if (!c->mesh) return true;
+    const gf_stl *s = &c->mesh->sdf.mesh;
+    for (size_t v = 0; v < s->nv; v++)
+        if (gf_mesh_vertex(m, s->v[v][0], s->v[v][1], s->v[v][2]) == SIZE_MAX) return false;
+    for (size_t t = 0; t < s->nt; t++)
+        if (!gf_mesh_tri(m, s->t[t][0], s->t[t][1], s->t[t][2])) return false;
+    return true;
+}
+
 gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_mesh *m)
 {
     *m = (gf_mesh){0};
     bool ok = true;
+    if (c->kind == GF_SHAPE_MESH) {
+        if (!gf_mesh_copy(c, m)) {
+            gf_mesh_free(m);
+            return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
+        }
+        return GF_OK;
+    }
     if (c->kind == GF_SHAPE_CYLINDER) {
         int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments;
         if (!gf_mesh_cylinder(c, top, n, m)) {

@@ -334,6 +334,7 @@ static void gf_gen_shape_wall(const gf_gen *g, double *x, double *y, double *z)
 // coordinates), by slices: the cross-section is pi (R(z)^2 - r_i(z)^2).
 static double gf_gen_area(const gf_container *c, double z)
 {
+    if (c->kind == GF_SHAPE_MESH) return c->ops->section_area(c, z); // its slice (geom/meshshape.c)
     double R = c->radius;
     if (z < 0.0) R = c->r_out;
     else if (c->sin_a > 0.0 && z < c->z_top) R = c->r_out + z * c->cos_a / c->sin_a;
@@ -659,6 +660,8 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
         n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
         if (cfg->container_shape == GF_SHAPE_CYLINDER) // and the pipe
             n += ceil(0.66 * 0.25 * cfg->outlet_diameter * cfg->outlet_diameter * cfg->outlet_length / (1.0 / 6.0));
+        if (cfg->container_shape == GF_SHAPE_MESH && cfg->exit_z < 0.0) // and the mesh's part below z = 0
+            n += ceil(0.66 * width * depth * -cfg->exit_z / (gf_gen_pi / 6.0));
     } else {
         if (cfg->packing_particles < 1)
             return gf_error_set(GF_ERR_PARAM,

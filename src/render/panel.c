@@ -10,6 +10,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "geom/container.h"
+#include "geom/meshshape.h"
 #include "render/palette.h"
 
 enum { GF_LABEL_MIN_PX = 28, GF_BAR_MIN_PX = 84 };
@@ -165,6 +166,20 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
             gf_rect(cr, GF_X(-box.r_in), GF_Y(zt), GF_X(box.r_in), GF_Y(p->ztop));
             cairo_fill(cr);
         }
+    } else if (box.kind == GF_SHAPE_MESH && box.mesh) {
+        // A mesh (geom/meshshape.c): its bounding box as the inside, its
+        // section through y = 0 stroked as the walls.
+        gf_rect(cr, GF_X(box.xlo), GF_Y(box.exit_z), GF_X(box.xhi), GF_Y(p->ztop));
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
+        cairo_set_line_width(cr, 2.0 * gf_wall * s);
+        double seg[4];
+        for (size_t t = 0; t < box.mesh->sdf.mesh.nt; t++)
+            if (gf_meshshape_slice_y(box.mesh, 0.0, t, seg)) {
+                cairo_move_to(cr, GF_X(seg[0]), GF_Y(fmin(seg[1], p->ztop)));
+                cairo_line_to(cr, GF_X(seg[2]), GF_Y(fmin(seg[3], p->ztop)));
+                cairo_stroke(cr);
+            }
     } else {
         gf_rect(cr, GF_X(-hw), GF_Y(0.0), GF_X(hw), GF_Y(p->ztop));
         cairo_fill(cr);
