@@ -97,16 +97,18 @@ class Surface:
             for apex in range(n):
                 areas = [norm(cross(sub(P[(apex + i) % n], P[apex]), sub(P[(apex + i + 1) % n], P[apex])))
                          for i in range(1, n - 1)]
-                nonzero = [a for a in areas if a > 1e-12]
-                m = min(nonzero) if nonzero else 0.0
+                m = min(areas)  # a zero: the apex is on a split edge, whose whole length a triangle would span
                 if m > best:
                     best, best_apex = m, apex
-            a = P[best_apex]
-            for i in range(1, n - 1):
-                b, c = P[(best_apex + i) % n], P[(best_apex + i + 1) % n]
+            if best > 1e-12:
+                fan = [(P[best_apex], P[(best_apex + i) % n], P[(best_apex + i + 1) % n]) for i in range(1, n - 1)]
+            else:  # every corner is on a split edge: a fan from the centroid (the faces are convex)
+                g = tuple(sum(p[k] for p in P) / n for k in range(3))
+                fan = [(g, P[i], P[(i + 1) % n]) for i in range(n)]
+            for a, b, c in fan:
                 nrm = cross(sub(b, a), sub(c, a))
                 if norm(nrm) <= 1e-12:
-                    continue  # three points of one edge
+                    continue
                 tris.append((a, b, c) if dot(nrm, hint) > 0 else (a, c, b))
         return tris
 
@@ -153,13 +155,20 @@ def plate_with_hole(s, rect, ox, oy, r, n, z):
     angles.sort()
 
     def ray(th):
+        # Where the ray leaves the rectangle, snapped onto its side (the
+        # walls' edges must hold these very points).
         c, sn = math.cos(th), math.sin(th)
-        t = math.inf
-        if c > 1e-15: t = min(t, (x1 - ox) / c)
-        if c < -1e-15: t = min(t, (x0 - ox) / c)
-        if sn > 1e-15: t = min(t, (y1 - oy) / sn)
-        if sn < -1e-15: t = min(t, (y0 - oy) / sn)
-        return (ox + t * c, oy + t * sn, z)
+        hits = []
+        if c > 1e-15: hits.append(((x1 - ox) / c, 0, x1))
+        if c < -1e-15: hits.append(((x0 - ox) / c, 0, x0))
+        if sn > 1e-15: hits.append(((y1 - oy) / sn, 1, y1))
+        if sn < -1e-15: hits.append(((y0 - oy) / sn, 1, y0))
+        t = min(h[0] for h in hits)
+        p = [ox + t * c, oy + t * sn]
+        for tt, axis, v in hits:
+            if tt <= t * (1 + 1e-12):
+                p[axis] = v
+        return (p[0], p[1], z)
 
     def on_circle(th):
         # Circle points only at the n-gon's vertices; a corner's ray starts on its chord.

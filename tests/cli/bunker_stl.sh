@@ -21,7 +21,7 @@ expect_rc 0 "run bunker.ini (3 tau)"
 grep -qx "mesh = container.stl" run/config.ini || fail "run/config.ini does not name its copy of the mesh"
 cmp -s run/container.stl "$EX/bunker.stl" || fail "run/container.stl is not a copy of bunker.stl"
 [ -s run/container.vtk ] || fail "run: no container.vtk"
-grep -q "POLYGONS 132 " run/container.vtk || fail "container.vtk does not hold the mesh's 132 triangles"
+grep -q "POLYGONS 187 " run/container.vtk || fail "container.vtk does not hold the mesh's 187 triangles"
 
 gf run -q --resume run --set run.duration=4
 expect_rc 0 "resume"
