@@ -170,7 +170,7 @@ int gf_cmd_calibrate(int argc, char **argv)
         if (st == GF_OK) st = gf_config_set(&cfg, "packing.types=", "calibrate");
     }
     gf_packing start = {0};
-    if (st == GF_OK && refine) st = gf_packing_for_config_stoppable(&cfg, a.opts.stop, &start, NULL);
+    if (st == GF_OK && refine) st = gf_packing_for_config(&cfg, &(gf_packing_opts){.stop = a.opts.stop}, &start, NULL);
     if (st == GF_OK && refine) {
         if (!a.quiet)
             fprintf(stderr,

@@ -10,7 +10,7 @@
 
 typedef struct gf_dem_show {
     bool tty;
-    const char *last_phase;
+    gf_dem_phase last_phase;
     double last_wall;
 } gf_dem_show;
 
@@ -19,25 +19,25 @@ static void gf_dem_show_progress(void *ctx, const gf_dem_progress *p)
     gf_dem_show *s = ctx;
     bool new_phase = p->phase != s->last_phase;
     if (new_phase) {
-        if (s->tty && s->last_phase) fputs("\n", stderr);
+        if (s->tty && s->last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
         s->last_phase = p->phase;
         if (!s->tty) {
-            if (!strcmp(p->phase, "fill")) fprintf(stderr, "granflow dem: pouring %lld particles...\n", (long long)p->target);
-            else if (!strcmp(p->phase, "settle")) fprintf(stderr, "granflow dem: settling...\n");
-            else if (!strcmp(p->phase, "drain"))
+            if (p->phase == GF_DEM_PHASE_FILL) fprintf(stderr, "granflow dem: pouring %lld particles...\n", (long long)p->target);
+            else if (p->phase == GF_DEM_PHASE_SETTLE) fprintf(stderr, "granflow dem: settling...\n");
+            else if (p->phase == GF_DEM_PHASE_DRAIN)
                 fprintf(stderr, "granflow dem: draining %lld particles for %g tau...\n", (long long)p->target, p->until);
             return;
         }
     }
     if (!s->tty || (!new_phase && p->wall_seconds - s->last_wall < 0.25)) return;
     s->last_wall = p->wall_seconds;
-    if (!strcmp(p->phase, "fill"))
+    if (p->phase == GF_DEM_PHASE_FILL)
         fprintf(stderr, "\r\033[K[fill]   t = %.1f tau | %lld of %lld particles | KE %.2e | %.0f s", p->time,
                 (long long)p->particles, (long long)p->target, p->ke, p->wall_seconds);
-    else if (!strcmp(p->phase, "settle"))
+    else if (p->phase == GF_DEM_PHASE_SETTLE)
         fprintf(stderr, "\r\033[K[settle] t = %.1f / %.0f tau at most | KE per particle %.2e | %.0f s", p->time, p->until,
                 p->ke, p->wall_seconds);
-    else if (!strcmp(p->phase, "drain")) {
+    else if (p->phase == GF_DEM_PHASE_DRAIN) {
         double rate = p->time > 0 ? p->wall_seconds / p->time : 0; // not exact: includes the fill
         (void)rate;
         fprintf(stderr, "\r\033[K[drain]  t = %.2f / %g tau | %lld of %lld particles left | %.0f s", p->time, p->until,
@@ -70,7 +70,7 @@ int gf_cmd_dem(int argc, char **argv)
             return GF_EXIT_USAGE;
         }
         gf_dem_plan plan;
-        gf_status st = gf_dem_write_inputs_stoppable(&cfg, cli.out, stop, &plan);
+        gf_status st = gf_dem_write_inputs(&cfg, cli.out, &(gf_packing_opts){.stop = stop}, &plan);
         if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", "nothing written");
         if (st != GF_OK) return gf_cli_fail("dem", st);
         if (!cli.quiet)
@@ -96,7 +96,7 @@ int gf_cmd_dem(int argc, char **argv)
         fprintf(stderr, "granflow dem: running LAMMPS in %s with %d MPI rank(s) (logs: log.fill, log.drain)\n", cli.out,
                 ranks < 1 ? gf_cpu_count() : ranks);
     gf_status st = gf_dem_run(cli.out, &o);
-    if (show.tty && show.last_phase) fputs("\n", stderr);
+    if (show.tty && show.last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
     if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL); // the message names interrupted.txt
     if (st != GF_OK) return gf_cli_fail("dem", st);
     if (!cli.quiet)

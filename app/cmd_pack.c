@@ -24,7 +24,7 @@ int gf_cmd_pack(int argc, char **argv)
     else if (!cli.quiet && !cfg.packing_file[0])
         fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
     gf_packing_import_report rep;
-    gf_status st = gf_packing_for_config_stoppable(&cfg, gf_cli_catch_stop(), &pk, &rep);
+    gf_status st = gf_packing_for_config(&cfg, &(gf_packing_opts){.stop = gf_cli_catch_stop()}, &pk, &rep);
     if (st == GF_OK && !cli.quiet && (rep.below_base || rep.other_types))
         fprintf(stderr, "granflow pack: kept %zu of %zu particles (%zu below the base, %zu of other atom types)\n",
                 pk.n, rep.read, rep.below_base, rep.other_types);

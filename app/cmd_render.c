@@ -20,7 +20,7 @@ enum { GF_RENDER_MAX_TIMES = 256 };
 
 typedef struct gf_render_cli {
     const char *dir;
-    gf_render_options o;
+    gf_render_dir_opts o;
     double times[GF_RENDER_MAX_TIMES];
     bool quiet;
 } gf_render_cli;
@@ -54,7 +54,7 @@ static int gf_render_parse_times(const char *s, gf_render_cli *c)
 /// Parses argv into c; returns -1 to go on, or the exit code to return now.
 static int gf_render_parse(int argc, char **argv, gf_render_cli *c)
 {
-    *c = (gf_render_cli){.o = gf_render_options_default()};
+    *c = (gf_render_cli){.o = gf_render_dir_opts_default()};
     c->o.times = c->times;
     enum { OPT_COLOUR = 256, OPT_TIMES, OPT_FORMAT, OPT_SCALE, OPT_PANELS, OPT_ALL, OPT_SHEET };
     static const struct option longs[] = {

@@ -23,20 +23,20 @@ static void gf_fmt_duration(char *buf, size_t n, double s)
 static void gf_show_progress(void *ctx, const gf_run_progress *p)
 {
     gf_progress_ctx *pc = ctx;
-    if (!strcmp(p->phase, "stalled")) { // said even with --quiet: the run ends before run.duration
+    if (p->phase == GF_RUN_PHASE_STALLED) { // said even with --quiet: the run ends before run.duration
         fprintf(stderr, "%sgranflow run: %s\n", pc->tty ? "\r\033[K" : "", p->note);
         return;
     }
     if (pc->quiet) return;
-    if (!strcmp(p->phase, "packing") || !strcmp(p->phase, "reading")) {
-        fprintf(stderr, "granflow run: %s the initial packing...\n", p->phase[0] == 'p' ? "building" : "reading");
+    if (p->phase == GF_RUN_PHASE_PACKING || p->phase == GF_RUN_PHASE_READING) {
+        fprintf(stderr, "granflow run: %s the initial packing...\n", p->phase == GF_RUN_PHASE_PACKING ? "building" : "reading");
         return;
     }
-    if (!strcmp(p->phase, "imported")) {
+    if (p->phase == GF_RUN_PHASE_IMPORTED) {
         fprintf(stderr, "granflow run: imported %s\n", p->note ? p->note : "the packing");
         return;
     }
-    if (!strcmp(p->phase, "done")) {
+    if (p->phase == GF_RUN_PHASE_DONE) {
         if (pc->tty) fputs("\r\033[K", stderr);
         return;
     }

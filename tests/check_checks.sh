@@ -62,6 +62,16 @@ out=$(bash "$here/check_layers.sh" "$tmp/tree" 2>&1) && fail "check_layers.sh pa
 grep -qF "cycle between dem and render" <<< "$out" || fail "check_layers.sh did not name the dem <-> render cycle: $out"
 echo "ok: check_layers.sh fails on a cycle: $(grep cycle <<< "$out")"
 
+# Shapes (issue 24): a module outside geom/ and config/ asking "cylinder, else box".
+fresh
+printf 'static int gf_planted(const gf_config *c) { return c->container_shape == GF_SHAPE_CYLINDER; }\n' >> "$tmp/tree/src/render/panel.c"
+expect_fail check_layers.sh src/render/panel.c "names a shape outside src/geom/ and src/config/"
+# ... but geom/ (the shape table) and config/ (which parses container.shape) may.
+fresh
+printf 'static int gf_planted(int s) { return s == GF_SHAPE_WEDGE; }\n' >> "$tmp/tree/src/geom/shapes.c"
+printf 'static int gf_planted(int s) { return s == GF_SHAPE_WEDGE; }\n' >> "$tmp/tree/src/config/keys.c"
+bash "$here/check_layers.sh" "$tmp/tree" > /dev/null || fail "check_layers.sh fails on a shape named in geom/ or config/"
+
 # Allocation: the C library's allocator outside core/alloc.c.
 fresh
 printf 'static void *gf_planted(void) { return malloc(8); }\n' >> "$tmp/tree/src/geom/box.c"

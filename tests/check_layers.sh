@@ -7,7 +7,9 @@
 #   - PUBLIC headers of a sibling on the same layer, as long as two siblings
 #     do not use each other (no cycles).
 # A private header of a sibling, or any header of a higher layer, fails the
-# check unless listed in ALLOWED below with the issue that removes it.
+# check unless listed in ALLOWED below with the issue that removes it. A
+# file outside src/geom/ and src/config/ that names a shape constant
+# (GF_SHAPE_*) fails it too.
 # Usage: check_layers.sh SOURCE_DIR
 set -euo pipefail
 root=${1:-.}
@@ -90,6 +92,12 @@ for e in "${!edges[@]}"; do
   a=${e%%:*} b=${e##*:}
   if [ -n "${edges[$b:$a]:-}" ] && [[ $a < $b ]]; then echo "layering: cycle between $a and $b"; bad=1; fi
 done
+# Shapes own their geometry (issue 24, docs/geometry.md "Adding a shape"):
+# only geom/ (the shape table) and config/ (which parses container.shape)
+# name a shape; everything else asks the container (src/geom/container.h).
+while IFS= read -r hit; do
+  echo "shapes: $hit: names a shape outside src/geom/ and src/config/; ask the container instead"; bad=1
+done < <(grep -rn --include='*.c' --include='*.h' --include='*.cc' 'GF_SHAPE_[A-Z]' src app | grep -v '^src/geom/\|^src/config/' || true)
 # An allow-list entry that no longer matches is stale: the fix landed, drop it.
 for a in "${ALLOWED[@]}"; do
   [ -n "${used[$a]:-}" ] || { echo "layering: allowed violation no longer present, remove it from $0: $a"; bad=1; }

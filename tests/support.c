@@ -159,7 +159,7 @@ bool gf_test_same_snapshot(const char *d1, const char *d2, int k)
 gf_sim *gf_test_generated_sim(const gf_config *c)
 {
     gf_packing pk = {0};
-    assert_int_equal(gf_packing_generate(c, &pk), GF_OK);
+    assert_int_equal(gf_packing_generate(c, NULL, &pk), GF_OK);
     gf_sim *sim = NULL;
     assert_int_equal(gf_sim_create(c, &pk, &sim), GF_OK);
     gf_packing_free(&pk);

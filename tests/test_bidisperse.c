@@ -35,8 +35,8 @@ static void generated_second_species(void **state)
     c.packing_radius2 = 0.3;
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_packing a = {0}, b = {0};
-    assert_int_equal(gf_packing_generate(&c, &a), GF_OK);
-    assert_int_equal(gf_packing_generate(&m, &b), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, NULL, &a), GF_OK);
+    assert_int_equal(gf_packing_generate(&m, NULL, &b), GF_OK);
     size_t small = 0;
     for (size_t i = 0; i < a.n; i++) {
         assert_true(a.r[i] == 0.5 || a.r[i] == 0.3);
@@ -64,7 +64,7 @@ static void two_sizes_relax_without_overlap(void **state)
     (void)state;
     gf_config g = gf_test_silo_config(10, 1200, 9);
     gf_packing pk = {0};
-    assert_int_equal(gf_packing_generate(&g, &pk), GF_OK);
+    assert_int_equal(gf_packing_generate(&g, NULL, &pk), GF_OK);
     gf_rng rng;
     gf_rng_seed(&rng, 11, 0);
     size_t big = 0;

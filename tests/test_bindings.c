@@ -146,7 +146,7 @@ static void sim_written_as_files_reads_back(void **state)
     assert_true(gf_sim_stat(back, "events") == gf_sim_stat(sim, "events"));
     // The run directory is a series analyze reads: one frame, its exits.
     gf_series series = {0};
-    assert_int_equal(gf_series_load(run, 0, &series), GF_OK);
+    assert_int_equal(gf_series_load(run, 0, NULL, &series), GF_OK);
     assert_int_equal(series.nframes, 1);
     assert_int_equal(series.frames[0].pk.n, n);
     assert_int_equal(series.nexits, gf_sim_exit_count(sim));

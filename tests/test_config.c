@@ -18,7 +18,8 @@
 static size_t key_size(const gf_key *k)
 {
     switch (k->type) {
-    case GF_KEY_ENUM: return sizeof(int);
+    case GF_KEY_ENUM:
+    case GF_KEY_SET: return sizeof(int);
     case GF_KEY_PATH: return GF_PATH_MAX;
     case GF_KEY_LIST: return sizeof(double) * k->list_max;
     case GF_KEY_SIZE: return sizeof(size_t);
@@ -802,6 +803,41 @@ static void save_reports_io_errors(void **state)
     assert_int_equal(gf_config_load(&c, dir), GF_ERR_IO);
 }
 
+// output.format is a list of formats: today's words (dump, vtk, both) mean
+// what they meant, `both` stands for `dump,vtk`, the list reads back in table
+// order, and a bad element is named with its place in the list.
+static void output_format_is_a_list(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *value;
+        int bits;
+        const char *back;
+    } ok[] = {{"dump", GF_OUTPUT_DUMP, "dump"},
+              {"vtk", GF_OUTPUT_VTK, "vtk"},
+              {"both", GF_OUTPUT_DUMP | GF_OUTPUT_VTK, "dump,vtk"},
+              {"dump,vtk", GF_OUTPUT_BOTH, "dump,vtk"},
+              {"vtk, dump", GF_OUTPUT_BOTH, "dump,vtk"},
+              {" vtk ,dump ", GF_OUTPUT_BOTH, "dump,vtk"}};
+    for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
+        gf_config cfg = gf_config_default();
+        char a[64], back[64];
+        snprintf(a, sizeof a, "output.format=%s", ok[i].value);
+        if (gf_config_set(&cfg, a, "--set") != GF_OK) fail_msg("%s: %s", a, gf_last_error());
+        assert_int_equal((int)cfg.output_format, ok[i].bits);
+        assert_int_equal(gf_config_get_key(&cfg, "output.format", back, sizeof back), GF_OK);
+        assert_string_equal(back, ok[i].back);
+        assert_int_equal(gf_config_validate(&cfg), GF_OK);
+    }
+    assert_int_equal((int)gf_config_default().output_format, GF_OUTPUT_DUMP);
+    expect_set_error("output.format=dump,stl", "output.format=dump,stl: element 2 'stl' is not one of: dump, vtk");
+    expect_set_error("output.format=xyz", "element 1 'xyz' is not one of: dump, vtk; both = dump,vtk");
+    expect_set_error("output.format=dump,,vtk", "element 2 '' is not one of");
+    expect_set_error("output.format=dump,both", "element 2 'both' is not one of");
+    expect_set_error("output.format=vtk,vtk", "element 2 'vtk' is listed twice");
+    expect_load_error("format.ini", "[output]\nformat = dump, pdf\n", 2, "[output] format = 'dump, pdf': element 2 'pdf'");
+}
+
 // ---- docs ------------------------------------------------------------------
 
 // docs/config.md has a row for every key with its default and range.
@@ -837,6 +873,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(defaults_match_key_table),
     cmocka_unit_test(load_sets_several_keys),
     cmocka_unit_test(load_accepts_layout_variants),
+    cmocka_unit_test(output_format_is_a_list),
     cmocka_unit_test(load_unknown_section),
     cmocka_unit_test(load_unknown_empty_section),
     cmocka_unit_test(load_unknown_key),

@@ -40,7 +40,7 @@ static void lammps_run_gives_readable_dumps(void **state)
     char dir[900];
     snprintf(dir, sizeof dir, "%s", path_in("dem"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     assert_int_equal(plan.particles, 300);
     assert_int_equal(plan.snapshot_steps, 1000);
     assert_int_equal(plan.drain_steps, 3000);
@@ -113,7 +113,7 @@ static void lammps_hopper_walls_hold(void **state)
     char dir[900];
     snprintf(dir, sizeof dir, "%s", path_in("dem_hopper"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     char in[1300];
     snprintf(in, sizeof in, "%s/in.drain", dir);
     char *text = gf_test_read_file(in, NULL);
@@ -229,7 +229,7 @@ static void run_and_dem_get_the_same_packing(void **state)
     snprintf(c.packing_types, sizeof c.packing_types, "1");
     gf_packing ref = {0}, snap = {0};
     gf_packing_import_report rep;
-    assert_int_equal(gf_packing_for_config(&c, &ref, &rep), GF_OK);
+    assert_int_equal(gf_packing_for_config(&c, NULL, &ref, &rep), GF_OK);
     assert_int_equal(ref.n, 60);
     assert_int_equal(rep.other_types, 8);
     assert_int_equal(rep.below_base, 1);
@@ -252,7 +252,7 @@ static void run_and_dem_get_the_same_packing(void **state)
 
     snprintf(dir, sizeof dir, "%s", path_in("typed_dem"));
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     assert_int_equal(plan.particles, 60);
     snprintf(path, sizeof path, "%s/fill.data", dir);
     FILE *f = fopen(path, "r");
@@ -431,7 +431,8 @@ static void lammps_output_lines(void **state)
     gf_dem_reader r = {.o = &o, .t_phase = NAN};
     char l1[] = "granflow-phase fill 4000 20\n", l2[] = "0 10 0 0", l3[] = "1000 11.5 1200 0.25\r\n";
     gf_dem_line(&r, l1);
-    assert_string_equal(last.phase, "fill");
+    assert_int_equal(last.phase, GF_DEM_PHASE_FILL);
+    assert_string_equal(gf_dem_phase_name(last.phase), "fill");
     assert_int_equal(last.target, 4000);
     gf_dem_line(&r, l2);
     gf_dem_line(&r, l3);
@@ -441,13 +442,22 @@ static void lammps_output_lines(void **state)
     gf_dem_line(&r, l4);
     assert_int_equal(last.particles, INT64_C(1) << 62);
     gf_dem_line(&r, l5);
-    assert_string_equal(last.phase, "drain");
+    assert_int_equal(last.phase, GF_DEM_PHASE_DRAIN);
+    assert_string_equal(gf_dem_phase_name(last.phase), "drain");
     assert_int_equal(last.target, INT64_C(1) << 62);
     gf_dem_line(&r, l6);
     assert_int_equal(last.particles, 0);
     char l7[] = "ERROR: Lost atoms (src/thermo.cpp:488)\n";
     gf_dem_line(&r, l7);
     assert_string_equal(r.error, "ERROR: Lost atoms (src/thermo.cpp:488)");
+    // "settled" ends the settle phase: still settle (one phase, not a new one).
+    char l8[] = "granflow-phase settle 0 50", l9[] = "granflow-phase settled 3000 0.001";
+    gf_dem_line(&r, l8);
+    assert_int_equal(last.phase, GF_DEM_PHASE_SETTLE);
+    gf_dem_line(&r, l9);
+    assert_int_equal(last.phase, GF_DEM_PHASE_SETTLE);
+    assert_string_equal(gf_dem_phase_name(GF_DEM_PHASE_DONE), "done");
+    assert_string_equal(gf_dem_phase_name((gf_dem_phase)99), "?");
 }
 
 static const struct CMUnitTest tests[] = {

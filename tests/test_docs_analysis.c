@@ -22,6 +22,7 @@ enum { MAX_KEYS = 64, KEY_LEN = 64, CELL_LEN = 128 };
 typedef struct doc_row {
     char key[KEY_LEN], def[CELL_LEN];
     double lo, hi;
+    char names[CELL_LEN]; ///< a word-valued key: its values, "a, b" (lo, hi unused)
 } doc_row;
 
 static char *read_doc(void)
@@ -92,7 +93,9 @@ static size_t doc_rows(const char *doc, doc_row *rows)
         snprintf(r->key, sizeof r->key, "%.*s", (int)(len - 2), cell + 1);
         assert_true(row_cell(l, 1, r->def, sizeof r->def));
         assert_true(row_cell(l, 2, cell, sizeof cell));
-        if (sscanf(cell, "[%lf, %lf]", &r->lo, &r->hi) != 2)
+        r->names[0] = '\0';
+        if (cell[0] != '[') snprintf(r->names, sizeof r->names, "%s", cell); // a word-valued key
+        else if (sscanf(cell, "[%lf, %lf]", &r->lo, &r->hi) != 2)
             fail_msg("options table: %s: range '%s' is not [lo, hi]", r->key, cell);
     }
     free(sec);
@@ -190,6 +193,15 @@ static void options_table_matches_the_code(void **state)
                 fail_msg("docs: %s = %s is not the default of gf_analysis_opts_default", d->key, d->def);
         }
         o = def;
+        if (d->names[0]) {
+            // A word-valued key: each documented value accepted, another word refused.
+            char list[CELL_LEN], *save = NULL;
+            snprintf(list, sizeof list, "%s", d->names);
+            for (char *w = strtok_r(list, ", ", &save); w; w = strtok_r(NULL, ", ", &save))
+                if (set(&o, d->key, w) != GF_OK) fail_msg("docs: %s = %s refused: %s", d->key, w, gf_last_error());
+            if (set(&o, d->key, "bogus") != GF_ERR_PARAM) fail_msg("docs: %s = bogus accepted", d->key);
+            continue;
+        }
         if (set_num(&o, d->key, d->lo) != GF_OK || set_num(&o, d->key, d->hi) != GF_OK)
             fail_msg("docs: %s: an end of the range [%g, %g] is refused: %s", d->key, d->lo, d->hi, gf_last_error());
         double eps_lo = 1e-6 * fmax(1.0, fabs(d->lo)), eps_hi = 1e-6 * fmax(1.0, fabs(d->hi));
@@ -212,7 +224,7 @@ static gf_series flowing_silo(void)
     c.packing_particles = 1200;
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_packing p0 = {0};
-    assert_int_equal(gf_packing_generate(&c, &p0), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, NULL, &p0), GF_OK);
     gf_series s;
     memset(&s, 0, sizeof s);
     s.cfg = c;

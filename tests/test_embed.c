@@ -19,6 +19,7 @@
 static void other_value(const gf_key *k, char *buf, size_t n)
 {
     switch (k->type) {
+    case GF_KEY_SET: // every name but the default's first, as a list ("vtk")
     case GF_KEY_ENUM: {
         size_t m = 0;
         while (k->names[m]) m++;
@@ -245,7 +246,7 @@ static void allocator_hook_sees_every_block(void **state)
     gf_set_allocator(counting_alloc, counting_free);
     gf_config c = gf_test_silo_config(10, 300, 3);
     gf_sim *sim = NULL;
-    assert_int_equal(gf_sim_create_from_config(&c, &sim), GF_OK);
+    assert_int_equal(gf_sim_create_from_config(&c, NULL, &sim), GF_OK);
     assert_true(hook_blocks > 0);
     // Every byte granflow counts went through the hook (rounded to cache lines).
     assert_true(hook_bytes >= gf_bytes_allocated());
@@ -334,7 +335,7 @@ static void allocator_counts_a_whole_session(void **state)
 
     // The analysis (tables, gnuplot scripts, summary) without running gnuplot.
     gf_series s = {0};
-    assert_int_equal(gf_series_load(dir, 0, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0, NULL, &s), GF_OK);
     gf_analysis_opts ao = gf_analysis_opts_default();
     snprintf(path, sizeof path, "%s/analysis", dir);
     assert_int_equal(gf_analyze(&s, &ao, NULL, path, false), GF_OK);
@@ -416,7 +417,7 @@ static void sim_arrays_account_for_every_particle(void **state)
     for (size_t i = 0; i < sizeof sets / sizeof sets[0]; i++)
         assert_int_equal(gf_config_set_key(cfg, sets[i][0], sets[i][1]), GF_OK);
     gf_sim *sim = NULL;
-    assert_int_equal(gf_sim_create_from_config(cfg, &sim), GF_OK);
+    assert_int_equal(gf_sim_create_from_config(cfg, NULL, &sim), GF_OK);
     gf_config_destroy(cfg);
     const size_t n0 = gf_sim_particle_count(sim);
     assert_int_equal(n0, 1500);
@@ -474,7 +475,7 @@ static void options_defaults(void **state)
     assert_true(!o.out && !o.compare && !o.title);
     gf_dem_refine_opts ro = gf_dem_refine_opts_default();
     assert_true(ro.max_iter == 0 && ro.flow_tol == 0 && ro.var_tol == 0 && !ro.progress && !ro.stop && !ro.start);
-    gf_run_hooks h = gf_run_hooks_default();
+    gf_sim_hooks h = gf_sim_hooks_default();
     assert_true(!h.ctx && !h.snapshot && !h.checkpoint && !h.progress && h.progress_every == 0 && !h.stop);
     // The analysis defaults, by value: the values docs/analysis.md gives.
     gf_analysis_opts a = gf_analysis_opts_default();

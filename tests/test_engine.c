@@ -51,7 +51,7 @@ static void drain_with(gf_config c)
     c.output_snapshot_interval = 1.0;
     gf_sim *sim = gf_test_generated_sim(&c);
     inv_ctx ic = {.worst_wall = INFINITY, .worst_pair = INFINITY};
-    gf_run_hooks hooks = {.ctx = &ic, .snapshot = check_snapshot};
+    gf_sim_hooks hooks = {.ctx = &ic, .snapshot = check_snapshot};
     // Spots reach the top (z ~ 17) after ~6 tau: 12 tau is well into steady flow.
     assert_int_equal(gf_sim_run(sim, 12.0, &hooks), GF_OK);
     gf_sim_stats s = gf_sim_get_stats(sim);
@@ -202,7 +202,7 @@ static void outflow_matches_mass_balance(void **state)
     gf_sim *sim = gf_test_generated_sim(&c);
     // Spots reach the top (z ~ 27) after ~10 tau; measure from 11 to 21 tau.
     mb_ctx m = {.t0 = 11.0};
-    gf_run_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
+    gf_sim_hooks hooks = {.ctx = &m, .snapshot = sample_ball};
     assert_int_equal(gf_sim_run(sim, m.t0, &hooks), GF_OK);
     gf_sim_stats a = gf_sim_get_stats(sim);
     const double T = 10.0;
@@ -302,7 +302,7 @@ typedef struct stop_ctx {
 static void stop_after(void *ctx, const gf_run_progress *p)
 {
     stop_ctx *s = ctx;
-    if (!strcmp(p->phase, "running") && ++s->calls == s->at) *s->flag = 1;
+    if (p->phase == GF_RUN_PHASE_RUNNING && ++s->calls == s->at) *s->flag = 1;
 }
 
 static void interrupt_and_resume_exactly(void **state)
@@ -323,6 +323,41 @@ static void interrupt_and_resume_exactly(void **state)
     run_into(&c, part, 1, NULL, GF_OK);
     assert_true(same_run_file(full, part, "snapshots/snap_000006.dump"));
     assert_true(same_run_file(full, part, "exits.csv"));
+}
+
+typedef struct phase_log {
+    gf_run_phase seen[8];
+    int n, running;
+} phase_log;
+
+static void log_phase(void *ctx, const gf_run_progress *p)
+{
+    phase_log *l = ctx;
+    if (p->phase == GF_RUN_PHASE_RUNNING) {
+        l->running++; // many of these; logged once
+        if (l->running > 1) return;
+    }
+    if (l->n < 8) l->seen[l->n++] = p->phase;
+}
+
+// The phases a run reports, in order: packing, running (many times), done;
+// each has a name.
+static void progress_phases_in_order(void **state)
+{
+    (void)state;
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s/phases", gf_test_tmpdir());
+    gf_config c = tiny(43); // 3 tau: more than one progress interval (32768 events)
+    phase_log l = {.n = 0};
+    gf_run_opts o = {.dir = dir, .force = 1, .progress = log_phase, .ctx = &l};
+    assert_int_equal(gf_run_dir(&c, &o, NULL), GF_OK);
+    assert_int_equal(l.n, 3);
+    assert_int_equal(l.seen[0], GF_RUN_PHASE_PACKING);
+    assert_int_equal(l.seen[1], GF_RUN_PHASE_RUNNING);
+    assert_int_equal(l.seen[2], GF_RUN_PHASE_DONE);
+    assert_string_equal(gf_run_phase_name(GF_RUN_PHASE_PACKING), "packing");
+    assert_string_equal(gf_run_phase_name(GF_RUN_PHASE_STALLED), "stalled");
+    assert_string_equal(gf_run_phase_name((gf_run_phase)-1), "?");
 }
 
 static void fresh_run_refuses_to_overwrite(void **state)
@@ -390,6 +425,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(same_seed_same_bytes),
     cmocka_unit_test(resume_extends_exactly),
     cmocka_unit_test(interrupt_and_resume_exactly),
+    cmocka_unit_test(progress_phases_in_order),
     cmocka_unit_test(fresh_run_refuses_to_overwrite),
     cmocka_unit_test(corrupt_checkpoint_is_rejected),
 };

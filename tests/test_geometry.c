@@ -76,7 +76,7 @@ static void cylinder_flat_base_by_hand(void **state)
     gf_config cfg = cylinder(10, 0, 6, 0, 0);
     assert_true(cfg.container_width == 20 && cfg.container_depth == 20 && cfg.orifice_diameter == 6);
     gf_container c = gf_container_make(&cfg);
-    assert_true(c.kind == GF_SHAPE_CYLINDER && c.z_top == 0.0);
+    assert_true(c.type == &gf_cylinder_shape && c.z_col == 0.0);
     assert_hit(one_hit(&c, 9.7, 0, 5, 0.5), 0.3, -1, 0, 0, true);
     const double s = sqrt(0.5); // at 45 degrees of azimuth
     assert_hit(one_hit(&c, 9.6 * s, 9.6 * s, 5, 0.5), 0.4, -s, -s, 0, true);
@@ -110,7 +110,7 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     // 45 degrees from radius 10 down to the outlet radius 3: the funnel's top is at z = 7.
     gf_config cfg = cylinder(10, 45, 6, 4, 2);
     gf_container c = gf_container_make(&cfg);
-    gf_assert_near(c.z_top, 7, 1e-12);
+    gf_assert_near(c.z_col, 7, 1e-12);
     gf_assert_near(c.exit_z, -4, 0);
     const double s = sqrt(0.5);
     // (rho, z) = (5, 2.5) is 0.5 / sqrt(2) off the funnel line z = rho - 3.
@@ -213,7 +213,7 @@ static void cylinder_packings_keep_the_promises(void **state)
         gf_config c = cylinder(cases[k].R, cases[k].angle, cases[k].outlet, cases[k].pipe, cases[k].inner);
         c.packing_particles = cases[k].n;
         gf_packing pk = {0};
-        assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+        assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
         assert_int_equal(pk.n, (size_t)cases[k].n);
         gf_container box = gf_container_make(&c);
         double zmin = INFINITY;
@@ -248,7 +248,7 @@ static void cylinder_packing_ignores_a_deep_exit_plane(void **state)
             c.packing_particles = 1500;
             assert_int_equal(gf_config_validate(&c), GF_OK);
             gf_packing pk = {0};
-            assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+            assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
             assert_int_equal(pk.n, 1500);
             gf_container box = gf_container_make(&c);
             double zmin = INFINITY, floor = fmax(box.exit_z, -pipes[k]) + 0.5;

@@ -59,7 +59,7 @@ static void box_runs_bit_identical(void **state)
             assert_int_equal(gf_config_set(&c, box_cases[k][j], "golden"), GF_OK);
         assert_int_equal(gf_config_validate(&c), GF_OK);
         gf_packing pk = {0};
-        assert_int_equal(gf_packing_generate(&c, &pk), GF_OK);
+        assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
         uint64_t hp = fnv(1469598103934665603ull, pk.z, pk.n * sizeof(double));
         gf_sim *sim = NULL;
         assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);

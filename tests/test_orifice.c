@@ -187,7 +187,7 @@ static void dem_input_cuts_the_hole_there(void **state)
     char dir[900], path[1000];
     snprintf(dir, sizeof dir, "%s/dem", gf_test_tmpdir());
     gf_dem_plan plan;
-    assert_int_equal(gf_dem_write_inputs(&c, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
     snprintf(path, sizeof path, "%s/in.drain", dir);
     char *text = gf_test_read_file(path, NULL);
     assert_non_null(text);
@@ -214,7 +214,7 @@ static void dem_input_cuts_the_hole_there(void **state)
     s.orifice_x = -5;
     s.packing_particles = 300;
     assert_int_equal(gf_config_validate(&s), GF_OK);
-    assert_int_equal(gf_dem_write_inputs(&s, dir, &plan), GF_OK);
+    assert_int_equal(gf_dem_write_inputs(&s, dir, NULL, &plan), GF_OK);
     snprintf(path, sizeof path, "%s/in.drain", dir);
     text = gf_test_read_file(path, NULL);
     assert_non_null(text);

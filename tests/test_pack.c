@@ -28,7 +28,7 @@ static gf_config box(double width, double depth, int64_t particles, uint64_t see
 
 static void generate(const gf_config *c, gf_packing *p)
 {
-    gf_status st = gf_packing_generate(c, p);
+    gf_status st = gf_packing_generate(c, NULL, p);
     if (st != GF_OK) print_error("gf_packing_generate: %s: %s\n", gf_status_str(st), gf_last_error());
     assert_int_equal(st, GF_OK);
 }
@@ -348,7 +348,7 @@ static void expect_param_error(const gf_config *c, const char *phrase)
 {
     gf_packing p = {0};
     assert_int_equal(gf_packing_push(&p, 1, 1, 0.0, 0.0, 0.5, 0.5), GF_OK);
-    gf_status st = gf_packing_generate(c, &p);
+    gf_status st = gf_packing_generate(c, NULL, &p);
     if (st != GF_ERR_PARAM) print_error("status %s, message \"%s\"\n", gf_status_str(st), gf_last_error());
     assert_int_equal(st, GF_ERR_PARAM);
     assert_int_equal(p.n, 0); // comes back empty
@@ -381,8 +381,8 @@ static void bad_input(void **state)
     c = box(16, 8, (int64_t)1 << 40, 1);
     expect_param_error(&c, "limit");
     gf_packing p = {0};
-    assert_int_equal(gf_packing_generate(NULL, &p), GF_ERR_PARAM);
-    assert_int_equal(gf_packing_generate(&c, NULL), GF_ERR_PARAM);
+    assert_int_equal(gf_packing_generate(NULL, NULL, &p), GF_ERR_PARAM);
+    assert_int_equal(gf_packing_generate(&c, NULL, NULL), GF_ERR_PARAM);
 }
 
 static const struct CMUnitTest tests[] = {

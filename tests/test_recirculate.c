@@ -215,7 +215,7 @@ static void in_hopper_annulus(const gf_sim *sim, const gf_pos *a)
 {
     double rho = hypot(a->x, a->y);
     assert_true(rho <= 5.0 - a->r + 1e-9); // may touch the wall
-    if (a->z >= sim->box.z_top) assert_true(rho >= 1.5 + a->r - 1e-9);
+    if (a->z >= sim->box.z_col) assert_true(rho >= 1.5 + a->r - 1e-9);
     assert_true(a->z >= gf_container_floor_z(&sim->box, a->x, a->y, a->r));
 }
 

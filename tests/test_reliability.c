@@ -65,14 +65,14 @@ static void generator_checks_sizes_and_stops(void **state)
     gf_config c = gf_test_silo_config(12, 200, 1);
     gf_packing pk = {0};
     c.container_width = 1e20;
-    assert_int_equal(gf_packing_generate(&c, &pk), GF_ERR_PARAM);
+    assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "larger than the generator's limit"));
     c = gf_test_silo_config(12, 200, 1);
     volatile sig_atomic_t stop = 1;
-    assert_int_equal(gf_packing_generate_stoppable(&c, &stop, &pk), GF_ERR_INTERRUPTED);
+    assert_int_equal(gf_packing_generate(&c, &(gf_packing_opts){.stop = &stop}, &pk), GF_ERR_INTERRUPTED);
     assert_int_equal(pk.n, 0);
     stop = 0;
-    assert_int_equal(gf_packing_generate_stoppable(&c, &stop, &pk), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, &(gf_packing_opts){.stop = &stop}, &pk), GF_OK);
     assert_int_equal(pk.n, 200);
     gf_packing_free(&pk);
 }
@@ -104,7 +104,7 @@ static void snapshot_burst_stops_on_the_flag(void **state)
     gf_sim *sim = gf_test_generated_sim(&c);
     volatile sig_atomic_t stop = 0;
     snap_ctx s = {&stop, 0};
-    gf_run_hooks h = {.ctx = &s, .snapshot = stop_at_first_snapshot, .stop = &stop};
+    gf_sim_hooks h = {.ctx = &s, .snapshot = stop_at_first_snapshot, .stop = &stop};
     assert_int_equal(gf_sim_run(sim, c.run_duration, &h), GF_ERR_INTERRUPTED);
     assert_int_equal(s.calls, 1);
     gf_sim_destroy(sim);
@@ -118,12 +118,12 @@ static void long_calls_stop_on_the_flag(void **state)
     volatile sig_atomic_t stop = 1;
     gf_config c = gf_test_silo_config(12, 200, 1);
     gf_sim *sim = NULL;
-    assert_int_equal(gf_sim_create_from_config_stoppable(&c, &stop, &sim), GF_ERR_INTERRUPTED);
+    assert_int_equal(gf_sim_create_from_config(&c, &(gf_packing_opts){.stop = &stop}, &sim), GF_ERR_INTERRUPTED);
     assert_null(sim);
     char dir[4096], path[4200];
     snprintf(dir, sizeof dir, "%s/dem", gf_test_tmpdir());
     c.dem_fill_method = GF_DEM_GENERATE;
-    assert_int_equal(gf_dem_write_inputs_stoppable(&c, dir, &stop, NULL), GF_ERR_INTERRUPTED);
+    assert_int_equal(gf_dem_write_inputs(&c, dir, &(gf_packing_opts){.stop = &stop}, NULL), GF_ERR_INTERRUPTED);
     assert_int_equal(access(dir, F_OK), -1); // the packing comes before any file
     gf_bench_opts bo = gf_bench_opts_default();
     bo.large = false;
@@ -140,9 +140,9 @@ static void long_calls_stop_on_the_flag(void **state)
     ro.dir = dir;
     assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
     gf_series s;
-    assert_int_equal(gf_series_load_stoppable(dir, 0.0, &stop, &s), GF_ERR_INTERRUPTED);
+    assert_int_equal(gf_series_load(dir, 0.0, &(gf_series_opts){.stop = &stop}, &s), GF_ERR_INTERRUPTED);
     assert_int_equal(s.nframes, 0);
-    assert_int_equal(gf_series_load(dir, 0.0, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0.0, NULL, &s), GF_OK);
     gf_analysis_opts o = gf_analysis_opts_default();
     o.stop = &stop;
     snprintf(path, sizeof path, "%s/analysis", dir);
@@ -156,7 +156,7 @@ static void long_calls_stop_on_the_flag(void **state)
         assert_int_equal(st, GF_ERR_INTERRUPTED);
     }
     gf_series_free(&s);
-    gf_render_options rd = gf_render_options_default();
+    gf_render_dir_opts rd = gf_render_dir_opts_default();
     rd.stop = &stop;
     assert_int_equal(gf_render_dir(dir, &rd), GF_ERR_INTERRUPTED);
 }

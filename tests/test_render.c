@@ -482,7 +482,7 @@ static void render_dir_default_set(void **state)
     (void)state;
     const char *dump = three_frames();
     written_list w = {0};
-    gf_render_options o = gf_render_options_default();
+    gf_render_dir_opts o = gf_render_dir_opts_default();
     assert_string_equal(o.format, "png");
     assert_true(o.scale == 10 && o.panels == 8 && o.colour == GF_RENDER_LAYER && !o.outdir);
     o.scale = 3;
@@ -521,23 +521,23 @@ static void render_dir_refuses_bad_options(void **state)
 {
     (void)state;
     const char *dump = three_frames();
-    gf_render_options o = gf_render_options_default();
+    gf_render_dir_opts o = gf_render_dir_opts_default();
     o.format = "gif";
     assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "gif"));
-    o = gf_render_options_default();
+    o = gf_render_dir_opts_default();
     o.scale = 0.5;
     assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
-    o = gf_render_options_default();
+    o = gf_render_dir_opts_default();
     o.panels = 0;
     assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
-    o = gf_render_options_default();
+    o = gf_render_dir_opts_default();
     double t = 1;
     o.times = &t;
     o.ntimes = 1;
     o.all = true;
     assert_int_equal(gf_render_dir(dump, &o), GF_ERR_PARAM);
-    o = gf_render_options_default();
+    o = gf_render_dir_opts_default();
     char empty[1100];
     snprintf(empty, sizeof empty, "%s/renderdir/empty", gf_test_tmpdir());
     mkdir(empty, 0777);

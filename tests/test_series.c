@@ -69,7 +69,7 @@ static void run_directory(void **state)
     gf_test_write_file(dir, "summary.json", "{}\n"); // other files are ignored
 
     gf_series s;
-    assert_int_equal(gf_series_load(dir, 0.0, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0.0, NULL, &s), GF_OK);
     assert_int_equal(s.nframes, 3);
     assert_int_equal(s.n_initial, 4);
     for (int k = 0; k < 3; k++) {
@@ -124,11 +124,11 @@ static void dump_directory_needs_dt(void **state)
     gf_test_write_file(dir, "d.dump.tmp", "an unfinished write\n");
 
     gf_series s;
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_PARAM, "a.dump:1: the frame at timestep 2000 has no ITEM: TIME",
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_PARAM, "a.dump:1: the frame at timestep 2000 has no ITEM: TIME",
                  "pass dump.dt");
     assert_int_equal(s.nframes, 0);
 
-    assert_int_equal(gf_series_load(dir, 0.005, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0.005, NULL, &s), GF_OK);
     assert_int_equal(s.nframes, 3);
     const double t[3] = {0.0, 5.0, 10.0}; // TIMESTEP x 0.005
     const double z7[3] = {5, 15, 25};
@@ -173,7 +173,7 @@ static void multiframe_dump(void **state)
     char path[1200];
     snprintf(path, sizeof path, "%s", gf_test_write_file(dir, "all.dump", text));
     gf_series s;
-    assert_int_equal(gf_series_load(path, 0.0, &s), GF_OK); // dump_dt unused: every frame has TIME
+    assert_int_equal(gf_series_load(path, 0.0, NULL, &s), GF_OK); // dump_dt unused: every frame has TIME
     assert_int_equal(s.nframes, 3);
     assert_true(s.frames[0].time == 0 && s.frames[1].time == 4 && s.frames[2].time == 6);
     assert_int_equal(s.frames[0].pk.n, 2);
@@ -200,7 +200,7 @@ static void same_time_is_an_error(void **state)
     gf_test_write_file(dir, "a.dump", frame_text(buf, sizeof buf, 10, "2.5", "1 0 0 1\n2 1 0 1\n"));
     gf_test_write_file(dir, "b.dump", frame_text(buf, sizeof buf, 20, "2.5", "1 0 0 1\n2 1 0 1\n"));
     gf_series s;
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "two frames at the same time 2.5 tau", "b.dump:1");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "two frames at the same time 2.5 tau", "b.dump:1");
 }
 
 static void truncated_dump_is_named(void **state)
@@ -211,7 +211,7 @@ static void truncated_dump_is_named(void **state)
     gf_test_write_file(dir, "a.dump", frame_text(buf, sizeof buf, 0, "0", "1 0 0 1\n2 1 0 1\n"));
     gf_test_write_file(dir, "b.dump", frame_text(buf, sizeof buf, 10, "1", "1 0 0 1\n")); // 1 of 2 atoms
     gf_series s;
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "b.dump:12:",
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "b.dump:12:",
                  "ends after 1 of 2 atoms (truncated file?)");
     assert_int_equal(s.nframes, 0);
 }
@@ -224,18 +224,18 @@ static void bad_exits_line(void **state)
     gf_test_write_file(dir, "a.dump", frame_text(buf, sizeof buf, 0, "0", "1 0 0 1\n2 1 0 1\n"));
     gf_series s;
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n1,0.5,0,0\n2,abc,0,0\n");
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:3:", "column 'time': 'abc'");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "exits.csv:3:", "column 'time': 'abc'");
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n1,0.5,0,0\n2,0.7,0\n");
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:3:", "3 fields, expected 4");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "exits.csv:3:", "3 fields, expected 4");
     gf_test_write_file(dir, "exits.csv", "id,time,x,y,pass,entry_time,entry_r\n1,0.5,0,0,0,0,1\n");
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:2:", "column 'pass': '0'");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "exits.csv:2:", "column 'pass': '0'");
     gf_test_write_file(dir, "exits.csv", "id,t,x,y\n");
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:1:", "header 'id,time,x,y'");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "exits.csv:1:", "header 'id,time,x,y'");
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n\n1,0.5,0,0\n-3,0.7,0,0\n");
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_FORMAT, "exits.csv:4:", "'-3' is not a positive integer");
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_FORMAT, "exits.csv:4:", "'-3' is not a positive integer");
     // A header only: a run in which nothing has left yet.
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\r\n");
-    assert_int_equal(gf_series_load(dir, 0.0, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0.0, NULL, &s), GF_OK);
     assert_true(s.has_exits);
     assert_int_equal(s.nexits, 0);
     gf_series_free(&s);
@@ -246,26 +246,26 @@ static void missing_inputs(void **state)
     (void)state;
     const char *dir = subdir("empty");
     gf_series s;
-    expect_error(gf_series_load(dir, 0.0, &s), GF_ERR_PARAM, "empty: no LAMMPS dumps in this directory", NULL);
+    expect_error(gf_series_load(dir, 0.0, NULL, &s), GF_ERR_PARAM, "empty: no LAMMPS dumps in this directory", NULL);
     char path[1200];
     snprintf(path, sizeof path, "%s/nothing-here", gf_test_tmpdir());
-    expect_error(gf_series_load(path, 0.0, &s), GF_ERR_IO, "cannot open", "nothing-here");
+    expect_error(gf_series_load(path, 0.0, NULL, &s), GF_ERR_IO, "cannot open", "nothing-here");
     // A run directory whose snapshots folder is empty.
     const char *run = subdir("emptyrun");
     snprintf(path, sizeof path, "%s/snapshots", run);
     assert_int_equal(mkdir(path, 0777), 0);
-    expect_error(gf_series_load(run, 0.0, &s), GF_ERR_PARAM, "emptyrun/snapshots: no LAMMPS dumps", NULL);
+    expect_error(gf_series_load(run, 0.0, NULL, &s), GF_ERR_PARAM, "emptyrun/snapshots: no LAMMPS dumps", NULL);
     // A run with output.format = vtk: its .vtu snapshots are named, and what to do.
     const char *vrun = subdir("vturun");
     snprintf(path, sizeof path, "%s/snapshots", vrun);
     assert_int_equal(mkdir(path, 0777), 0);
     gf_test_write_file(vrun, "snapshots/snap_000000.vtu", "<?xml version=\"1.0\"?>\n");
-    expect_error(gf_series_load(vrun, 0.0, &s), GF_ERR_PARAM, "vturun/snapshots: only VTK (.vtu) snapshots",
+    expect_error(gf_series_load(vrun, 0.0, NULL, &s), GF_ERR_PARAM, "vturun/snapshots: only VTK (.vtu) snapshots",
                  "output.format = dump or both");
     // An empty dump file: the importer's message.
     gf_test_write_file(run, "snapshots/snap_000000.dump", "");
-    expect_error(gf_series_load(run, 0.0, &s), GF_ERR_FORMAT, "snap_000000.dump: no particles in file", NULL);
-    expect_error(gf_series_load(run, -1.0, &s), GF_ERR_PARAM, "dump.dt", NULL);
+    expect_error(gf_series_load(run, 0.0, NULL, &s), GF_ERR_FORMAT, "snap_000000.dump: no particles in file", NULL);
+    expect_error(gf_series_load(run, -1.0, NULL, &s), GF_ERR_PARAM, "dump.dt", NULL);
 }
 
 // The per-frame reader keeps gf_packing_read's checks and reads TIME strictly.
@@ -315,14 +315,14 @@ static void far_new_particle_layer(void **state)
                        "ITEM: TIMESTEP\n1\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n-5 5\n-3 3\n0 20\n"
                        "ITEM: ATOMS id x y z\n2 0 0 1e300\n");
     gf_series s;
-    assert_int_equal(gf_series_load(dir, 0.5, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 0.5, NULL, &s), GF_OK);
     assert_int_equal(s.nframes, 2);
     assert_int_equal(s.frames[0].pk.layer[0], 2); // 1 + floor(10 / 10)
     assert_int_equal(s.frames[1].pk.layer[0], 1 + 1000000000);
     gf_series_free(&s);
 }
 
-// Dumps in SI units (gf_series_load_in): metres and seconds become d and
+// Dumps in SI units (gf_series_opts.units): metres and seconds become d and
 // tau (d = 4 mm, g = 9.81: tau = sqrt(d / g)), positions, radii, the box and
 // exits.csv alike, and TIMESTEP x dump_dt is in seconds; the walls are where
 // the particles end, marked so, not the wider box.
@@ -345,7 +345,7 @@ static void si_units_are_converted(void **state)
     gf_test_write_file(dir, "exits.csv", "id,time,x,y\n3,0.004,0.002,-0.004\n");
     gf_series s;
     const gf_series_units si = {d, 9.81};
-    assert_int_equal(gf_series_load_in(dir, 1e-5, &si, NULL, &s), GF_OK);
+    assert_int_equal(gf_series_load(dir, 1e-5, &(gf_series_opts){.units = &si}, &s), GF_OK);
     assert_int_equal(s.nframes, 2);
     gf_assert_near(s.frames[1].time, 1000 * 1e-5 / tau, 1e-12); // 1000 steps of 10 us
     const gf_packing *p = &s.frames[0].pk;
@@ -373,7 +373,7 @@ static void si_units_are_converted(void **state)
     gf_assert_near(c.container_depth, 6.0, 1e-12);
     gf_series_free(&s);
     const gf_series_units bad = {0, 9.81};
-    expect_error(gf_series_load_in(dir, 1e-5, &bad, NULL, &s), GF_ERR_PARAM, "dump.diameter = 0", NULL);
+    expect_error(gf_series_load(dir, 1e-5, &(gf_series_opts){.units = &bad}, &s), GF_ERR_PARAM, "dump.diameter = 0", NULL);
 }
 
 static const struct CMUnitTest tests[] = {

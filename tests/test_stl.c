@@ -58,7 +58,7 @@ static void compare(const gf_container *ana, const gf_container *mesh, const dou
         double p[3];
         for (int a = 0; a < 3; a++) p[a] = lo[a] + (hi[a] - lo[a]) * uniform(&seed);
         bool in_a = ana->ops->contains(ana, p[0], p[1], p[2], 0.0, 0.0);
-        double d = gf_sdf_distance(&mesh->mesh->sdf, p, 3.0);
+        double d = gf_sdf_distance(&mesh->u.mesh->sdf, p, 3.0);
         if (in_a) {
             double g = analytic_gap(ana, p);
             if (g > 1.5) continue;
@@ -68,7 +68,7 @@ static void compare(const gf_container *ana, const gf_container *mesh, const dou
             worst_walls = fmax(worst_walls, fabs(gw - g));
             if (fabs(gw - g) > 0.02) fail_msg("(%g, %g, %g): mesh walls %g, analytic %g", p[0], p[1], p[2], gw, g);
         }
-        if (fabs(d) > 0.02 && (in_a != (d > 0.0) || in_a != gf_sdf_inside(&mesh->mesh->sdf, p)))
+        if (fabs(d) > 0.02 && (in_a != (d > 0.0) || in_a != gf_sdf_inside(&mesh->u.mesh->sdf, p)))
             fail_msg("(%g, %g, %g): inside %d analytic, field %g", p[0], p[1], p[2], in_a, d);
         if (in_a) n++;
     }
@@ -92,7 +92,7 @@ static void the_box_from_stl_matches_the_box(void **state)
     if (gf_config_validate(&m) != GF_OK) fail_msg("%s", gf_last_error());
     assert_true(m.container_width == 20 && m.container_depth == 8);
     gf_container ca = gf_container_make(&a), cm = gf_container_make(&m);
-    assert_non_null(cm.mesh);
+    assert_non_null(cm.u.mesh);
     compare(&ca, &cm, (double[3]){-10.5, -4.5, 0.001}, (double[3]){10.5, 4.5, 30});
     gf_meshshape_cache_clear();
 }
@@ -114,7 +114,7 @@ static void the_hopper_from_stl_matches_the_cylinder(void **state)
     m.exit_z = -4;
     if (gf_config_validate(&m) != GF_OK) fail_msg("%s", gf_last_error());
     gf_container ca = gf_container_make(&a), cm = gf_container_make(&m);
-    assert_non_null(cm.mesh);
+    assert_non_null(cm.u.mesh);
     // The cross-sections agree with the cylinder's (faceting: within 0.1%).
     for (double z = 0.5; z < 45; z += 2.5) { // (the cylinder's own area in its pipe is not pi r_o^2)
         double sa = ca.ops->section_area(&ca, z), sm = cm.ops->section_area(&cm, z);
@@ -297,7 +297,7 @@ static void mesh_path_is_relative_to_the_ini(void **state)
     if (gf_config_validate(&c) != GF_OK) fail_msg("%s", gf_last_error());
     char out[1024];
     snprintf(out, sizeof out, "%s/dem", gf_test_tmpdir());
-    assert_int_equal(gf_dem_write_inputs(&c, out, NULL), GF_ERR_PARAM);
+    assert_int_equal(gf_dem_write_inputs(&c, out, NULL, NULL), GF_ERR_PARAM);
     assert_non_null(strstr(gf_last_error(), "LAMMPS' granular walls"));
     assert_non_null(strstr(gf_last_error(), "cube.ini:2"));
     gf_meshshape_cache_clear();

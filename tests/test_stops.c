@@ -47,7 +47,7 @@ static gf_status generate_with_hook(size_t n, size_t trigger_size)
     hook_calls_after = 0;
     hook_triggered = 0;
     gf_set_allocator(stop_alloc, stop_free);
-    gf_status st = gf_packing_generate_stoppable(&c, &hook_stop, &pk);
+    gf_status st = gf_packing_generate(&c, &(gf_packing_opts){.stop = &hook_stop}, &pk);
     gf_set_allocator(NULL, NULL);
     assert_int_equal(pk.n, 0);
     return st;
@@ -66,7 +66,7 @@ static void generator_stopped_before_it_begins(void **state)
     hook_calls_after = 0;
     hook_triggered = 1;
     gf_set_allocator(stop_alloc, stop_free);
-    gf_status st = gf_packing_generate_stoppable(&c, &hook_stop, &pk);
+    gf_status st = gf_packing_generate(&c, &(gf_packing_opts){.stop = &hook_stop}, &pk);
     gf_set_allocator(NULL, NULL);
     assert_int_equal(st, GF_ERR_INTERRUPTED);
     assert_non_null(strstr(gf_last_error(), "packing: interrupted before it began"));
@@ -103,7 +103,7 @@ static void generator_refuses_what_cannot_fit(void **state)
     if (old.rlim_max != RLIM_INFINITY && old.rlim_max < small.rlim_cur) small.rlim_cur = old.rlim_max;
     assert_int_equal(setrlimit(RLIMIT_DATA, &small), 0);
     const size_t bytes0 = gf_bytes_allocated();
-    gf_status st = gf_packing_generate(&c, &pk);
+    gf_status st = gf_packing_generate(&c, NULL, &pk);
     assert_int_equal(setrlimit(RLIMIT_DATA, &old), 0);
     assert_int_equal(st, GF_ERR_NOMEM);
     assert_non_null(strstr(gf_last_error(), "packing: 90000000 particles need about 18.0 GB to generate"));

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "analysis/steady_height.h"
 #include "core/rng.h"
 #include "granflow/analysis.h"
 
@@ -118,6 +119,119 @@ static void velocity_recovers_variance_line(void **state)
     assert_non_null(strstr(out.gnuplot, "2.28*x+1.60"));
     gf_measure_free(&out);
     gf_series_free(&s);
+}
+
+// ---------------------------------------------------------------------------
+// A spot-like start-up (issue 27): at height z the flow starts narrow and
+// weak (40% of the flux, a quarter of the variance) and takes its steady
+// Gaussian, Var = 2 z + 1, only after t = z / c. Averaging every frame pair
+// at every height mixes the start-up into the upper profiles; the window per
+// height recovers the late width, and reports a height still building up at
+// the end as having no steady frames.
+
+#define RISE_C 4.0 // d/tau
+
+static double vz_startup(double x, double z, double t)
+{
+    double var = 2.0 * z + 1.0;
+    if (t < z / RISE_C) var *= 0.25;
+    double amp = t < z / RISE_C ? 0.8 * VEL_A : VEL_A; // 0.8 A x sqrt(1/4) = 40% of the flux
+    return -amp * exp(-x * x / (2.0 * var));
+}
+
+static void startup_measure(gf_vel_window mode, gf_measure_out *out)
+{
+    // 49 frames, t = 0 .. 24 tau; each pair k has its own particles, present
+    // in frames k and k + 1 only, at the bin centres of the six heights, so
+    // that pair measures v_z(x, z, t_k + 1/4) exactly.
+    enum { NF = 49 };
+    double times[NF];
+    for (int k = 0; k < NF; k++) times[k] = 0.5 * k;
+    gf_series s = make_series(NF, times);
+    int64_t id = 0;
+    for (int k = 0; k + 1 < NF; k++)
+        for (int h = 1; h <= 6; h++)
+            for (int xi = -25; xi < 25; xi++) {
+                double x = xi + 0.5, z = 10.0 * h, v = vz_startup(x, z, times[k] + 0.25);
+                id++;
+                push(&s.frames[k], id, x, 0.0, z - 0.25 * v);
+                push(&s.frames[k + 1], id, x, 0.0, z + 0.25 * v);
+            }
+    s.n_initial = s.frames[0].pk.n;
+    gf_analysis_opts o = gf_analysis_opts_default();
+    o.t0 = 0.0; // the whole run: the outflow's window would start at once
+    o.t1 = 24.0;
+    o.vel_window = (int)mode;
+    assert_int_equal(gf_measure_velocity(&s, &o, out), GF_OK);
+    gf_series_free(&s);
+}
+
+static void velocity_window_per_height(void **state)
+{
+    (void)state;
+    gf_measure_out run = {0}, per = {0};
+    startup_measure(GF_VEL_WINDOW_RUN, &run);
+    startup_measure(GF_VEL_WINDOW_HEIGHT, &per);
+    const gf_table *tr = gf_test_table(&run, "velocity_variance"), *tp = gf_test_table(&per, "velocity_variance");
+    assert_int_equal(tr->nrow, 6);
+    assert_int_equal(tp->nrow, 6);
+    assert_int_equal(tp->ncol, 7);
+    // Every pair at every height: the start-up narrows the profiles by more
+    // than 5% from z = 20 up (the test fails on the window of before).
+    for (size_t r = 1; r < 5; r++) {
+        double want = 2.0 * cell(tr, r, 0) + 1.0;
+        assert_true(fabs(cell(tr, r, 1) - want) > 0.05 * want);
+        assert_true(cell(tr, r, 6) == 1.0);
+    }
+    // Per height: z = 10 .. 50 within 5% of 2 z + 1, each from the end of
+    // its start-up (z / c, to the frame pair: a chunk straddling it may be let in).
+    for (size_t r = 0; r < 5; r++) {
+        double z = cell(tp, r, 0), want = 2.0 * z + 1.0;
+        assert_true(cell(tp, r, 6) == 1.0);
+        gf_assert_near(cell(tp, r, 1), want, 0.05 * want);
+        assert_true(cell(tp, r, 4) >= z / RISE_C - 3.0 && cell(tp, r, 4) <= z / RISE_C + 0.5);
+        gf_assert_near(cell(tp, r, 5), 24.0, 0.0);
+    }
+    // z = 60 speeds up until t = 15, in the last half of the run: no steady
+    // frames, reported and not fitted.
+    assert_true(cell(tp, 5, 6) == 0.0);
+    assert_true(isnan(cell(tp, 5, 1)) && isnan(cell(tp, 5, 4)));
+    gf_assert_near(gf_test_value(&per, "velocity_unsteady_heights"), 1.0, 0.0);
+    gf_assert_near(gf_test_value(&run, "velocity_unsteady_heights"), 0.0, 0.0);
+    gf_assert_near(gf_test_value(&per, "velocity_variance_slope"), 2.0, 0.1);
+    gf_measure_free(&run);
+    gf_measure_free(&per);
+}
+
+// The verdict on one height, by hand: the first pair of the steady part.
+static void steady_height_cases(void **state)
+{
+    (void)state;
+    const double step[8] = {0, 0, 0, -1, -1, -1, -1, -1};
+    gf_steady_height v = gf_steady_height_find(step, 8);
+    assert_true(v.steady);
+    assert_int_equal(v.first, 3); // the chunk [3, 5) is the first at the late value -1
+    gf_assert_near(v.late, -1.0, 0.0);
+    const double flat[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+    v = gf_steady_height_find(flat, 8);
+    assert_true(v.steady);
+    assert_int_equal(v.first, 0);
+    const double none[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    assert_false(gf_steady_height_find(none, 8).steady); // no downward flow
+    const double up[8] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+    assert_false(gf_steady_height_find(up, 8).steady);
+    const double ramp[8] = {0, 0, 0, 0, -0.2, -0.4, -0.8, -1};
+    v = gf_steady_height_find(ramp, 8);
+    assert_false(v.steady); // still speeding up at the end
+    assert_non_null(strstr(v.why, "speeding up"));
+    const double few[3] = {0, -1, -1};
+    v = gf_steady_height_find(few, 3);
+    assert_true(v.steady);
+    assert_int_equal(v.first, 0); // too few pairs to judge: all of them
+    const double holes[8] = {NAN, 0, NAN, -1, -1, NAN, -1, -1};
+    v = gf_steady_height_find(holes, 8);
+    assert_true(v.steady);
+    assert_int_equal(v.first, 2); // a chunk of empty pairs and -1 counts as -1
 }
 
 static void velocity_depth_profile(void **state)
@@ -573,6 +687,8 @@ static void correlation_about_radial_mean_in_a_cylinder(void **state)
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_recovers_variance_line),
     cmocka_unit_test(velocity_depth_profile),
+    cmocka_unit_test(velocity_window_per_height),
+    cmocka_unit_test(steady_height_cases),
     cmocka_unit_test(velocity_radial_in_cylinder),
     cmocka_unit_test(diffusion_recovers_random_walk),
     cmocka_unit_test(correlation_recovers_length),

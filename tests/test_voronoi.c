@@ -202,7 +202,7 @@ static void measure_headline_equals_full_tessellation(void **state)
         gf_series s = gf_test_series(2, c.container_width, c.container_depth);
         s.cfg = c;
         if (!sparse) {
-            assert_int_equal(gf_packing_generate(&c, &s.frames[0].pk), GF_OK);
+            assert_int_equal(gf_packing_generate(&c, NULL, &s.frames[0].pk), GF_OK);
         } else {
             uint64_t seed = 777;
             for (int i = 0; i < 600; i++) // density 0.2 per d^3
@@ -313,7 +313,7 @@ static void field_equals_the_measure_column(void **state)
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_series s = gf_test_series(1, c.container_width, c.container_depth);
     s.cfg = c;
-    assert_int_equal(gf_packing_generate(&c, &s.frames[0].pk), GF_OK);
+    assert_int_equal(gf_packing_generate(&c, NULL, &s.frames[0].pk), GF_OK);
     const gf_packing *p = &s.frames[0].pk;
     gf_analysis_opts o = gf_analysis_opts_default();
     o.vor_avg_radius = 1.7; // not the default, to see that the radius is passed on

@@ -36,7 +36,7 @@ int main(void)
     char radius[64];
     gf_config_get_key(cfg, "spot.radius", radius, sizeof radius);
     gf_sim *sim = NULL;
-    gf_status st = gf_sim_create_from_config(cfg, &sim);
+    gf_status st = gf_sim_create_from_config(cfg, NULL, &sim);
     gf_config_destroy(cfg);
     if (st != GF_OK) return fail("gf_sim_create_from_config", st);
     printf("granflow %s, spot.radius = %s d, %zu particles\n", gf_version(), radius, gf_sim_particle_count(sim));

@@ -54,27 +54,33 @@ typedef struct gf_series_units {
     double gravity;  ///< gravity in the dumps' units (1 with diameter 1: times in tau; 9.81 in SI)
 } gf_series_units;
 
+/// Options of gf_series_load. A NULL `opts` means gf_series_opts_default().
+typedef struct gf_series_opts {
+    /// The dumps' units (NULL, default: d and tau): positions, radii, the box
+    /// and exits.csv are divided by units->diameter, times (ITEM: TIME,
+    /// TIMESTEP x dump_dt, exits.csv) by sqrt(diameter / gravity); dump_dt is
+    /// then in the dumps' time unit (seconds for an SI dump).
+    const gf_series_units *units;
+    /// Polled at every frame: once non-zero, GF_ERR_INTERRUPTED with nothing
+    /// loaded. NULL (default): never.
+    volatile sig_atomic_t *stop;
+} gf_series_opts;
+
+/// The defaults listed in gf_series_opts.
+GF_API gf_series_opts gf_series_opts_default(void);
+
 /// Loads a run directory (config.ini, snapshots/*.dump, exits.csv), a
 /// directory of LAMMPS dumps, or one (multi-frame) LAMMPS dump. Frames come in
 /// time order; `dump_dt` converts TIMESTEP to tau when a dump has no ITEM: TIME
-/// (0: frames without it are an error).
-GF_API gf_status gf_series_load(const char *path, double dump_dt, gf_series *out);
-/// gf_series_load polling *stop (may be NULL) at every frame: once it is
-/// non-zero, GF_ERR_INTERRUPTED with nothing loaded.
-GF_API gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop,
-                                          gf_series *out);
-/// gf_series_load_stoppable of dumps in `units` (NULL: d and tau): positions,
-/// radii, the box and exits.csv are divided by units->diameter, times (ITEM:
-/// TIME, TIMESTEP x dump_dt, exits.csv) by sqrt(diameter / gravity); dump_dt
-/// is then in the dumps' time unit (seconds for an SI dump).
-GF_API gf_status gf_series_load_in(const char *path, double dump_dt, const gf_series_units *units,
-                                   volatile sig_atomic_t *stop, gf_series *out);
+/// (0: frames without it are an error). `opts` may be NULL.
+GF_API gf_status gf_series_load(const char *path, double dump_dt, const gf_series_opts *opts, gf_series *out);
 /// The walls of a box container (`cfg` with container.shape = box) where the
 /// particles of `s` end: container.width (depth) = twice the largest |x| (|y|)
 /// + radius of a particle at or above the exit plane in any frame, each only
 /// when `cfg` does not have it from a file or an assignment
 /// (gf_config_is_set), and then marked as set by "particle extent"
-/// (gf_config_where). A cylinder, or a series without particles, is left as it is.
+/// (gf_config_where). Another shape (a cylinder, a wedge: walls not at its
+/// bounding box), or a series without particles, is left as it is.
 GF_API gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg);
 GF_API void gf_series_free(gf_series *s);
 /// Exits of a series without exits.csv (the dumps of a DEM drain), read off
@@ -160,6 +166,12 @@ GF_API void gf_measure_free(gf_measure_out *o);
 // ---------------------------------------------------------------------------
 // Options: regions, heights and windows, the papers' values by default.
 
+/// Which frames each v_z(x) profile averages (velocity.window).
+typedef enum gf_vel_window {
+    GF_VEL_WINDOW_HEIGHT, ///< per height: the pairs of the window where the flow at that height is steady
+    GF_VEL_WINDOW_RUN,    ///< every pair of the window (the outflow's steady window), at every height
+} gf_vel_window;
+
 typedef struct gf_analysis_opts {
     double t0, t1;            ///< time window for steady-state averages, tau; NaN = auto:
                               ///< from a quarter of the way through the run to its end
@@ -169,6 +181,7 @@ typedef struct gf_analysis_opts {
     double vel_heights[16];   ///< heights of the v_z(x) profiles, d (10, 20, ..., 60)
     size_t vel_nheights;
     double vel_band;          ///< half-thickness of the band around each height, d (1)
+    int vel_window;           ///< gf_vel_window: frames of each profile (height)
     double vely_xhalf;        ///< v_z(y) region |x| < this (10)
     double vely_z0, vely_z1;  ///< v_z(y) region in z (50, 70)
     // diffusion
@@ -269,7 +282,8 @@ GF_API gf_status gf_measure_rtd(const gf_series *s, const gf_analysis_opts *o, g
 GF_API gf_status gf_measure_zones(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out);
 
 /// Whether the velocity profiles of a run in `cfg`'s container are radial,
-/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width.
+/// v_z(r) about the axis (a cylinder), rather than v_z(x) across the width
+/// (the box, the wedge): the container's profile coordinate.
 GF_API bool gf_velocity_radial(const gf_config *cfg);
 /// The name of those profiles in labels, tables and notes: "v_z(r)" or "v_z(x)".
 GF_API const char *gf_velocity_profile_name(const gf_config *cfg);

@@ -25,7 +25,8 @@ typedef enum gf_orifice_shape {
 typedef enum gf_container_shape {
     GF_SHAPE_BOX = 0,      ///< walls at x = +-width/2, y = +-depth/2, flat base z = 0 with an orifice
     GF_SHAPE_CYLINDER = 1, ///< wall at radius `radius` about the z axis, optional conical funnel, outlet pipe, inner column
-    GF_SHAPE_MESH = 2,     ///< walls from an STL file (container.mesh), the outlet the orifice keys' on the plane exit_z
+    GF_SHAPE_WEDGE = 2,    ///< plane-flow hopper: walls at y = +-depth/2, two walls inclined at hopper_angle down to a slit, chute
+    GF_SHAPE_MESH = 3,     ///< walls from an STL file (container.mesh), the outlet the orifice keys' on the plane exit_z
 } gf_container_shape;
 
 /// Where the ball of a spot step is centred (thesis Sec. 3.4).
@@ -88,11 +89,12 @@ typedef enum gf_reinsert {
     GF_REINSERT_ZONE = 1,   ///< uniformly over the annulus run.reinsert_rmin <= r < run.reinsert_rmax
 } gf_reinsert;
 
-/// What a run writes at each snapshot (output.format).
+/// What a run writes at each snapshot (output.format, a list such as
+/// `dump,vtk`): a bit set, one bit per format; at least one is set.
 typedef enum gf_output_format {
-    GF_OUTPUT_DUMP = 0, ///< LAMMPS text dumps (snapshots/snap_NNNNNN.dump)
-    GF_OUTPUT_VTK = 1,  ///< VTK XML unstructured grids (snapshots/snap_NNNNNN.vtu)
-    GF_OUTPUT_BOTH = 2, ///< both
+    GF_OUTPUT_DUMP = 1 << 0, ///< LAMMPS text dumps (snapshots/snap_NNNNNN.dump)
+    GF_OUTPUT_VTK = 1 << 1,  ///< VTK XML unstructured grids (snapshots/snap_NNNNNN.vtu)
+    GF_OUTPUT_BOTH = GF_OUTPUT_DUMP | GF_OUTPUT_VTK, ///< both (output.format = both, or dump,vtk)
 } gf_output_format;
 
 /// How the VTK XML files of a run store their arrays (output.vtk_encoding).
@@ -119,11 +121,11 @@ typedef struct gf_config {
     double orifice_x;                  ///< x of the orifice centre (circle) or mid-line (slit), d; default 0
     double orifice_y;                  ///< y of the orifice centre (circle only), d; default 0
     double exit_z;                     ///< particles whose centre falls below this leave, d; default 0
-    gf_container_shape container_shape; ///< box (default) or cylinder
+    gf_container_shape container_shape; ///< box (default), cylinder or wedge
     double container_radius;           ///< cylinder: radius of the wall, d; default 12.5
-    double hopper_angle;               ///< cylinder: funnel angle to the horizontal, degrees; 0 = flat base (default)
+    double hopper_angle;               ///< cylinder, wedge: funnel (wall) angle to the horizontal, degrees; 0 = flat base (default)
     double outlet_diameter;            ///< cylinder: diameter of the outlet (and pipe), d; default 8
-    double outlet_length;              ///< cylinder: length of the straight pipe below z = 0, d; default 0
+    double outlet_length;              ///< cylinder, wedge: length of the straight pipe (chute) below z = 0, d; default 0
     double inner_radius;               ///< cylinder: radius of a solid central column (0: none, default), d
     char container_mesh[GF_PATH_MAX];  ///< mesh: the STL file (relative to the INI file that names it)
     double container_mesh_scale;       ///< mesh: the file's coordinates times this are in d; default 1
@@ -187,7 +189,7 @@ typedef struct gf_config {
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2
-    gf_output_format output_format;    ///< dump (default), vtk or both
+    gf_output_format output_format;    ///< bits of GF_OUTPUT_*: dump (default), vtk or both
     gf_vtk_encoding output_vtk_encoding; ///< binary (default) or ascii
 
     // [lga] the 2D lattice-gas automaton (Kozicki & Tejchman 2005; SPEC 2). Lattice units:

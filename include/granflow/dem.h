@@ -13,6 +13,7 @@
 #include "granflow/analysis.h"
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/packing.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,17 +48,29 @@ typedef struct gf_dem_plan {
 /// output.snapshot_interval with ITEM: TIME), and `config.ini` (the effective
 /// configuration, which `calibrate`, `compare` and `analyze` read back).
 /// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
-/// law on the flat side walls and the base. `plan` may be NULL.
-GF_API gf_status gf_dem_write_inputs(const gf_config *cfg, const char *dir, gf_dem_plan *plan);
-/// gf_dem_write_inputs building the packing (dem.fill_method = generate) with
-/// gf_packing_for_config_stoppable: once *stop (may be NULL) is non-zero,
-/// GF_ERR_INTERRUPTED and nothing written (the packing comes before any file).
-GF_API gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg, const char *dir, volatile sig_atomic_t *stop,
-                                               gf_dem_plan *plan);
+/// law on the flat side walls and the base. `plan` may be NULL. The packing
+/// (dem.fill_method = generate) is built with `opts` (may be NULL;
+/// gf_packing_for_config): once opts->stop is non-zero, GF_ERR_INTERRUPTED
+/// and nothing written (the packing comes before any file).
+GF_API gf_status gf_dem_write_inputs(const gf_config *cfg, const char *dir, const gf_packing_opts *opts,
+                                     gf_dem_plan *plan);
+
+/// The phases of a LAMMPS run (its inputs print a marker as each begins).
+typedef enum gf_dem_phase {
+    GF_DEM_PHASE_NONE = 0, ///< no marker seen yet
+    GF_DEM_PHASE_FILL,     ///< pouring the particles in
+    GF_DEM_PHASE_SETTLE,   ///< letting them come to rest
+    GF_DEM_PHASE_DRAIN,    ///< the orifice open
+    GF_DEM_PHASE_DONE,     ///< the inputs ran to their end
+} gf_dem_phase;
+
+/// The phase's name ("fill", "settle", "drain", "done"); "none" for
+/// GF_DEM_PHASE_NONE, "?" for a value outside the enum.
+GF_API const char *gf_dem_phase_name(gf_dem_phase phase);
 
 /// One progress report of a LAMMPS run.
 typedef struct gf_dem_progress {
-    const char *phase;  ///< "fill", "settle", "drain" or "done"
+    gf_dem_phase phase; ///< fill, settle, drain or done (never none)
     double time;        ///< LAMMPS time of the phase, tau
     double until;       ///< planned end of the phase, tau (0: unknown)
     int64_t particles;  ///< flowing particles now
@@ -124,7 +137,7 @@ typedef struct gf_dem_load_report {
 
 /// Loads a DEM run (or any run) like gf_series_load, in the units
 /// dump.diameter and dump.gravity of src->config and src->sets
-/// (gf_series_load_in; a run of granflow, with config.ini, is in d and tau
+/// (gf_series_opts.units; a run of granflow, with config.ini, is in d and tau
 /// and any other units are an error), then applies the config (src->config,
 /// else DIR/config.ini, and src->sets: the container, packing.types, exit_z),
 /// keeps only the atom types of packing.types (re-tagging the layers by the
@@ -249,6 +262,8 @@ typedef struct gf_dem_flowstats {
     size_t nz;                         ///< velocity heights
     double z[GF_DEM_FS_MAXZ];          ///< their heights, d
     gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of the profile there, d^2
+    double var_t0[GF_DEM_FS_MAXZ];     ///< the profile there averaged the frames from this time to t1
+                                       ///< (velocity.window = height), tau; NaN: no steady frames there
     const char *profile;               ///< that profile's name, gf_velocity_profile_name: v_z(x) or v_z(r)
     gf_dem_value bp;                   ///< particle diffusion length b_p, d
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow
@@ -273,6 +288,11 @@ GF_API bool gf_dem_flowstats_measured(gf_dem_value v, double tol);
 /// (gf_dem_flowstats_measured with var_tol; at least one).
 GF_API bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                                    double var_tol);
+
+/// Whether height z of `fs` had steady frames (velocity.window = height): a
+/// height with none in the spot run is not tested (the run was too short
+/// for its flow to settle there), as a DEM height too noisy is not.
+GF_API bool gf_dem_flowstats_steady(const gf_dem_flowstats *fs, size_t z);
 /// Prints the table DEM | spot | difference with its uncertainty | verdict
 /// (within or outside the tolerance: flow_tol for the flow rate, var_tol for
 /// each Var; the other rows have none). The residence-time rows follow when

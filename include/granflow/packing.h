@@ -22,15 +22,23 @@ extern "C" {
 /// Sets every layer tag from the current z: 1 + floor(z / thickness).
 GF_API void gf_packing_tag_layers(gf_packing *p, double thickness);
 
+/// Options of building a packing: gf_packing_generate, gf_packing_for_config
+/// and what builds one through them (gf_sim_create_from_config,
+/// gf_dem_write_inputs). A NULL `opts` means gf_packing_opts_default().
+typedef struct gf_packing_opts {
+    /// Polled at every relaxation sweep (and every 65,536 spheres of each pass
+    /// over them): once non-zero, GF_ERR_INTERRUPTED with nothing built
+    /// (safe to set from a signal handler). NULL (default): never.
+    volatile sig_atomic_t *stop;
+} gf_packing_opts;
+
+/// The defaults listed in gf_packing_opts.
+GF_API gf_packing_opts gf_packing_opts_default(void);
+
 /// Builds a random packing for `cfg` (packing.particles or packing.fill_height,
 /// run.seed): no pair closer than 0.99 d, no centre closer than 0.5 d to a wall
-/// or the base, bulk packing fraction 0.58-0.64.
-GF_API gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out);
-
-/// gf_packing_generate that polls `stop` (may be NULL) at every relaxation
-/// sweep: once it is non-zero, returns GF_ERR_INTERRUPTED with nothing built.
-GF_API gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop,
-                                              gf_packing *out);
+/// or the base, bulk packing fraction 0.58-0.64. `opts` may be NULL.
+GF_API gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out);
 
 /// What gf_packing_import read and dropped.
 typedef struct gf_packing_import_report {
@@ -44,7 +52,7 @@ typedef struct gf_packing_import_report {
 /// reads it (the last frame of a multi-frame LAMMPS dump), keeps only the atom
 /// types of `packing.types` (a LAMMPS dump with a `type` column; empty: all;
 /// a DEM floor of frozen particles is typically another type), drops every
-/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe; counted as already
+/// particle whose centre lies below the exit plane (gf_config_exit_plane: `container.exit_z`, less a cylinder's pipe or a wedge's chute; counted as already
 /// exited), and tags the layers by height. `rep` (may be NULL) gets the counts.
 /// GF_ERR_PARAM when packing.types is set and the file has no type column,
 /// or when no particle is left.
@@ -52,14 +60,11 @@ GF_API gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_pac
 
 /// The initial packing of a run of `cfg`: packing.file imported
 /// (gf_packing_import; `rep`, may be NULL, gets its counts), else generated
-/// (gf_packing_generate; `rep` zeroed). The one way every user of a config's
-/// packing (a run, the DEM inputs, `granflow pack`, a binding) gets it.
-GF_API gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep);
-
-/// gf_packing_for_config whose generation polls `stop` (may be NULL) as
-/// gf_packing_generate_stoppable does.
-GF_API gf_status gf_packing_for_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out,
-                                                 gf_packing_import_report *rep);
+/// (gf_packing_generate with `opts`, may be NULL; `rep` zeroed). The one way
+/// every user of a config's packing (a run, the DEM inputs, `granflow pack`,
+/// a binding) gets it.
+GF_API gf_status gf_packing_for_config(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out,
+                                       gf_packing_import_report *rep);
 
 /// Checks that every centre lies in the container of `cfg`: between the side
 /// walls, and above the base unless over the orifice. GF_ERR_PARAM naming the
@@ -74,8 +79,8 @@ GF_API double gf_packing_fraction(const gf_packing *p, double x0, double x1, dou
 /// Bulk packing fraction of a packing in the container of `cfg`, centres
 /// counted 2 d clear of every wall, from 2 d above the base (or the funnel's
 /// top) to 3 d below the highest centre: a box (gf_packing_fraction) for the
-/// box, the annulus 2 d inside the wall (and outside a column) for a
-/// cylinder. NaN when that region is empty.
+/// box and the wedge, the annulus 3 d inside the wall (and outside a column)
+/// for a cylinder. NaN when that region is empty.
 GF_API double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg);
 
 /// Smallest centre-centre distance over all pairs (cell list; O(N)).

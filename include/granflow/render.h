@@ -80,8 +80,8 @@ GF_API gf_status gf_render_sheet(const gf_frame *frames, size_t n, const gf_conf
                                  const double *const *phi, const gf_render_opts *opts,
                                  const char *path);
 
-/// Options of gf_render_dir. Make them with gf_render_options_default(), then change fields.
-typedef struct gf_render_options {
+/// Options of gf_render_dir. Make them with gf_render_dir_opts_default(), then change fields.
+typedef struct gf_render_dir_opts {
     gf_render_colour colour; ///< GF_RENDER_LAYER (default) or GF_RENDER_PHI
     bool raw;                ///< phi: each particle's volume over its Voronoi cell's (2009 paper Fig. 6;
                              ///< files *_phi_raw.*), not the field averaged within 2.2 d (Fig. 4; *_phi.*)
@@ -97,10 +97,10 @@ typedef struct gf_render_options {
     void *ctx;               ///< passed to written
     volatile sig_atomic_t *stop; ///< polled at every snapshot read and picture drawn: once non-zero,
                                  ///< GF_ERR_INTERRUPTED (each picture is whole: written atomically); NULL: never
-} gf_render_options;
+} gf_render_dir_opts;
 
-/// The defaults listed in gf_render_options.
-GF_API gf_render_options gf_render_options_default(void);
+/// The defaults listed in gf_render_dir_opts.
+GF_API gf_render_dir_opts gf_render_dir_opts_default(void);
 
 /// The pictures of a run directory, a directory of LAMMPS dumps or one dump
 /// file (gf_series_load): slice_NNNNNN[_phi|_phi_raw].EXT for the chosen
@@ -112,7 +112,7 @@ GF_API gf_render_options gf_render_options_default(void);
 /// is its title. A time with no snapshot at it draws the nearest, with a
 /// warning (gf_warning). GF_ERR_PARAM on bad options, GF_ERR_STATE when there
 /// is no snapshot, or the error of reading the series or writing a picture.
-GF_API gf_status gf_render_dir(const char *dir, const gf_render_options *opt);
+GF_API gf_status gf_render_dir(const char *dir, const gf_render_dir_opts *opt);
 
 #ifdef __cplusplus
 }

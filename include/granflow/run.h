@@ -15,10 +15,23 @@
 extern "C" {
 #endif
 
+/// Where a run is, as a progress callback sees it.
+typedef enum gf_run_phase {
+    GF_RUN_PHASE_PACKING = 0, ///< building the initial packing
+    GF_RUN_PHASE_READING,     ///< importing packing.file
+    GF_RUN_PHASE_IMPORTED,    ///< the import is done (note: what it kept and dropped)
+    GF_RUN_PHASE_RUNNING,     ///< the engine runs
+    GF_RUN_PHASE_STALLED,     ///< the run stops early (note: why)
+    GF_RUN_PHASE_DONE,        ///< the run ended
+} gf_run_phase;
+
+/// The phase's name ("packing", "reading", "imported", "running", "stalled",
+/// "done"); "?" for a value outside the enum.
+GF_API const char *gf_run_phase_name(gf_run_phase phase);
+
 /// What a progress callback sees.
 typedef struct gf_run_progress {
-    const char *phase;      ///< "packing" (building), "reading" (importing), "imported", "running",
-                            ///< "stalled" (note: why the run stops early) or "done"
+    gf_run_phase phase;     ///< where the run is
     double time, until;     ///< simulated time and the run's end, tau
     double start;           ///< simulated time when this invocation started (0, or where a resume began)
     size_t initial, remaining; ///< particles at t = 0 and now

@@ -43,7 +43,7 @@ typedef struct gf_sim_stats {
 
 
 /// What gf_sim_run calls while it runs. Every member may be NULL/0.
-typedef struct gf_run_hooks {
+typedef struct gf_sim_hooks {
     void *ctx; ///< passed back to every callback
     /// Snapshot number `index` at simulated time `time` (index * snapshot_interval).
     gf_status (*snapshot)(void *ctx, const gf_sim *sim, uint64_t index, double time);
@@ -55,9 +55,9 @@ typedef struct gf_run_hooks {
     /// When *stop becomes non-zero the run returns GF_ERR_INTERRUPTED at the
     /// next event boundary (safe to set from a signal handler).
     volatile sig_atomic_t *stop;
-} gf_run_hooks;
+} gf_sim_hooks;
 /// The defaults (what a NULL `hooks` means): every member NULL/0.
-GF_API gf_run_hooks gf_run_hooks_default(void);
+GF_API gf_sim_hooks gf_sim_hooks_default(void);
 
 /// Checks `cfg` (validated on a copy) for what the engine needs of the
 /// container before any packing is built: with run.recirculate = on and
@@ -75,7 +75,7 @@ GF_API void gf_sim_destroy(gf_sim *sim);
 /// snapshots due on the way, including one at `until` if it falls on the
 /// snapshot grid. Returns GF_OK, GF_ERR_INTERRUPTED (stop flag; state is
 /// consistent and can be saved) or an error from a hook or the engine.
-GF_API gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks);
+GF_API gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks);
 
 /// Processes exactly one event (insertion or spot move). For tests and tools.
 GF_API gf_status gf_sim_step(gf_sim *sim);
@@ -104,12 +104,10 @@ GF_API void gf_sim_set_timing(gf_sim *sim, int on);
 
 /// Creates a simulation of the packing `cfg` asks for (packing.file imported,
 /// else generated; see gf_packing_for_config). `cfg` is validated on a copy.
-/// Dropped particles of an import are reported through gf_warning().
-GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out);
-/// gf_sim_create_from_config with the packing built by
-/// gf_packing_for_config_stoppable: once *stop (may be NULL) is non-zero,
+/// Dropped particles of an import are reported through gf_warning(). The
+/// packing is built with `opts` (may be NULL): once opts->stop is non-zero,
 /// GF_ERR_INTERRUPTED and no simulation.
-GF_API gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_sim **out);
+GF_API gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts *opts, gf_sim **out);
 
 /// Creates a simulation of `n` particles given as flat arrays under `cfg`
 /// (validated on a copy; its packing.* keys other than layer_thickness are

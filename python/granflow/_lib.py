@@ -90,7 +90,7 @@ _SIGNATURES = {
     "gf_dem_analyze_outdir": (c_int, [c_char_p, c_char_p, c_size_t]),
     "gf_dem_analyze": (c_int, [c_char_p, c_void_p, c_void_p, c_char_p, c_char_p, ctypes.c_bool, c_void_p]),
     # simulation
-    "gf_sim_create_from_config": (c_int, [c_void_p, ctypes.POINTER(c_void_p)]),
+    "gf_sim_create_from_config": (c_int, [c_void_p, c_void_p, ctypes.POINTER(c_void_p)]),
     "gf_sim_destroy": (None, [c_void_p]),
     "gf_sim_step": (c_int, [c_void_p]),
     "gf_sim_run": (c_int, [c_void_p, c_double, c_void_p]),

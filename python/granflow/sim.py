@@ -222,7 +222,7 @@ def _create(cfg, handle, positions, radii, ids, checkpoint):
     if positions is None:
         if radii is not None or ids is not None:
             raise GranflowValueError("radii and ids go with positions")
-        check(lib.gf_sim_create_from_config(cfg.handle, ctypes.byref(handle)))
+        check(lib.gf_sim_create_from_config(cfg.handle, None, ctypes.byref(handle)))  # default packing options
         return
     xyz = np.ascontiguousarray(positions, dtype=np.float64)
     if xyz.ndim != 2 or xyz.shape[1] != 3:

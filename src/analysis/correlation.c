@@ -9,6 +9,7 @@
 #include "analysis/motion.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 
 #define GF_CORR_DR 0.1    // bin of r, d: resolves the shell structure of Fig. 3-3
@@ -251,7 +252,8 @@ gf_status gf_measure_correlation(const gf_series *s, const gf_analysis_opts *o, 
     gf_window_frames(s, t0, t1, &k0, &k1);
     // The mean flow: the binned field of the same window (as the velocity measurement).
     // In a cylinder it is binned in (r, z): the flow is axisymmetric.
-    bool radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
+    const gf_container ctr = gf_container_make(&s->cfg);
+    bool radial = gf_container_profile_radial(&ctr);
     gf_vfield f;
     size_t npairs;
     gf_status st = gf_vfield_window(s, t0, t1, o->vel_bin, radial, o->stop, &f, &npairs);

@@ -10,6 +10,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 
 #define GF_DIFF_DEM 2.86e-3 // thesis Sec. 3.3, d
@@ -169,7 +170,8 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     // Particles start at the first frame of the window, not of the run: b_p is
     // a property of steady flow (thesis Sec. 3.3 fits it "during steady flow"),
     // and before the window the flow is still spreading up from the orifice.
-    bool radial = s->cfg.container_shape == GF_SHAPE_CYLINDER;
+    const gf_container ctr = gf_container_make(&s->cfg);
+    bool radial = gf_container_profile_radial(&ctr);
     gf_diff_work w = {0};
     gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], o, radial, s->cfg.orifice_x, &w) : GF_OK;
     gf_table *t = &out->tables[out->ntables];

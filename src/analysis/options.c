@@ -16,6 +16,8 @@
 #define GF_IN(lo, hi) .min = (lo), .max = (hi)
 #define GF_Z GF_IN(-1e6, 1e6) // any height or abscissa
 
+static const char *const gf_vel_window_names[] = {"height", "run", NULL};
+
 // The options by section, defaults the papers' values (docs/analysis.md has
 // the same table, checked by tests/test_docs_analysis.c).
 static const gf_key gf_analysis_key_list[] = {
@@ -33,6 +35,10 @@ static const gf_key gf_analysis_key_list[] = {
      .list_max = 16},
     {"velocity", "band", GF_KEY_DOUBLE, GF_AOFF(vel_band), GF_IN(0.05, 100), .def = "1", .unit = "d",
      .doc = "half-thickness of the band |z - height| < band of each profile"},
+    {"velocity", "window", GF_KEY_ENUM, GF_AOFF(vel_window), .names = gf_vel_window_names, .def = "height",
+     .unit = "", .doc = "frames of each v_z(x) profile: height (only the frame pairs where the mean v_z at that height "
+                       "has reached its late value; a height with none is reported, not fitted) or run (every pair of "
+                       "the window)"},
     {"velocity", "y_xhalf", GF_KEY_DOUBLE, GF_AOFF(vely_xhalf), GF_IN(0.1, 1e6), .def = "10", .unit = "d",
      .doc = "v_z(y) region: |x - container.orifice_x| < this (2009 paper Fig. 8)"},
     {"velocity", "y_z0", GF_KEY_DOUBLE, GF_AOFF(vely_z0), GF_Z, .def = "50", .unit = "d",

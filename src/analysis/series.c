@@ -16,7 +16,7 @@
 // shifted by minus the box centre); then the walls are put where the
 // particles end (gf_series_fit_walls): a DEM box is the simulation's domain,
 // often wider than the silo's walls. Dumps in other units than d and tau are
-// converted as they are read (gf_series_load_in: dump.diameter, dump.gravity).
+// converted as they are read (gf_series_opts.units: dump.diameter, dump.gravity).
 // Without a `type` column the layer tags are made from the first frame
 // (1 + floor(z / packing.layer_thickness)) and carried to later frames by id.
 #include <dirent.h>
@@ -31,6 +31,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
@@ -251,7 +252,8 @@ static double gf_series_reach(const gf_series *s, int axis, double zmin)
 gf_status gf_series_fit_walls(const gf_series *s, gf_config *cfg)
 {
     if (!s || !cfg) return gf_error_set(GF_ERR_PARAM, "gf_series_fit_walls: NULL series or config");
-    if (cfg->container_shape != GF_SHAPE_BOX) return GF_OK;
+    const gf_container c = gf_container_make(cfg);
+    if (!gf_container_rectangular(&c)) return GF_OK; // the walls of other shapes are not where particles reach
     static const char *const keys[2] = {"container.width", "container.depth"};
     for (int axis = 0; axis < 2; axis++) {
         if (gf_config_is_set(cfg, keys[axis])) continue;
@@ -416,19 +418,12 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
     return st;
 }
 
-gf_status gf_series_load(const char *path, double dump_dt, gf_series *out)
-{
-    return gf_series_load_stoppable(path, dump_dt, NULL, out);
-}
+gf_series_opts gf_series_opts_default(void) { return (gf_series_opts){.units = NULL}; }
 
-gf_status gf_series_load_stoppable(const char *path, double dump_dt, volatile sig_atomic_t *stop, gf_series *out)
+gf_status gf_series_load(const char *path, double dump_dt, const gf_series_opts *opts, gf_series *out)
 {
-    return gf_series_load_in(path, dump_dt, NULL, stop, out);
-}
-
-gf_status gf_series_load_in(const char *path, double dump_dt, const gf_series_units *units,
-                            volatile sig_atomic_t *stop, gf_series *out)
-{
+    const gf_series_units *units = opts ? opts->units : NULL;
+    volatile sig_atomic_t *stop = opts ? opts->stop : NULL;
     memset(out, 0, sizeof *out);
     if (!path || !*path) return gf_error_set(GF_ERR_PARAM, "gf_series_load: no path");
     if (!(dump_dt >= 0) || !isfinite(dump_dt))

@@ -9,9 +9,11 @@
 #include <string.h>
 
 #include "analysis/motion.h"
+#include "analysis/steady_height.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 
 /// Bin of the depth profile, d. Centres lie within |y| <= D/2 - 0.5 = 3.5 of an
@@ -28,7 +30,12 @@ typedef struct gf_vel_acc {
     double ox;      ///< x of the orifice (container.orifice_x): the v_z(y) region is |x - ox| < y_xhalf
     bool mirror;    ///< radial, no central column: fit with the points mirrored to -r
     size_t np;      ///< profile bins: field.nx, or radial bins of field.bin from the axis
-    double *prof;   ///< nh x np x 2: sum vz, samples
+    double *prof;   ///< nh x np x 2: sum vz, samples over each height's steady pairs
+    size_t npairs;  ///< frame pairs of the window
+    double *pp;     ///< npairs x nh x np x 2: the profiles of each pair
+    double *band;   ///< npairs x nh x 2: sum vz, samples of each height's band (its steadiness)
+    gf_steady_height *verdict; ///< nh: each height's steady pairs
+    double *tpair;  ///< npairs + 1: the frames' times
     size_t ny;      ///< depth bins
     double y0;      ///< lower edge of depth bin 0, d
     double *depth;  ///< ny x 2: sum vz, samples
@@ -36,29 +43,36 @@ typedef struct gf_vel_acc {
 
 static void gf_vel_acc_free(gf_vel_acc *a)
 {
-    if (a->prof) GF_DELETE(a->prof, 2 * a->nh * a->np);
+    if (a->prof) GF_DELETE(a->prof, 2 * a->nh * a->np + 1);
+    if (a->pp) GF_DELETE(a->pp, 2 * a->npairs * a->nh * a->np + 1);
+    if (a->band) GF_DELETE(a->band, 2 * a->npairs * a->nh + 1);
+    if (a->verdict) GF_DELETE(a->verdict, a->nh);
+    if (a->tpair) GF_DELETE(a->tpair, a->npairs + 1);
     if (a->depth) GF_DELETE(a->depth, 2 * a->ny);
     gf_vfield_free(&a->field);
 }
 
-static void gf_vel_acc_add(gf_vel_acc *a, const gf_steps *st, const gf_analysis_opts *o)
+/// Adds the steps of frame pair j.
+static void gf_vel_acc_add(gf_vel_acc *a, const gf_steps *st, const gf_analysis_opts *o, size_t j)
 {
     gf_vfield_add(&a->field, st);
     const gf_vfield *f = &a->field;
-    for (size_t j = 0; j < st->n; j++) {
-        double x = st->x[j], z = st->z[j];
-        double ix = a->radial ? floor(hypot(x, st->y[j]) / f->bin) : floor(x / f->bin) - (double)f->ix0;
+    for (size_t i = 0; i < st->n; i++) {
+        double x = st->x[i], z = st->z[i];
+        double ix = a->radial ? floor(hypot(x, st->y[i]) / f->bin) : floor(x / f->bin) - (double)f->ix0;
         if (ix >= 0.0 && ix < (double)a->np)
             for (size_t h = 0; h < a->nh; h++)
                 if (fabs(z - o->vel_heights[h]) < o->vel_band) {
-                    double *b = a->prof + 2 * (h * a->np + (size_t)ix);
-                    b[0] += st->vz[j];
+                    double *b = a->pp + 2 * ((j * a->nh + h) * a->np + (size_t)ix), *m = a->band + 2 * (j * a->nh + h);
+                    b[0] += st->vz[i];
                     b[1] += 1.0;
+                    m[0] += st->vz[i];
+                    m[1] += 1.0;
                 }
         if (a->ny && fabs(x - a->ox) < o->vely_xhalf && z > o->vely_z0 && z < o->vely_z1) {
-            double iy = floor((st->y[j] - a->y0) / GF_VELY_BIN);
+            double iy = floor((st->y[i] - a->y0) / GF_VELY_BIN);
             if (iy >= 0.0 && iy < (double)a->ny) {
-                a->depth[2 * (size_t)iy] += st->vz[j];
+                a->depth[2 * (size_t)iy] += st->vz[i];
                 a->depth[2 * (size_t)iy + 1] += 1.0;
             }
         }
@@ -87,6 +101,32 @@ static gf_table *gf_vel_table(gf_measure_out *out, const char *name, const char 
     return t;
 }
 
+/// Each height's steady frame pairs (velocity.window = height; run: all of
+/// them) and its profile summed over those pairs.
+static gf_status gf_vel_steady(gf_vel_acc *a, const gf_analysis_opts *o)
+{
+    double *m = GF_NEW(double, a->npairs + 1);
+    if (!m) return gf_error_set(GF_ERR_NOMEM, "velocity: out of memory");
+    for (size_t h = 0; h < a->nh; h++) {
+        for (size_t j = 0; j < a->npairs; j++) {
+            const double *b = a->band + 2 * (j * a->nh + h);
+            m[j] = b[1] > 0.0 ? b[0] / b[1] : NAN;
+        }
+        gf_steady_height *v = &a->verdict[h];
+        if (o->vel_window == GF_VEL_WINDOW_HEIGHT) {
+            *v = gf_steady_height_find(m, a->npairs);
+        } else {
+            *v = (gf_steady_height){.steady = true};
+            snprintf(v->why, sizeof v->why, "all %zu frame pairs of the window (velocity.window = run)", a->npairs);
+        }
+        if (!v->steady) continue;
+        for (size_t j = v->first; j < a->npairs; j++)
+            for (size_t i = 0; i < 2 * a->np; i++) a->prof[2 * h * a->np + i] += a->pp[2 * (j * a->nh + h) * a->np + i];
+    }
+    GF_DELETE(m, a->npairs + 1);
+    return GF_OK;
+}
+
 /// The tables, fits and headlines from the accumulated sums.
 static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, gf_measure_out *out, double *slope,
                                double *icpt, size_t *nfit)
@@ -112,7 +152,8 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
     // the points are fitted as they are, the centre mu is the ring's radius.
     gf_table *tp = gf_vel_table(out, "velocity_profiles",
                                 a->radial ? "z_d,r_d,vz_d_per_tau,vz_fit" : "z_d,x_d,vz_d_per_tau,vz_fit", &st);
-    gf_table *tv = gf_vel_table(out, "velocity_variance", "z_d,variance_d2,amplitude_d_per_tau,centre_d", &st);
+    gf_table *tv = gf_vel_table(out, "velocity_variance",
+                                "z_d,variance_d2,amplitude_d_per_tau,centre_d,t0_tau,t1_tau,steady", &st);
     size_t cap = 2 * a->np;
     double *px = cap ? GF_NEW(double, cap) : NULL, *pv = cap ? GF_NEW(double, cap) : NULL;
     double hz[16], hv[16];
@@ -142,7 +183,9 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             double row[4] = {o->vel_heights[h], px[r], -pv[r], -amp * exp(-u * u / (2.0 * var))};
             st = gf_table_add(tp, row);
         }
-        double row[4] = {o->vel_heights[h], var, amp, mu};
+        const gf_steady_height *v = &a->verdict[h];
+        double row[7] = {o->vel_heights[h], var, amp, mu, v->steady ? a->tpair[v->first] : NAN,
+                         v->steady ? a->tpair[a->npairs] : NAN, v->steady ? 1.0 : 0.0};
         if (st == GF_OK) st = gf_table_add(tv, row);
         if (isfinite(var)) {
             hz[*nfit] = o->vel_heights[h];
@@ -242,7 +285,8 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
 
 bool gf_velocity_radial(const gf_config *cfg)
 {
-    return cfg->container_shape == GF_SHAPE_CYLINDER && cfg->container_radius > 0.0;
+    const gf_container c = gf_container_make(cfg);
+    return gf_container_profile_radial(&c) && gf_container_outer_radius(&c) > 0.0;
 }
 
 const char *gf_velocity_profile_name(const gf_config *cfg) { return gf_velocity_radial(cfg) ? "v_z(r)" : "v_z(x)"; }
@@ -263,13 +307,21 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     a.ox = s->cfg.orifice_x;
     if (gf_velocity_radial(&s->cfg)) {
         a.radial = true; // bins of r out to the wall
-        a.mirror = !(s->cfg.inner_radius > 0.0);
-        a.np = (size_t)ceil(s->cfg.container_radius / o->vel_bin);
+        const gf_container c = gf_container_make(&s->cfg);
+        a.mirror = !(gf_container_inner_radius(&c) > 0.0);
+        a.np = (size_t)ceil(gf_container_outer_radius(&c) / o->vel_bin);
     }
     double depth = s->cfg.container_depth;
-    if (st == GF_OK && a.np && a.nh) {
-        a.prof = GF_NEW(double, 2 * a.nh * a.np);
-        if (!a.prof) st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory for profiles");
+    a.npairs = k1 > k0 + 1 ? k1 - k0 - 1 : 0;
+    if (st == GF_OK && a.nh) {
+        a.prof = GF_NEW(double, 2 * a.nh * a.np + 1);
+        a.pp = GF_NEW(double, 2 * a.npairs * a.nh * a.np + 1);
+        a.band = GF_NEW(double, 2 * a.npairs * a.nh + 1);
+        a.verdict = GF_NEW(gf_steady_height, a.nh);
+        a.tpair = GF_NEW(double, a.npairs + 1);
+        if (!a.prof || !a.pp || !a.band || !a.verdict || !a.tpair)
+            st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory for the profiles of %zu frame pairs", a.npairs);
+        for (size_t j = 0; st == GF_OK && j <= a.npairs; j++) a.tpair[j] = s->frames[k0 + j].time;
     }
     if (st == GF_OK && depth > 0.0) {
         a.ny = (size_t)ceil(depth / GF_VELY_BIN - 1e-9);
@@ -283,9 +335,12 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     for (size_t k = k0; st == GF_OK && k + 1 < k1; k++) {
         if ((st = gf_stop_check(o->stop, "velocity")) != GF_OK) break;
         st = gf_steps_between(&s->frames[k], &s->frames[k + 1], &steps);
-        if (st == GF_OK) gf_vel_acc_add(&a, &steps, o);
+        if (st == GF_OK) gf_vel_acc_add(&a, &steps, o, k - k0);
     }
     gf_steps_free(&steps);
+    if (st == GF_OK && a.nh) st = gf_vel_steady(&a, o);
+    size_t unsteady = 0;
+    for (size_t h = 0; st == GF_OK && h < a.nh; h++) unsteady += !a.verdict[h].steady;
 
     double slope = NAN, icpt = NAN;
     size_t nfit = 0;
@@ -293,6 +348,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     gf_vel_acc_free(&a);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_slope", slope);
     if (st == GF_OK) st = gf_measure_value(out, "velocity_variance_intercept", icpt);
+    if (st == GF_OK) st = gf_measure_value(out, "velocity_unsteady_heights", (double)unsteady);
     if (st == GF_OK) st = gf_vel_plot(out, o, slope, icpt, &s->cfg, out);
     return st;
 }

@@ -28,6 +28,7 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "analysis/motion.h"
+#include "geom/container.h"
 #include "granflow/analysis.h"
 
 enum { GF_ZONES_MAX = 17, GF_ZONES_BINS = 40 };
@@ -47,9 +48,8 @@ static size_t gf_zone_of(const gf_zones *z, double r)
 static void gf_zones_make(const gf_series *s, const gf_analysis_opts *o, gf_zones *z)
 {
     // The wall: the cylinder's, or the box's corners; a central column is the inner edge.
-    const bool cyl = s->cfg.container_shape == GF_SHAPE_CYLINDER;
-    double wall = cyl ? s->cfg.container_radius : hypot(0.5 * s->cfg.container_width, 0.5 * s->cfg.container_depth);
-    double core = cyl ? s->cfg.inner_radius : 0.0;
+    const gf_container c = gf_container_make(&s->cfg);
+    double wall = gf_container_outer_radius(&c), core = gf_container_inner_radius(&c);
     if (o->zone_nradii > 0) {
         z->n = 0;
         for (size_t k = 0; k < o->zone_nradii && o->zone_radii[k] < wall; k++) z->edge[z->n++] = o->zone_radii[k];

@@ -44,7 +44,7 @@ static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, v
 }
 
 // Runs `window` tau more and returns the steps per second of it.
-static gf_status gf_bench_window(gf_sim *sim, double *until, double window, const gf_run_hooks *hooks, double *sps,
+static gf_status gf_bench_window(gf_sim *sim, double *until, double window, const gf_sim_hooks *hooks, double *sps,
                                  gf_sim_stats *a, gf_sim_stats *b)
 {
     *a = gf_sim_get_stats(sim);
@@ -74,7 +74,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     *out = (gf_bench_spot){0};
     double t0 = gf_clock_now();
     gf_sim *sim = NULL;
-    gf_status st = gf_sim_create_from_config_stoppable(cfg, o->stop, &sim); // gf_packing_for_config, as a run
+    gf_status st = gf_sim_create_from_config(cfg, &(gf_packing_opts){.stop = o->stop}, &sim); // gf_packing_for_config, as a run
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
     out->pack_s = gf_clock_now() - t0;
@@ -83,7 +83,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     if (o->packed) o->packed(o->ctx, out, sim, o->warmup);
     t0 = gf_clock_now();
     double until = o->warmup;
-    gf_run_hooks hooks = gf_run_hooks_default();
+    gf_sim_hooks hooks = gf_sim_hooks_default();
     hooks.stop = o->stop;
     st = gf_sim_run(sim, until, &hooks);
     out->warm_s = gf_clock_now() - t0;

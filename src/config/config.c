@@ -356,6 +356,33 @@ static gf_status gf_config_validate_mesh(gf_config *cfg)
     return check(cfg);
 }
 
+// The checks of a wedge hopper (docs/geometry.md, "The wedge hopper"): its
+// outlet is a slit (container.orifice_diameter wide, at container.orifice_x)
+// between walls inclined at container.hopper_angle > 0.
+static gf_status gf_config_validate_wedge(gf_config *cfg)
+{
+    gf_config_msg m;
+    if (!(cfg->hopper_angle > 0.0)) {
+        gf_config_msg_make(&m, cfg, "container.hopper_angle", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be more than 0 with %s: a wedge's walls are inclined "
+                                          "(0 < angle <= 80 degrees to the horizontal); a flat base with a slit "
+                                          "is container.shape = box with container.orifice_shape = slit",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    if (gf_config_is_set(cfg, "container.orifice_shape") && cfg->orifice_shape != GF_ORIFICE_SLIT) {
+        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a slit across the depth, "
+                                          "container.orifice_diameter wide", m.lead, m.key[0], m.key[1]);
+    }
+    if (cfg->inner_radius > 0.0) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s: a central column needs container.shape = cylinder, not %s",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    cfg->orifice_shape = GF_ORIFICE_SLIT;
+    return GF_OK;
+}
+
 gf_status gf_config_validate(gf_config *cfg)
 {
     gf_status st = gf_config_check(cfg, "gf_config_validate");
@@ -377,6 +404,7 @@ gf_status gf_config_validate(gf_config *cfg)
 
     if (cfg->container_shape == GF_SHAPE_CYLINDER && (st = gf_config_validate_cylinder(cfg)) != GF_OK) return st;
     if (cfg->container_shape == GF_SHAPE_MESH && (st = gf_config_validate_mesh(cfg)) != GF_OK) return st;
+    if (cfg->container_shape == GF_SHAPE_WEDGE && (st = gf_config_validate_wedge(cfg)) != GF_OK) return st;
     if (!(cfg->orifice_diameter < cfg->container_width)) {
         gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.width");
         return gf_error_set(GF_ERR_PARAM, "%s%s must be less than %s", m.lead, m.key[0], m.key[1]);
@@ -524,5 +552,6 @@ gf_status gf_config_save(const gf_config *cfg, const char *path)
 
 double gf_config_exit_plane(const gf_config *cfg)
 {
-    return cfg->container_shape == GF_SHAPE_CYLINDER ? cfg->exit_z - cfg->outlet_length : cfg->exit_z;
+    // A cylinder's pipe and a wedge's chute: particles leave at their end.
+    return cfg->container_shape == GF_SHAPE_BOX ? cfg->exit_z : cfg->exit_z - cfg->outlet_length;
 }

@@ -23,7 +23,7 @@ _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == siz
                "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
-static const char *const gf_keys_shape_names[] = {"box", "cylinder", "mesh", NULL};
+static const char *const gf_keys_shape_names[] = {"box", "cylinder", "wedge", "mesh", NULL};
 static const char *const gf_keys_ball_names[] = {"midpoint", "end", NULL};
 static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
 static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
@@ -33,7 +33,9 @@ static const char *const gf_keys_order_names[] = {"random", "newest", "spatial",
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
-static const char *const gf_keys_format_names[] = {"dump", "vtk", "both", NULL};
+// output.format: bit i of gf_output_format is names[i] (a third format is one more name and bit).
+static const char *const gf_keys_format_names[] = {"dump", "vtk", NULL};
+static const char *const gf_keys_format_aliases[] = {"both", "dump,vtk", NULL};
 static const char *const gf_keys_vtk_encoding_names[] = {"binary", "ascii", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
@@ -61,15 +63,15 @@ const gf_key gf_keys[] = {
     {"container", "exit_z", GF_KEY_DOUBLE, GF_OFF(exit_z), .min = -1e5, .max = 0.5, .def = "0",
      .unit = "d", .doc = "particles whose centre falls below this height (less container.outlet_length) leave"},
     {"container", "shape", GF_KEY_ENUM, GF_OFF(container_shape), .names = gf_keys_shape_names, .def = "box",
-     .unit = "", .doc = "box (width x depth, flat base with an orifice), cylinder (radius, funnel, outlet pipe) or mesh (container.mesh)"},
+     .unit = "", .doc = "box (width x depth, flat base with an orifice), cylinder (radius, funnel, outlet pipe) wedge (width x depth, inclined walls down to a slit, chute) or mesh (container.mesh)"},
     {"container", "radius", GF_KEY_DOUBLE, GF_OFF(container_radius), .min = 0, .max = 5e4, .min_open = true, .def = "12.5", .unit = "d",
      .doc = "cylinder: radius of the wall about the z axis (width and depth become 2 radius)"},
     {"container", "hopper_angle", GF_KEY_DOUBLE, GF_OFF(hopper_angle), .min = 0, .max = 80, .def = "0",
-     .unit = "deg", .doc = "cylinder: funnel angle to the horizontal, cone from the wall down to the outlet (0: flat base)"},
+     .unit = "deg", .doc = "cylinder: funnel angle to the horizontal, cone from the wall down to the outlet (0: flat base); wedge: angle of its inclined walls to the horizontal, > 0"},
     {"container", "outlet_diameter", GF_KEY_DOUBLE, GF_OFF(outlet_diameter), .min = 0, .max = 1e5, .min_open = true, .def = "8",
      .unit = "d", .doc = "cylinder: diameter of the outlet at z = 0 and of the pipe below it (orifice_diameter follows it)"},
     {"container", "outlet_length", GF_KEY_DOUBLE, GF_OFF(outlet_length), .min = 0, .max = 1e5, .def = "0", .unit = "d",
-     .doc = "cylinder: length of the straight pipe below the outlet; particles leave at its end"},
+     .doc = "cylinder: length of the straight pipe below the outlet; wedge: of the chute below the slit; particles leave at its end"},
     {"container", "inner_radius", GF_KEY_DOUBLE, GF_OFF(inner_radius), .min = 0, .max = 5e4, .def = "0", .unit = "d",
      .doc = "cylinder: radius of a solid central column down to the top of the funnel (0: none)"},
     {"container", "mesh", GF_KEY_PATH, GF_OFF(container_mesh), .def = "", .unit = "",
@@ -193,8 +195,10 @@ const gf_key gf_keys[] = {
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long; at most 10^5 per run.duration"},
-    {"output", "format", GF_KEY_ENUM, GF_OFF(output_format), .names = gf_keys_format_names, .def = "dump",
-     .unit = "", .doc = "snapshot files: dump (LAMMPS text), vtk (VTK XML .vtu and snapshots.pvd for ParaView) or both"},
+    {"output", "format", GF_KEY_SET, GF_OFF(output_format), .names = gf_keys_format_names,
+     .aliases = gf_keys_format_aliases, .def = "dump", .unit = "",
+     .doc = "snapshot files, a list: dump (LAMMPS text), vtk (VTK XML .vtu and snapshots.pvd for ParaView); "
+            "both = dump,vtk"},
     {"output", "vtk_encoding", GF_KEY_ENUM, GF_OFF(output_vtk_encoding), .names = gf_keys_vtk_encoding_names,
      .def = "binary", .unit = "",
      .doc = "arrays of the VTK XML files: binary (zlib-compressed, appended) or ascii (inline text)"},

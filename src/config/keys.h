@@ -20,6 +20,7 @@ typedef enum gf_key_type {
     GF_KEY_ENUM,   ///< int-sized C enum, value = index into `names`
     GF_KEY_PATH,   ///< char[GF_PATH_MAX]; may be empty
     GF_KEY_SIZE,   ///< size_t, decimal integer in [min, max]
+    GF_KEY_SET,    ///< int-sized bit set: a comma-separated list of `names` (bit i = names[i]), or an alias
     GF_KEY_LIST,   ///< double[list_max], comma-separated, 1 to list_max values in [min, max]; count at count_offset
 } gf_key_type;
 
@@ -31,7 +32,10 @@ typedef struct gf_key {
     size_t offset;            ///< offsetof(struct, field)
     double min, max;          ///< numeric range; -INFINITY/INFINITY when unbounded
     bool min_open, max_open;  ///< true: the end is excluded
-    const char *const *names; ///< GF_KEY_ENUM: NULL-terminated value names, index = enum value
+    const char *const *names; ///< GF_KEY_ENUM: NULL-terminated value names, index = enum value;
+                              ///< GF_KEY_SET: the names of the bits, bit i = names[i]
+    const char *const *aliases; ///< GF_KEY_SET: NULL-terminated pairs {word, list}: a word that stands
+                                ///< for a list as the whole value (e.g. "both", "dump,vtk"); may be NULL
     const char *def;          ///< default, as written in the INI file
     const char *unit;         ///< "d", "tau", "1/tau" or "" (dimensionless)
     const char *doc;          ///< one line: what the key means

@@ -92,6 +92,21 @@ void gf_keys_format_double(double v, char *buf, size_t n)
     }
 }
 
+// A set key's names and aliases, appended to buf: "dump, vtk; both = dump,vtk".
+static void gf_keys_set_names(const gf_key *k, char *buf, size_t n)
+{
+    for (size_t i = 0; k->names[i]; i++) {
+        if (i > 0) gf_keys_append(buf, n, ", ");
+        gf_keys_append(buf, n, k->names[i]);
+    }
+    for (size_t i = 0; k->aliases && k->aliases[i]; i += 2) {
+        gf_keys_append(buf, n, i ? ", " : "; ");
+        gf_keys_append(buf, n, k->aliases[i]);
+        gf_keys_append(buf, n, " = ");
+        gf_keys_append(buf, n, k->aliases[i + 1]);
+    }
+}
+
 void gf_keys_range(const gf_key *k, char *buf, size_t n)
 {
     if (n == 0) return;
@@ -102,6 +117,10 @@ void gf_keys_range(const gf_key *k, char *buf, size_t n)
             if (i > 0) gf_keys_append(buf, n, ", ");
             gf_keys_append(buf, n, k->names[i]);
         }
+        return;
+    case GF_KEY_SET:
+        gf_keys_append(buf, n, "list of ");
+        gf_keys_set_names(k, buf, n);
         return;
     case GF_KEY_PATH: snprintf(buf, n, "path"); return;
     case GF_KEY_UINT64: snprintf(buf, n, "[0, %" PRIu64 "]", UINT64_MAX); return;
@@ -204,6 +223,41 @@ static gf_key_result gf_keys_assign_enum(const gf_key *k, void *cfg, const char 
     return GF_KEY_BAD_VALUE;
 }
 
+// Comma-separated names, each trimmed and each at most once, as bits; or an
+// alias standing for such a list as the whole value. An unknown element is
+// named with its place in the list.
+static gf_key_result gf_keys_assign_set(const gf_key *k, void *cfg, const char *value, char *why, size_t n)
+{
+    for (size_t i = 0; k->aliases && k->aliases[i]; i += 2)
+        if (strcmp(value, k->aliases[i]) == 0) return gf_keys_assign_set(k, cfg, k->aliases[i + 1], why, n);
+    int bits = 0;
+    size_t count = 0;
+    for (const char *p = value;; count++) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        while (len > 0 && isspace((unsigned char)*p)) p++, len--;
+        while (len > 0 && isspace((unsigned char)p[len - 1])) len--;
+        int bit = -1;
+        for (int i = 0; k->names[i]; i++)
+            if (strlen(k->names[i]) == len && strncmp(k->names[i], p, len) == 0) bit = i;
+        if (bit < 0) {
+            char names[128] = "";
+            gf_keys_set_names(k, names, sizeof names);
+            snprintf(why, n, "element %zu '%.*s' is not one of: %s", count + 1, (int)(len < 64 ? len : 64), p, names);
+            return GF_KEY_BAD_VALUE;
+        }
+        if (bits & (1 << bit)) {
+            snprintf(why, n, "element %zu '%s' is listed twice", count + 1, k->names[bit]);
+            return GF_KEY_BAD_VALUE;
+        }
+        bits |= 1 << bit;
+        if (!e) break;
+        p = e + 1;
+    }
+    memcpy((char *)cfg + k->offset, &bits, sizeof bits);
+    return GF_KEY_OK;
+}
+
 static gf_key_result gf_keys_assign_size(const gf_key *k, void *base, const char *value, char *why, size_t n)
 {
     char *end;
@@ -280,6 +334,7 @@ gf_key_result gf_keys_assign(const gf_key *k, void *cfg, const char *value, char
     case GF_KEY_INT64: return gf_keys_assign_int64(k, cfg, value, why, n);
     case GF_KEY_UINT64: return gf_keys_assign_uint64(k, cfg, value, why, n);
     case GF_KEY_ENUM: return gf_keys_assign_enum(k, cfg, value, why, n);
+    case GF_KEY_SET: return gf_keys_assign_set(k, cfg, value, why, n);
     case GF_KEY_SIZE: return gf_keys_assign_size(k, cfg, value, why, n);
     case GF_KEY_LIST: return gf_keys_assign_list(k, cfg, value, why, n);
     case GF_KEY_PATH: {
@@ -360,6 +415,18 @@ bool gf_keys_check(const gf_key *k, const void *cfg, char *why, size_t n)
         }
         return true;
     }
+    case GF_KEY_SET: {
+        int v, count = 0;
+        memcpy(&v, field, sizeof v);
+        while (k->names[count]) count++;
+        if (v <= 0 || v >= 1 << count) {
+            char names[128] = "";
+            gf_keys_set_names(k, names, sizeof names);
+            snprintf(why, n, "set value %d is not a non-empty list of: %s", v, names);
+            return false;
+        }
+        return true;
+    }
     case GF_KEY_PATH: {
         // A loop, not memchr: with LTO gcc sees the 480-byte analysis options
         // reach this function and warns, though no analysis key is a path.
@@ -405,6 +472,17 @@ void gf_keys_format(const gf_key *k, const void *cfg, char *buf, size_t n)
             snprintf(buf, n, "%s", k->names[v]);
         else
             snprintf(buf, n, "%d", v);
+        return;
+    }
+    case GF_KEY_SET: { // the names of the bits set, in table order: "dump,vtk"
+        int v;
+        memcpy(&v, field, sizeof v);
+        if (n) buf[0] = '\0';
+        for (int i = 0; k->names[i]; i++) {
+            if (!(v & (1 << i))) continue;
+            if (buf[0]) gf_keys_append(buf, n, ",");
+            gf_keys_append(buf, n, k->names[i]);
+        }
         return;
     }
     case GF_KEY_PATH: snprintf(buf, n, "%.*s", GF_PATH_MAX - 1, field); return;

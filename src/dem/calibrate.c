@@ -28,20 +28,16 @@
 /// diameter (the scale of the regions and of the widest profile fitted).
 static double gf_cal_width(const gf_config *cfg)
 {
-    return cfg->container_shape == GF_SHAPE_CYLINDER ? 2.0 * cfg->container_radius : cfg->container_width;
+    const gf_container c = gf_container_make(cfg);
+    return gf_container_width(&c);
 }
 
 /// Volume inside the container between heights z0 < z1, d^3: a box's
-/// W D (z1 - z0); otherwise the cross-section integrated (midpoint rule, 64
-/// slabs: a funnel's area is smooth in z).
+/// W D (z1 - z0); otherwise its cross-sections integrated.
 static double gf_cal_volume(const gf_config *cfg, double z0, double z1)
 {
-    if (cfg->container_shape != GF_SHAPE_CYLINDER)
-        return (z1 - z0) * cfg->container_width * cfg->container_depth;
-    gf_container c = gf_container_make(cfg);
-    double v = 0.0, dz = (z1 - z0) / 64.0;
-    for (int k = 0; k < 64; k++) v += c.ops->section_area(&c, z0 + ((double)k + 0.5) * dz) * dz;
-    return v;
+    const gf_container c = gf_container_make(cfg);
+    return gf_container_slice_volume(&c, z0, z1);
 }
 
 /// Top of the packing in a frame: the mean of its 20 highest centres with
@@ -209,8 +205,8 @@ static double gf_cal_balls(const gf_series *s, const gf_analysis_opts *o, const 
     gf_rng rng;
     gf_rng_seed(&rng, 20090701u, 3);
     double hw = 0.5 * s->cfg.container_width - dw, hd = 0.5 * s->cfg.container_depth - dw;
-    const bool cyl = s->cfg.container_shape == GF_SHAPE_CYLINDER;
     gf_container ctr = gf_container_make(&s->cfg);
+    const bool cyl = gf_container_profile_radial(&ctr); // radial profiles: x and y both Gaussian
     double sum = 0.0, n = 0.0, r2 = rs * rs;
     for (size_t k = k0; k < k1; k++) {
         const gf_packing *p = &s->frames[k].pk;

@@ -84,6 +84,9 @@ static double gf_cmp_l2(const gf_table *a, const gf_table *b)
     return sqrt(s);
 }
 
+// The profile and Var panels also draw the line 0: a height with no steady
+// frames has no profile and no Var, and a panel whose every point is
+// undefined would stop gnuplot ("x range is invalid").
 static gf_status gf_cmp_figure(const char *outdir, const gf_config *cfg, const gf_analysis_opts *o, bool plots)
 {
     const char *profile = gf_velocity_profile_name(cfg);
@@ -105,10 +108,10 @@ static gf_status gf_cmp_figure(const char *outdir, const gf_config *cfg, const g
             "'spot_outflow.csv' skip 1 u 1:2 w steps lw 2 @S t 'spot'\n"
             "set title '%s at z = %g .. %g'\nset xlabel '%s (d)'\nset ylabel 'v_z (d/tau)'\nset key bottom right\n"
             "plot 'dem_velocity_profiles.csv' skip 1 u 2:3 w p pt 7 ps 0.3 @D t 'DEM', "
-            "'spot_velocity_profiles.csv' skip 1 u 2:3 w p pt 6 ps 0.3 @S t 'spot'\n"
+            "'spot_velocity_profiles.csv' skip 1 u 2:3 w p pt 6 ps 0.3 @S t 'spot', 0 w l lc 'grey' notitle\n"
             "set title 'Gaussian variance of %s'\nset xlabel 'z (d)'\nset ylabel 'Var (d^2)'\nset key top left\n"
             "plot 'dem_velocity_variance.csv' skip 1 u 1:2 w lp pt 7 @D t 'DEM', "
-            "'spot_velocity_variance.csv' skip 1 u 1:2 w lp pt 6 @S t 'spot'\n"
+            "'spot_velocity_variance.csv' skip 1 u 1:2 w lp pt 6 @S t 'spot', 0 w l lc 'grey' notitle\n"
             "set title 'diffusion'\nset xlabel 'mean drop |dz| (d)'\nset ylabel 'Var(dx) (d^2)'\n"
             "plot 'dem_diffusion.csv' skip 1 u 2:3 w lp pt 7 @D t 'DEM', "
             "'spot_diffusion.csv' skip 1 u 2:3 w lp pt 6 @S t 'spot'\n"
@@ -173,6 +176,16 @@ static void gf_cmp_num(FILE *f, double v)
 {
     if (isfinite(v)) fprintf(f, " %.5g |", v);
     else fprintf(f, " - |");
+}
+
+/// The frames row r of a velocity_variance table averaged: "t0-t1", or that
+/// its height had no steady frames (not fitted).
+static void gf_cmp_frames(FILE *f, const gf_table *t, size_t r)
+{
+    const double *row = t->v + r * t->ncol;
+    if (t->ncol < 7) fprintf(f, " - |");
+    else if (row[6] == 0.0) fprintf(f, " no steady frames |");
+    else fprintf(f, " %.4g-%.4g |", row[4], row[5]);
 }
 
 static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const gf_series *spot,
@@ -241,9 +254,11 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
         gf_cmp_num(f, l2);
         fputc('\n', f);
     }
-    fprintf(f, "\nVelocity profiles (Gaussian fits of %s):\n\n"
-               "| z (d) | DEM variance | spot variance | DEM peak v_z | spot peak v_z |\n|---|---|---|---|---|\n",
-            profile);
+    fprintf(f, "\nVelocity profiles (Gaussian fits of %s, each over the frames where the flow at its height is steady, "
+               "velocity.window = %s):\n\n"
+               "| z (d) | DEM variance | spot variance | DEM peak v_z | spot peak v_z | DEM frames (tau) | spot frames (tau) "
+               "|\n|---|---|---|---|---|---|---|\n",
+            profile, o->vel_window == GF_VEL_WINDOW_RUN ? "run" : "height");
     const gf_table *vd = gf_cmp_table(md, GF_CMP_N, "velocity_variance"),
                    *vs = gf_cmp_table(ms, GF_CMP_N, "velocity_variance");
     for (size_t r = 0; vd && vs && r < vd->nrow && r < vs->nrow; r++) {
@@ -252,6 +267,8 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
         gf_cmp_num(f, vs->v[r * vs->ncol + 1]);
         gf_cmp_num(f, vd->v[r * vd->ncol + 2]);
         gf_cmp_num(f, vs->v[r * vs->ncol + 2]);
+        gf_cmp_frames(f, vd, r);
+        gf_cmp_frames(f, vs, r);
         fputc('\n', f);
     }
     const gf_table *rd = gf_cmp_table(md, GF_CMP_N, "rtd"), *rs = gf_cmp_table(ms, GF_CMP_N, "rtd");

@@ -47,6 +47,7 @@ static gf_status gf_fs_once(const gf_series *s, const gf_analysis_opts *base, do
             fs->nz = 0;
             for (size_t r = 0; r < t->nrow && fs->nz < GF_DEM_FS_MAXZ; r++) {
                 fs->z[fs->nz] = t->v[r * t->ncol];
+                fs->var_t0[fs->nz] = t->ncol > 6 && t->v[r * t->ncol + 6] != 0.0 ? t->v[r * t->ncol + 4] : NAN;
                 fs->var[fs->nz++].value = t->v[r * t->ncol + 1];
             }
         }
@@ -129,18 +130,26 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     size_t k0, k1, nf = gf_window_frames(s, t0, t1, &k0, &k1);
     size_t K = nf >= 12 ? GF_FS_PARTS : nf >= 6 ? 2 : 1;
     double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS];
+    // The parts take each height's steadiness from the whole window: a
+    // height's Var counts in the parts that start once its flow is steady
+    // (var_t0), each averaging all its pairs (a part is too short to judge).
+    gf_analysis_opts op = *o;
+    op.vel_window = GF_VEL_WINDOW_RUN;
     for (size_t j = 0; j < K; j++) {
         gf_dem_flowstats e;
         memset(&e, 0, sizeof e);
         double a = t0 + (t1 - t0) * (double)j / (double)K, b = t0 + (t1 - t0) * (double)(j + 1) / (double)K;
         if ((st = gf_stop_check(o->stop, "flow statistics")) != GF_OK) return st;
-        if ((st = gf_fs_once(s, o, a, b, correlation, &e)) != GF_OK) return st;
+        if ((st = gf_fs_once(s, &op, a, b, correlation, &e)) != GF_OK) return st;
         v[0][j] = e.flow.value;
         v[1][j] = e.bp.value;
         v[2][j] = e.phi.value;
         v[3][j] = e.drop.value;
         v[4][j] = e.beta.value;
-        for (size_t z = 0; z < GF_DEM_FS_MAXZ; z++) v[5 + z][j] = z < e.nz && z < fs->nz ? e.var[z].value : NAN;
+        for (size_t z = 0; z < GF_DEM_FS_MAXZ; z++) {
+            bool steady = z < fs->nz && a >= fs->var_t0[z] - 1e-9 * fmax(1.0, fabs(a)); // false for NaN
+            v[5 + z][j] = z < e.nz && steady ? e.var[z].value : NAN;
+        }
     }
     if (K < 2) {
         fs->flow.err = fs->bp.err = fs->phi.err = fs->drop.err = fs->beta.err = NAN;
@@ -177,6 +186,11 @@ bool gf_dem_flowstats_measured(gf_dem_value v, double tol)
     return isfinite(v.value) && v.value > 0 && (!isfinite(v.err) || v.err <= tol * v.value);
 }
 
+bool gf_dem_flowstats_steady(const gf_dem_flowstats *fs, size_t z)
+{
+    return z < fs->nz && isfinite(fs->var_t0[z]);
+}
+
 bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                             double var_tol)
 {
@@ -184,6 +198,7 @@ bool gf_dem_flowstats_match(const gf_dem_flowstats *dem, const gf_dem_flowstats 
     size_t used = 0;
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {
         if (!gf_dem_flowstats_measured(dem->var[z], var_tol)) continue; // too noisy in the DEM to test
+        if (!gf_dem_flowstats_steady(spot, z)) continue; // no steady frames there in the spot run: untestable
         used++;
         if (!gf_fs_within(dem->var[z], spot->var[z], var_tol)) return false;
     }
@@ -219,6 +234,21 @@ static void gf_fs_row(FILE *f, const char *name, gf_dem_value d, gf_dem_value s,
     fprintf(f, "  %-34s %-20s %-20s %-20s %s\n", name, a, b, diff, verdict);
 }
 
+/// Which frames each height's profile averaged, in either run (velocity.window).
+static void gf_fs_windows(FILE *f, const gf_dem_flowstats *dem, const gf_dem_flowstats *spot)
+{
+    fprintf(f, "  %-34s", "profile frames (tau), DEM / spot:");
+    const gf_dem_flowstats *run[2] = {dem, spot};
+    for (size_t z = 0; z < dem->nz && z < spot->nz; z++) {
+        fprintf(f, "%s z = %.3g:", z ? ";" : "", dem->z[z]);
+        for (int r = 0; r < 2; r++) {
+            if (isfinite(run[r]->var_t0[z])) fprintf(f, "%s %.4g-%.4g", r ? " /" : "", run[r]->var_t0[z], run[r]->t1);
+            else fprintf(f, "%s no steady frames", r ? " /" : "");
+        }
+    }
+    fputc('\n', f);
+}
+
 void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                             double var_tol, FILE *f)
 {
@@ -230,6 +260,7 @@ void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats 
         snprintf(name, sizeof name, "Var of %s at z = %.3g (d^2)", profile, dem->z[z]);
         gf_fs_row(f, name, dem->var[z], spot->var[z], var_tol, true);
     }
+    gf_fs_windows(f, dem, spot);
     gf_fs_row(f, "diffusion length b_p (d)", dem->bp, spot->bp, 0.0, false);
     gf_fs_row(f, "packing fraction in flow", dem->phi, spot->phi, 0.0, false);
     gf_fs_row(f, "density drop in the slice", dem->drop, spot->drop, 0.0, false);

@@ -55,6 +55,9 @@ static int64_t gf_dem_steps(const gf_config *c, double t)
 /// The common head: units, atom style, communication, neighbour lists.
 static void gf_dem_head(FILE *f, const gf_config *c, const char *what)
 {
+    const gf_container box = gf_container_make(c);
+    char shape[64] = "";
+    if (!gf_container_rectangular(&box)) snprintf(shape, sizeof shape, "%s (bounding box) ", gf_container_name(&box));
     char at[96] = "the centre of";
     if (c->orifice_x != 0.0 || c->orifice_y != 0.0) // container.orifice_x, orifice_y
         snprintf(at, sizeof at, "x = %g, y = %g on", c->orifice_x, c->orifice_y);
@@ -63,49 +66,15 @@ static void gf_dem_head(FILE *f, const gf_config *c, const char *what)
             "# container %s%g x %g d, %s orifice of %g d at %s the base z = 0.\n"
             "# Units lj: d = 1, particle mass 1, g = 1, so times are in tau = sqrt(d/g).\n"
             "# Written by `granflow dem`; see docs/dem.md.\n\n",
-            gf_version(), what, c->container_shape == GF_SHAPE_CYLINDER ? "cylinder (bounding box) " : "",
+            gf_version(), what, shape,
             c->container_width, c->container_depth,
             c->orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", c->orifice_diameter, at);
-}
-
-/// A cylinder's walls as one region, prefix_vessel (docs/geometry.md): the
-/// wall above the funnel, the funnel (a cone), the outlet pipe continued to
-/// zlo (particles leave below its end), less a central column; open faces
-/// where the parts join, so that only the container's surface pushes.
-static void gf_dem_cylinder_region(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
-{
-    gf_container b = gf_container_make(c);
-    fprintf(f, "# the cylinder: wall radius %g, funnel at %g degrees to the outlet of radius %g at z = 0, pipe %g d\n",
-            b.radius, c->hopper_angle, b.r_out, b.pipe);
-    // Without a column the shell is the vessel (LAMMPS refuses a union of one region).
-    const char *shell = b.r_in > 0.0 ? "shell" : "vessel";
-    if (b.sin_a > 0.0) {
-        fprintf(f,
-                "region %s_wall cylinder z 0 0 %.10g %.10g %.10g open 1 open 2 units box\n"
-                "region %s_funnel cone z 0 0 %.10g %.10g 0 %.10g open 1 open 2 units box\n"
-                "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
-                "region %s_%s union 3 %s_wall %s_funnel %s_pipe\n",
-                pre, b.radius, b.z_top, zhi, pre, b.r_out, b.radius, b.z_top, pre, b.r_out, zlo, pre, shell, pre, pre,
-                pre);
-    } else { // a flat base: its lower face, with the hole the pipe cuts in it
-        fprintf(f,
-                "region %s_wall cylinder z 0 0 %.10g 0 %.10g open 2 units box\n"
-                "region %s_pipe cylinder z 0 0 %.10g %.10g 0 open 1 open 2 units box\n"
-                "region %s_%s union 2 %s_wall %s_pipe\n",
-                pre, b.radius, zhi, pre, b.r_out, zlo, pre, shell, pre, pre);
-    }
-    if (b.r_in > 0.0)
-        fprintf(f,
-                "region %s_column cylinder z 0 0 %.10g %.10g %.10g open 2 side out units box\n"
-                "region %s_vessel intersect 2 %s_shell %s_column\n",
-                pre, b.r_in, b.z_top, zhi + 1.0, pre, pre, pre);
 }
 
 static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
 {
     char law[256];
     gf_dem_contact(c, law, sizeof law);
-    double hw = 0.5 * c->container_width, hd = 0.5 * c->container_depth;
     fprintf(f,
             "comm_modify vel yes\n"
             "neighbor 0.2 bin\n"
@@ -122,15 +91,8 @@ static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double 
             "fix integrate flow nve/sphere\n"
             "fix gravity flow gravity 1.0 vector 0 0 -1\n",
             law, c->dem_timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM);
-    if (c->container_shape == GF_SHAPE_CYLINDER) {
-        gf_dem_cylinder_region(f, c, pre, zlo, zhi);
-        fprintf(f, "fix walls flow wall/gran/region hertz/history %s region %s_vessel\n", law, pre);
-    } else {
-        fprintf(f,
-                "fix wall_x flow wall/gran hertz/history %s xplane %.10g %.10g\n"
-                "fix wall_y flow wall/gran hertz/history %s yplane %.10g %.10g\n",
-                law, -hw, hw, law, -hd, hd);
-    }
+    const gf_container box = gf_container_make(c);
+    (void)gf_container_lammps_walls(&box, f, pre, law, zlo, zhi); // the container's walls (src/geom/; asked before)
     fprintf(f,
             "compute ke flow ke\n"
             "variable nflow equal count(flow)\n"
@@ -194,40 +156,30 @@ static gf_status gf_dem_write_data(const gf_config *c, const char *dir, const gf
     return gf_atomic_commit(f, tmp, path);
 }
 
-gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, gf_dem_plan *plan_out)
-{
-    return gf_dem_write_inputs_stoppable(cfg_in, dir, NULL, plan_out);
-}
-
-gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir, volatile sig_atomic_t *stop,
-                                        gf_dem_plan *plan_out)
+gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf_packing_opts *opts,
+                              gf_dem_plan *plan_out)
 {
     gf_config cv = *cfg_in;
     gf_config *c = &cv;
     gf_status st = gf_config_validate(c);
     if (st != GF_OK) return st;
     if (!dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_dem_write_inputs: no directory");
-    if (c->container_shape == GF_SHAPE_MESH) {
-        char where[GF_PATH_MAX + 32];
-        gf_config_where(c, "container.shape", where, sizeof where);
-        return gf_error_set(GF_ERR_PARAM,
-                            "%s: container.shape = mesh: granflow dem cannot model it: LAMMPS' granular walls "
-                            "(fix wall/gran, wall/gran/region) take planes, cylinders and regions, not a "
-                            "triangle mesh (%s); run the spot model on it (granflow run), or describe the "
-                            "container as a box or cylinder for DEM",
-                            where, c->container_mesh);
-    }
     gf_dem_plan plan = {0};
-    const bool cyl = c->container_shape == GF_SHAPE_CYLINDER;
-    if (cyl && c->inner_radius > 0.0 && c->dem_fill_method == GF_DEM_POUR)
-        return gf_error_set(GF_ERR_PARAM, "dem.fill_method = pour cannot pour around container.inner_radius (fix pour "
-                                          "would insert into the column): use dem.fill_method = generate");
-    double area = cyl ? GF_DEM_PI * (c->container_radius * c->container_radius - c->inner_radius * c->inner_radius)
-                      : c->container_width * c->container_depth,
-           vp = GF_DEM_PI / 6.0;
+    const gf_container box = gf_container_make(c);
+    // Whether LAMMPS can hold the walls at all (a mesh's triangles: no).
+    if ((st = gf_container_lammps_walls(&box, NULL, NULL, NULL, 0.0, 0.0)) != GF_OK) {
+        char where[GF_PATH_MAX + 32], why[1024];
+        snprintf(why, sizeof why, "%s", gf_last_error());
+        if (gf_config_where(c, "container.shape", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
+        return gf_error_set(st, "%s: %s", where, why);
+    }
+    if (c->dem_fill_method == GF_DEM_POUR && (st = gf_container_lammps_pour(&box, NULL, 0.0, 0.0, 0.0)) != GF_OK)
+        return st;
+    // The column's cross-section, above any funnel.
+    double area = box.ops->section_area(&box, box.z_col), vp = GF_DEM_PI / 6.0;
     gf_packing pk = {0};
     if (c->dem_fill_method == GF_DEM_GENERATE) {
-        if ((st = gf_packing_for_config_stoppable(c, stop, &pk, NULL)) != GF_OK) return st;
+        if ((st = gf_packing_for_config(c, opts, &pk, NULL)) != GF_OK) return st;
         plan.particles = (int64_t)pk.n;
     } else if (c->packing_fill_height > 0) {
         plan.particles = (int64_t)floor(GF_DEM_PHI_FILL * area * c->packing_fill_height / vp + 0.5);
@@ -235,8 +187,8 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
         plan.particles = c->packing_particles;
     }
     plan.fill_height = (double)plan.particles * vp / (GF_DEM_PHI_FILL * area);
-    // A funnel holds less than the cylinder over it: the fill ends at most its height higher.
-    if (cyl) plan.fill_height += gf_container_make(c).z_top;
+    // A funnel holds less than the column over it: the fill ends at most its height higher.
+    plan.fill_height += box.z_col;
     plan.delete_z = fmin(gf_config_exit_plane(c), 0.0) - GF_DEM_DELETE_DEPTH;
     plan.box_zlo = plan.delete_z - 2.0;
     plan.snapshot_steps = gf_dem_steps(c, c->output_snapshot_interval);
@@ -290,20 +242,14 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
     gf_dem_physics(f, c, "fill", plan.box_zlo, plan.box_zhi);
     fprintf(f, "# the base is closed while the container fills\n"
                "fix base flow wall/gran hertz/history %s zplane %.10g NULL\n",
-            law, cyl ? fmin(gf_config_exit_plane(c), 0.0) : 0.0);
+            law, box.gate_z);
     int64_t chunk = gf_dem_steps(c, GF_DEM_CHUNK);
     if (c->dem_fill_method == GF_DEM_POUR) {
         long maxk = (long)ceil(2.0 * plan.pour_time / GF_DEM_CHUNK) + 20;
-        char pour[256];
-        if (cyl)
-            snprintf(pour, sizeof pour, "region pour cylinder z 0 0 %.10g %.10g %.10g units box\n",
-                     c->container_radius - 0.55, z_ins, z_ins + hp);
-        else
-            snprintf(pour, sizeof pour, "region pour block %.10g %.10g %.10g %.10g %.10g %.10g units box\n", -hw + 0.55,
-                     hw - 0.55, -hd + 0.55, hd - 0.55, z_ins, z_ins + hp);
+        fprintf(f, "# pour %lld particles from the region %.4g < z < %.4g (batches of packing fraction %g)\n",
+                (long long)plan.particles, z_ins, z_ins + hp, GF_DEM_POUR_FRACTION);
+        gf_container_lammps_pour(&box, f, 0.55, z_ins, z_ins + hp);
         fprintf(f,
-                "# pour %lld particles from the region %.4g < z < %.4g (batches of packing fraction %g)\n"
-                "%s"
                 "fix pour flow pour %lld %d %ld region pour vol %g 200 diam one 1.0 dens %.16g %.16g vel 0 0 0 0 0\n"
                 "print \"granflow-phase fill %lld %.6g\"\n"
                 "variable pourk loop %ld\n"
@@ -314,7 +260,7 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
                 "jump SELF pour_loop\n"
                 "label pour_done\n"
                 "unfix pour\n",
-                (long long)plan.particles, z_ins, z_ins + hp, GF_DEM_POUR_FRACTION, pour, (long long)plan.particles, GF_DEM_TYPE_FLOW,
+                (long long)plan.particles, GF_DEM_TYPE_FLOW,
                 gf_dem_seed(c, 1), GF_DEM_POUR_FRACTION, GF_DEM_DENSITY, GF_DEM_DENSITY, (long long)plan.particles,
                 plan.pour_time, maxk, (long long)chunk, (long long)plan.particles);
     } else {
@@ -342,22 +288,10 @@ gf_status gf_dem_write_inputs_stoppable(const gf_config *cfg_in, const char *dir
     // ---- in.drain ----
     if ((st = gf_dem_open(dir, "in.drain", path, sizeof path, tmp, sizeof tmp, &f)) != GF_OK) goto done;
     gf_dem_head(f, c, "DEM drainage (after in.fill)");
-    double R = 0.5 * c->orifice_diameter;
     fprintf(f, "read_restart settled.restart\nnewton off\n");
     gf_dem_physics(f, c, "drain", plan.box_zlo, plan.box_zhi);
     fprintf(f, "reset_timestep 0\n");
-    if (!cyl) {
-        fprintf(f, "# the base with its hole: the surface of (z > 0) united with the hole below it\n"
-                   "region above block INF INF INF INF 0 INF units box\n");
-        const double ox = c->orifice_x, oy = c->orifice_y; // the orifice centre
-        if (c->orifice_shape == GF_ORIFICE_SLIT)
-            fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", ox - R, ox + R, plan.box_zlo);
-        else
-            fprintf(f, "region hole cylinder z %.10g %.10g %.10g %.10g 1 units box\n", ox, oy, R, plan.box_zlo);
-        fprintf(f, "region vessel union 2 above hole\n"
-                   "fix base flow wall/gran/region hertz/history %s region vessel\n",
-                law);
-    }
+    gf_container_lammps_base(&box, f, law, plan.box_zlo);
     fprintf(f,
             "# particles that fell %g d below the base through the hole leave\n"
             "region gone block INF INF INF INF INF %.10g units box\n"

@@ -11,6 +11,12 @@
 
 #include "core/clock.h"
 
+const char *gf_dem_phase_name(gf_dem_phase phase)
+{
+    static const char *const names[] = {"none", "fill", "settle", "drain", "done"};
+    return (unsigned)phase < sizeof names / sizeof names[0] ? names[phase] : "?";
+}
+
 // A count LAMMPS printed as a number, as an int64_t: NaN and negatives are 0,
 // and beyond 2^62 it is clamped (converting an out-of-range double is undefined).
 static int64_t gf_dem_count(double v)
@@ -30,10 +36,17 @@ void gf_dem_line(gf_dem_reader *r, char *line)
     char name[32];
     double a, b;
     if (sscanf(line, "granflow-phase %31s %lf %lf", name, &a, &b) == 3) {
-        static const char *const names[] = {"fill", "settle", "settled", "drain", "done"};
-        for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
-            if (!strcmp(name, names[k])) r->p.phase = names[k];
-        if (!strcmp(name, "settled")) r->p.phase = "settle";
+        // "settled" marks the end of the settle phase (its line says how many settled).
+        static const struct {
+            const char *name;
+            gf_dem_phase phase;
+        } marks[] = {{"fill", GF_DEM_PHASE_FILL},
+                     {"settle", GF_DEM_PHASE_SETTLE},
+                     {"settled", GF_DEM_PHASE_SETTLE},
+                     {"drain", GF_DEM_PHASE_DRAIN},
+                     {"done", GF_DEM_PHASE_DONE}};
+        for (size_t k = 0; k < sizeof marks / sizeof marks[0]; k++)
+            if (!strcmp(name, marks[k].name)) r->p.phase = marks[k].phase;
         if (!strcmp(name, "fill") || !strcmp(name, "drain")) r->p.target = gf_dem_count(a);
         if (strcmp(name, "settled") && strcmp(name, "done")) r->p.until = b;
         r->t_phase = NAN;
@@ -42,12 +55,12 @@ void gf_dem_line(gf_dem_reader *r, char *line)
         long long step;
         double t, n, ke;
         char extra;
-        if (sscanf(line, " %lld %lf %lf %lf %c", &step, &t, &n, &ke, &extra) != 4 || !r->p.phase) return;
+        if (sscanf(line, " %lld %lf %lf %lf %c", &step, &t, &n, &ke, &extra) != 4 || r->p.phase == GF_DEM_PHASE_NONE) return;
         if (isnan(r->t_phase)) r->t_phase = t; // first thermo line of the phase
         r->p.time = t - r->t_phase;
         r->p.particles = gf_dem_count(n);
         r->p.ke = ke;
     }
     r->p.wall_seconds = gf_clock_now() - r->wall0;
-    if (r->o->progress && r->p.phase) r->o->progress(r->o->ctx, &r->p);
+    if (r->o->progress && r->p.phase != GF_DEM_PHASE_NONE) r->o->progress(r->o->ctx, &r->p);
 }

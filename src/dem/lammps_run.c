@@ -270,7 +270,7 @@ static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_rea
                 "interrupted: LAMMPS was stopped during the %s (t = %.6g tau of the phase, %.0f s after the start)\n"
                 "removed: %s\n"
                 "again: granflow dem ... --run --force (from the fill)%s\n",
-                r->p.phase ? r->p.phase : fill ? "fill" : "drain", r->p.time, gf_clock_now() - r->wall0,
+                r->p.phase != GF_DEM_PHASE_NONE ? gf_dem_phase_name(r->p.phase) : fill ? "fill" : "drain", r->p.time, gf_clock_now() - r->wall0,
                 removed[0] ? removed : (fill ? "nothing (no settled packing was written)" : "nothing (no snapshot yet)"),
                 fill ? "" : " or --drain-only (from settled.restart)");
         gf_atomic_commit(f, tmp, path);

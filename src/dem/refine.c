@@ -61,7 +61,7 @@ static gf_status gf_ref_run(const gf_series *dem, const gf_packing *start, const
     gf_status st = gf_sim_create(cfg, start, &sim);
     if (st != GF_OK) return st;
     gf_ref_capture cap = {.s = out, .t_first = dem->frames[0].time};
-    gf_run_hooks h = {.ctx = &cap, .snapshot = gf_ref_snapshot, .stop = stop};
+    gf_sim_hooks h = {.ctx = &cap, .snapshot = gf_ref_snapshot, .stop = stop};
     st = gf_sim_run(sim, until - dem->frames[0].time, &h);
     // The exits too, as a run directory's exits.csv: the outflow is then
     // measured exactly as on `granflow run`'s output.
@@ -107,7 +107,7 @@ static double gf_ref_score(const gf_dem_flowstats *d, const gf_dem_flowstats *s,
     double score = fabs(s->flow.value - d->flow.value) / (fabs(d->flow.value) * ftol);
     if (!isfinite(score)) return INFINITY;
     for (size_t z = 0; z < d->nz && z < s->nz; z++) {
-        if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
+        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !gf_dem_flowstats_steady(s, z)) continue;
         double e = fabs(s->var[z].value - d->var[z].value) / (fabs(d->var[z].value) * vtol);
         score = fmax(score, isfinite(e) ? e : INFINITY);
     }

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "granflow/dem.h"
 #include "core/textscan.h"
+#include "geom/container.h"
 #include "packing/layer.h"
 
 static int gf_dem_is_dump(const char *name)
@@ -119,15 +120,9 @@ static gf_status gf_dem_units(const gf_dem_source *src, gf_config *ucfg)
 /// the units, for the report of gf_dem_series_load.
 static void gf_dem_describe(const gf_config *cfg, const gf_series_units *u, char *buf, size_t n)
 {
-    char w[3][GF_PATH_MAX + 32];
-    const bool cyl = cfg->container_shape == GF_SHAPE_CYLINDER;
-    const char *keys[3] = {cyl ? "container.radius" : "container.width", cyl ? "container.hopper_angle" : "container.depth",
-                           cyl ? "container.outlet_diameter" : "container.orifice_diameter"};
-    for (int k = 0; k < 3; k++) gf_config_where(cfg, keys[k], w[k], sizeof w[k]);
-    int len = cyl ? snprintf(buf, n, "cylinder of radius %g d (%s), funnel %g deg (%s), outlet %g d (%s)",
-                             cfg->container_radius, w[0], cfg->hopper_angle, w[1], cfg->outlet_diameter, w[2])
-                  : snprintf(buf, n, "container %g x %g d (width: %s; depth: %s), orifice %g d (%s)",
-                             cfg->container_width, cfg->container_depth, w[0], w[1], cfg->orifice_diameter, w[2]);
+    const gf_container c = gf_container_make(cfg);
+    gf_container_describe(&c, cfg, buf, n);
+    int len = (int)strlen(buf);
     if (len >= 0 && (size_t)len < n && (u->diameter != 1.0 || u->gravity != 1.0))
         snprintf(buf + len, n - (size_t)len, "; the dumps read with d = %g and tau = %.6g in their units "
                  "(dump.diameter = %g, dump.gravity = %g)", u->diameter, sqrt(u->diameter / u->gravity),
@@ -175,7 +170,8 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if (st != GF_OK) return st;
     const gf_series_units u = {cfg.dump_diameter, cfg.dump_gravity};
     const bool converted = u.diameter != 1.0 || u.gravity != 1.0;
-    st = gf_series_load_in(path, src->dump_dt, &u, src->stop, out);
+    const gf_series_opts so = {.units = &u, .stop = src->stop};
+    st = gf_series_load(path, src->dump_dt, &so, out);
     if (st != GF_OK) return st;
     char mark[GF_PATH_MAX + 32];
     struct stat sb;

@@ -2,6 +2,7 @@
 // The box (SPEC 1.1; 2009 paper Sec. 2: walls x = +-25, y = +-4, base z = 0
 // with a circular or slit orifice, centred at container.orifice_x, orifice_y).
 #include "geom/container.h"
+#include "geom/mesh.h"
 
 static int gf_box_walls(const gf_container *c, const double p[3], double reach, gf_wall_hit *hit)
 {
@@ -116,6 +117,89 @@ static double gf_box_section_area(const gf_container *c, double z)
     return (c->xhi - c->xlo) * (c->yhi - c->ylo);
 }
 
+static double gf_box_slice_volume(const gf_container *c, double z0, double z1)
+{
+    return (z1 - z0) * (c->xhi - c->xlo) * (c->yhi - c->ylo);
+}
+
+static bool gf_box_clear(const gf_container *c, double x, double y, double z, double m)
+{
+    return x >= c->xlo + m && x <= c->xhi - m && y >= c->ylo + m && y <= c->yhi - m && z >= m;
+}
+
+static void gf_box_radii(const gf_container *c, double r[2])
+{
+    r[0] = 0.0;
+    r[1] = hypot(fmax(-c->xlo, c->xhi), fmax(-c->ylo, c->yhi));
+}
+
+static gf_profile_coord gf_box_profile(const gf_container *c)
+{
+    (void)c;
+    return GF_PROFILE_X;
+}
+
+// The inside only: the panel draws the walls and the base with its hole
+// around it (gf_container_rectangular).
+static void gf_box_outline(const gf_container *c, double ztop, gf_outline *o)
+{
+    const double p[4][2] = {{c->xlo, 0.0}, {c->xhi, 0.0}, {c->xhi, ztop}, {c->xlo, ztop}};
+    for (int k = 0; k < 4; k++) {
+        o->p[k][0] = p[k][0];
+        o->p[k][1] = p[k][1];
+    }
+    o->n = 4;
+}
+
+// Four planes; the base comes in the drain stage (gf_box_lammps_base).
+static gf_status gf_box_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+                                double zhi)
+{
+    if (!f) return GF_OK; // LAMMPS holds these walls
+    (void)pre;
+    (void)zlo;
+    (void)zhi;
+    fprintf(f,
+            "fix wall_x flow wall/gran hertz/history %s xplane %.10g %.10g\n"
+            "fix wall_y flow wall/gran hertz/history %s yplane %.10g %.10g\n",
+            law, c->xlo, c->xhi, law, c->ylo, c->yhi);
+    return GF_OK;
+}
+
+static void gf_box_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)
+{
+    fprintf(f, "# the base with its hole: the surface of (z > 0) united with the hole below it\n"
+               "region above block INF INF INF INF 0 INF units box\n");
+    const double R = c->hole, ox = c->ox, oy = c->oy; // the orifice centre
+    if (c->shape == GF_ORIFICE_SLIT)
+        fprintf(f, "region hole block %.10g %.10g INF INF %.10g 1 units box\n", ox - R, ox + R, zlo);
+    else
+        fprintf(f, "region hole cylinder z %.10g %.10g %.10g %.10g 1 units box\n", ox, oy, R, zlo);
+    fprintf(f, "region vessel union 2 above hole\n"
+               "fix base flow wall/gran/region hertz/history %s region vessel\n",
+            law);
+}
+
+static gf_status gf_box_lammps_pour(const gf_container *c, FILE *f, double inset, double zlo, double zhi)
+{
+    if (f)
+        fprintf(f, "region pour block %.10g %.10g %.10g %.10g %.10g %.10g units box\n", c->xlo + inset,
+                c->xhi - inset, c->ylo + inset, c->yhi - inset, zlo, zhi);
+    return GF_OK;
+}
+
+static int gf_box_describe(const gf_container *c, const char *const where[3], char *buf, size_t n)
+{
+    return snprintf(buf, n, "container %g x %g d (width: %s; depth: %s), orifice %g d (%s)", c->xhi - c->xlo,
+                    c->yhi - c->ylo, where[0], where[1], 2.0 * c->hole, where[2]);
+}
+
+static const char *gf_box_outlet_name(const gf_container *c)
+{
+    (void)c;
+    return "orifice";
+}
+
 const gf_shape_ops gf_box_ops = {
     .walls = gf_box_walls,
     .push = gf_box_push,
@@ -125,4 +209,28 @@ const gf_shape_ops gf_box_ops = {
     .inside_xy = gf_box_inside_xy,
     .floor_z = gf_box_floor_z,
     .section_area = gf_box_section_area,
+    .slice_volume = gf_box_slice_volume,
+    .clear = gf_box_clear,
+    .radii = gf_box_radii,
+    .profile = gf_box_profile,
+    .outline = gf_box_outline,
+    .mesh = gf_mesh_box,
+    .lammps_walls = gf_box_lammps_walls,
+    .lammps_base = gf_box_lammps_base,
+    .lammps_pour = gf_box_lammps_pour,
+    .describe = gf_box_describe,
+    .outlet_name = gf_box_outlet_name,
+};
+
+static const char *const gf_box_keys[] = {"container.width",    "container.depth",    "container.orifice_diameter",
+                                          "container.orifice_shape", "container.orifice_x", "container.orifice_y",
+                                          NULL};
+
+const gf_shape gf_box_shape = {
+    .name = "box",
+    .id = GF_SHAPE_BOX,
+    .ops = &gf_box_ops,
+    .keys = gf_box_keys,
+    .make = NULL, // the shared fields are the whole box
+    .rectangular = true,
 };

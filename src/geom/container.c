@@ -2,15 +2,12 @@
 // The container of a configuration, and what shapes share (docs/geometry.md).
 #include "geom/container.h"
 
-#include "geom/meshshape.h"
-
-static const double gf_deg = 3.14159265358979323846 / 180.0;
-
 gf_container gf_container_make(const gf_config *cfg)
 {
+    const gf_shape *t = gf_shape_find(cfg->container_shape);
     gf_container c = {
-        .ops = &gf_box_ops,
-        .kind = cfg->container_shape,
+        .ops = t ? t->ops : &gf_box_ops,
+        .type = t,
         .xlo = -0.5 * cfg->container_width,
         .xhi = 0.5 * cfg->container_width,
         .ylo = -0.5 * cfg->container_depth,
@@ -21,24 +18,7 @@ gf_container gf_container_make(const gf_config *cfg)
         .oy = cfg->orifice_y,
         .exit_z = gf_config_exit_plane(cfg),
     };
-    if (cfg->container_shape == GF_SHAPE_CYLINDER) {
-        double R = cfg->container_radius, ro = 0.5 * cfg->outlet_diameter, a = cfg->hopper_angle * gf_deg;
-        c.ops = &gf_cylinder_ops;
-        c.xlo = c.ylo = -R;
-        c.xhi = c.yhi = R;
-        c.shape = GF_ORIFICE_CIRCLE;
-        c.hole = ro;
-        c.ox = c.oy = 0.0; // on the axis (validation rejects an off-centre outlet)
-        c.radius = R;
-        c.r_out = ro;
-        c.r_in = cfg->inner_radius;
-        c.pipe = cfg->outlet_length;
-        c.sin_a = cfg->hopper_angle > 0.0 ? sin(a) : 0.0;
-        c.cos_a = cfg->hopper_angle > 0.0 ? cos(a) : 1.0;
-        c.z_top = (R - ro) * c.sin_a / c.cos_a;
-        c.cone_len = (R - ro) / c.cos_a;
-    }
-    if (cfg->container_shape == GF_SHAPE_MESH) gf_meshshape_fill(&c, cfg); // the outlet: the orifice keys'
+    if (t && t->make) t->make(&c, cfg);
     return c;
 }
 
@@ -94,15 +74,88 @@ void gf_container_bounds_xy(const gf_container *c, double lo[2], double hi[2])
 
 double gf_container_outer_radius(const gf_container *c)
 {
-    if (c->kind == GF_SHAPE_CYLINDER) return c->radius;
-    return hypot(fmax(-c->xlo, c->xhi), fmax(-c->ylo, c->yhi));
+    double r[2];
+    c->ops->radii(c, r);
+    return r[1];
+}
+
+double gf_container_inner_radius(const gf_container *c)
+{
+    double r[2];
+    c->ops->radii(c, r);
+    return r[0];
 }
 
 double gf_container_slice_volume(const gf_container *c, double z0, double z1)
 {
-    // Midpoint rule on 256 layers: exact for the box, within ~1e-5 for a funnel.
+    return c->ops->slice_volume(c, z0, z1);
+}
+
+double gf_container_slice_volume_by_sections(const gf_container *c, double z0, double z1)
+{
+    // Midpoint rule on 256 layers: exact for a prism, within ~1e-5 for a funnel.
     const int n = 256;
     double h = (z1 - z0) / n, v = 0.0;
     for (int k = 0; k < n; k++) v += c->ops->section_area(c, z0 + (k + 0.5) * h);
     return v * h;
+}
+
+void gf_container_outline(const gf_container *c, double ztop, gf_outline *o)
+{
+    *o = (gf_outline){0};
+    c->ops->outline(c, ztop, o);
+}
+
+void gf_container_bulk(const gf_container *c, double top, gf_bulk_region *b)
+{
+    // Curved walls order the first layers: the ring 2-3 d from a cylinder's
+    // wall is denser than the bulk by ~0.05 (docs/geometry.md), so a radial
+    // container keeps 3 d from its walls, a flat-walled one 2 d.
+    *b = (gf_bulk_region){0};
+    b->lo[2] = c->z_col + 2.0;
+    b->hi[2] = top - 3.0;
+    if (gf_container_profile_radial(c)) {
+        double r[2];
+        c->ops->radii(c, r);
+        b->annulus = true;
+        b->r0 = r[0] > 0.0 ? r[0] + 3.0 : 0.0;
+        b->r1 = r[1] - 3.0;
+        b->lo[0] = b->lo[1] = -r[1];
+        b->hi[0] = b->hi[1] = r[1];
+        return;
+    }
+    b->lo[0] = c->xlo + 2;
+    b->hi[0] = c->xhi - 2;
+    b->lo[1] = c->ylo + 2;
+    b->hi[1] = c->yhi - 2;
+}
+
+gf_status gf_container_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+                               double zhi)
+{
+    return c->ops->lammps_walls(c, f, pre, law, zlo, zhi);
+}
+
+void gf_container_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)
+{
+    c->ops->lammps_base(c, f, law, zlo);
+}
+
+gf_status gf_container_lammps_pour(const gf_container *c, FILE *f, double inset, double zlo, double zhi)
+{
+    return c->ops->lammps_pour(c, f, inset, zlo, zhi);
+}
+
+void gf_container_describe(const gf_container *c, const gf_config *cfg, char *buf, size_t n)
+{
+    char w[3][GF_PATH_MAX + 32];
+    const char *where[3];
+    for (int k = 0; k < 3; k++) {
+        const char *key = c->type && c->type->keys ? c->type->keys[k] : NULL;
+        w[k][0] = 0;
+        if (key) gf_config_where(cfg, key, w[k], sizeof w[k]);
+        where[k] = w[k];
+    }
+    if (n) buf[0] = 0;
+    c->ops->describe(c, where, buf, n);
 }

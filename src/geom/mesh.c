@@ -7,11 +7,10 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
-#include "geom/meshshape.h"
 
 #define GF_MESH_PI 3.14159265358979323846
 
-static size_t gf_mesh_vertex(gf_mesh *m, double x, double y, double z)
+size_t gf_mesh_vertex(gf_mesh *m, double x, double y, double z)
 {
     if (m->nv == m->vcap) {
         size_t cap = m->vcap ? 2 * m->vcap : 64;
@@ -26,7 +25,7 @@ static size_t gf_mesh_vertex(gf_mesh *m, double x, double y, double z)
     return m->nv++;
 }
 
-static bool gf_mesh_tri(gf_mesh *m, size_t a, size_t b, size_t c)
+bool gf_mesh_tri(gf_mesh *m, size_t a, size_t b, size_t c)
 {
     if (a == SIZE_MAX || b == SIZE_MAX || c == SIZE_MAX) return false;
     if (m->nt == m->tcap) {
@@ -44,7 +43,7 @@ static bool gf_mesh_tri(gf_mesh *m, size_t a, size_t b, size_t c)
 }
 
 // The quad a-b-c-d (in order around it) as two triangles.
-static bool gf_mesh_quad(gf_mesh *m, const double a[3], const double b[3], const double c[3], const double d[3])
+bool gf_mesh_quad(gf_mesh *m, const double a[3], const double b[3], const double c[3], const double d[3])
 {
     size_t ia = gf_mesh_vertex(m, a[0], a[1], a[2]), ib = gf_mesh_vertex(m, b[0], b[1], b[2]);
     size_t ic = gf_mesh_vertex(m, c[0], c[1], c[2]), id = gf_mesh_vertex(m, d[0], d[1], d[2]);
@@ -66,7 +65,7 @@ static void gf_mesh_rect_point(const gf_container *c, double th, double out[3])
 
 // A surface of revolution about the z axis: the segment (r0, z0) - (r1, z1)
 // of the (rho, z) half-plane swept round in n steps.
-static bool gf_mesh_revolve(gf_mesh *m, double r0, double z0, double r1, double z1, int n)
+bool gf_mesh_revolve(gf_mesh *m, double r0, double z0, double r1, double z1, int n)
 {
     bool ok = true;
     for (int k = 0; k < n && ok; k++) {
@@ -79,49 +78,36 @@ static bool gf_mesh_revolve(gf_mesh *m, double r0, double z0, double r1, double 
     return ok;
 }
 
-// The cylinder (cylinder.c): wall, funnel (or flat annulus), outlet pipe and
-// the inner column's side and bottom, each a surface of revolution.
-static bool gf_mesh_cylinder(const gf_container *c, double top, int n, gf_mesh *m)
+static gf_status gf_mesh_failed(gf_mesh *m)
 {
-    double R = c->radius, ro = c->r_out, zt = c->z_top;
-    bool ok = gf_mesh_revolve(m, R, zt, R, fmax(top, zt), n) && gf_mesh_revolve(m, ro, 0.0, R, zt, n);
-    if (ok && c->pipe > 0.0) ok = gf_mesh_revolve(m, ro, -c->pipe, ro, 0.0, n);
-    if (ok && c->r_in > 0.0)
-        ok = gf_mesh_revolve(m, c->r_in, zt, c->r_in, fmax(top, zt), n) && gf_mesh_revolve(m, 0.0, zt, c->r_in, zt, n);
-    return ok;
+    gf_mesh_free(m);
+    return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
 }
 
-// A mesh container (meshshape.c): its own triangles, whatever the height.
-static bool gf_mesh_copy(const gf_container *c, gf_mesh *m)
+// The cylinder (cylinder.c): wall, funnel (or flat annulus), outlet pipe and
+// the inner column's side and bottom, each a surface of revolution.
+gf_status gf_mesh_cylinder(const gf_container *c, double top, int segments, gf_mesh *m)
 {
-    if (!c->mesh) return true;
-    const gf_stl *s = &c->mesh->sdf.mesh;
-    for (size_t v = 0; v < s->nv; v++)
-        if (gf_mesh_vertex(m, s->v[v][0], s->v[v][1], s->v[v][2]) == SIZE_MAX) return false;
-    for (size_t t = 0; t < s->nt; t++)
-        if (!gf_mesh_tri(m, s->t[t][0], s->t[t][1], s->t[t][2])) return false;
-    return true;
+    const gf_cylinder_params *q = &c->u.cyl;
+    int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments;
+    double R = q->radius, ro = q->r_out, zt = c->z_col;
+    bool ok = gf_mesh_revolve(m, R, zt, R, fmax(top, zt), n) && gf_mesh_revolve(m, ro, 0.0, R, zt, n);
+    if (ok && q->pipe > 0.0) ok = gf_mesh_revolve(m, ro, -q->pipe, ro, 0.0, n);
+    if (ok && q->r_in > 0.0)
+        ok = gf_mesh_revolve(m, q->r_in, zt, q->r_in, fmax(top, zt), n) && gf_mesh_revolve(m, 0.0, zt, q->r_in, zt, n);
+    return ok ? GF_OK : gf_mesh_failed(m);
 }
 
 gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_mesh *m)
 {
     *m = (gf_mesh){0};
+    return c->ops->mesh(c, top, segments, m);
+}
+
+// The box (box.c): side walls and the base with its orifice cut out.
+gf_status gf_mesh_box(const gf_container *c, double top, int segments, gf_mesh *m)
+{
     bool ok = true;
-    if (c->kind == GF_SHAPE_MESH) {
-        if (!gf_mesh_copy(c, m)) {
-            gf_mesh_free(m);
-            return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
-        }
-        return GF_OK;
-    }
-    if (c->kind == GF_SHAPE_CYLINDER) {
-        int n = segments < 8 ? 8 : segments > 4096 ? 4096 : segments;
-        if (!gf_mesh_cylinder(c, top, n, m)) {
-            gf_mesh_free(m);
-            return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
-        }
-        return GF_OK;
-    }
     // Side walls: x = xlo, xhi and y = ylo, yhi from z = 0 to top.
     const double X0 = c->xlo, X1 = c->xhi, Y0 = c->ylo, Y1 = c->yhi;
     const double corners[4][2] = {{X0, Y0}, {X1, Y0}, {X1, Y1}, {X0, Y1}};
@@ -162,11 +148,7 @@ gf_status gf_container_mesh(const gf_container *c, double top, int segments, gf_
             ok = gf_mesh_quad(m, a, b, cc, d);
         }
     }
-    if (!ok) {
-        gf_mesh_free(m);
-        return gf_error_set(GF_ERR_NOMEM, "out of memory for the container mesh");
-    }
-    return GF_OK;
+    return ok ? GF_OK : gf_mesh_failed(m);
 }
 
 void gf_mesh_free(gf_mesh *m)

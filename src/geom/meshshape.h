@@ -26,9 +26,9 @@ typedef struct gf_meshshape {
     uint32_t *vstart, *vnbr; ///< each vertex's neighbours (CSR)
     uint32_t *vfirst;       ///< each vertex's lowest-numbered triangle
     bool closed;            ///< no open edge: the outlet is cut out of the walls by the orifice keys
+    double z_col;           ///< where the cross-section stops changing (a funnel's top; the floor for straight walls)
+    char path[GF_PATH_MAX]; ///< container.mesh as given (messages)
 } gf_meshshape;
-
-extern const gf_shape_ops gf_mesh_ops;
 
 /// The mesh container of `cfg` (container.mesh, mesh_scale, mesh_resolution,
 /// the orifice keys and exit_z): from the cache, else read, checked and
@@ -38,13 +38,13 @@ extern const gf_shape_ops gf_mesh_ops;
 /// onto no inside).
 gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out);
 
-/// Fills a mesh container's fields (gf_container_make): its mesh from the
-/// cache (NULL when it cannot be loaded: then it has no inside).
-void gf_meshshape_fill(gf_container *c, const gf_config *cfg);
-
 /// The segment (x0, z0, x1, z1) where triangle t of the mesh crosses the
 /// plane y (pictures: the outline of the section); false when it does not.
 bool gf_meshshape_slice_y(const gf_meshshape *ms, double y, size_t t, double seg[4]);
+
+/// The FNV-1a digest of the bytes of cfg's container.mesh (a checkpoint
+/// names the mesh by it: a run directory's copy is the same mesh).
+gf_status gf_meshshape_digest(const gf_config *cfg, uint64_t *digest);
 
 /// Frees every cached mesh (tests that count allocations; no container
 /// made earlier may be used afterwards).

@@ -25,7 +25,8 @@
 
 enum {
     GF_READ_MAX_COLS = 256,     // columns per line we accept (LAMMPS dumps have ~5-20)
-    GF_READ_MAX_HINT = 1 << 20, // most particles reserved up front on an unverified count
+    GF_READ_MAX_HINT = 1 << 16, // most particles reserved up front on an unverified count (more grow as read:
+                                // a 1 M reserve per frame made hostile counts cost ~100 MB each, issue 26 fuzzing)
 };
 
 // ---------------------------------------------------------------------------

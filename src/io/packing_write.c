@@ -12,17 +12,9 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/dump_write.h"
 
 enum { GF_WRITE_PATH_MAX = 4096 };
-
-/// Shortest of %.15g and %.17g that reads back as exactly v, so a written
-/// packing reads back bit for bit (the brief's "%.9g" would lose up to 5e-9
-/// relative) while typical values such as 0.5 stay short.
-static void gf_write_num(char *buf, size_t size, double v)
-{
-    snprintf(buf, size, "%.15g", v);
-    if (strtod(buf, NULL) != v) snprintf(buf, size, "%.17g", v);
-}
 
 static int gf_write_has_suffix(const char *path, const char *suffix)
 {
@@ -64,17 +56,14 @@ static void gf_write_body(FILE *f, const gf_packing *p, gf_packing_format format
 {
     char x[32], y[32], z[32], r[32];
     if (format == GF_FORMAT_LAMMPS) {
-        double lo[3], hi[3];
-        gf_write_bounds(p, cfg, lo, hi);
-        fprintf(f, "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS ff ff ff\n",
-                p->n);
-        for (int k = 0; k < 3; k++) {
-            gf_write_num(x, sizeof x, lo[k]);
-            gf_write_num(y, sizeof y, hi[k]);
-            fprintf(f, "%s %s\n", x, y);
-        }
-        fputs("ITEM: ATOMS id type x y z radius\n", f);
-    } else if (format == GF_FORMAT_XYZ) {
+        // Exact numbers (the brief's "%.9g" would lose up to 5e-9 relative):
+        // a written packing reads back bit for bit.
+        gf_dump_frame fr = {.p = p, .numbers = GF_DUMP_EXACT, .step = 0, .radius = true};
+        gf_write_bounds(p, cfg, fr.lo, fr.hi);
+        gf_dump_write_frame(f, &fr);
+        return;
+    }
+    if (format == GF_FORMAT_XYZ) {
         // Extended XYZ: the comment line names the columns, so the radii
         // come back (a bidisperse packing stays bidisperse) and OVITO and
         // ASE read them too.
@@ -82,19 +71,17 @@ static void gf_write_body(FILE *f, const gf_packing *p, gf_packing_format format
     } else {
         fputs("id,type,x,y,z,radius\n", f);
     }
-    const char *sep = format == GF_FORMAT_CSV ? "," : " ";
     for (size_t i = 0; i < p->n; i++) {
-        gf_write_num(x, sizeof x, p->x[i]);
-        gf_write_num(y, sizeof y, p->y[i]);
-        gf_write_num(z, sizeof z, p->z[i]);
-        gf_write_num(r, sizeof r, p->r[i]);
+        gf_dump_exact(x, sizeof x, p->x[i]);
+        gf_dump_exact(y, sizeof y, p->y[i]);
+        gf_dump_exact(z, sizeof z, p->z[i]);
+        gf_dump_exact(r, sizeof r, p->r[i]);
         if (format == GF_FORMAT_XYZ) {
             fprintf(f, "P %s %s %s %s\n", x, y, z, r);
             continue;
         }
         int type = p->layer[i] > 0 ? (int)p->layer[i] : 1;
-        fprintf(f, "%lld%s%d%s%s%s%s%s%s%s%s\n", (long long)p->id[i], sep, type, sep, x, sep, y,
-                sep, z, sep, r);
+        fprintf(f, "%lld,%d,%s,%s,%s,%s\n", (long long)p->id[i], type, x, y, z, r);
     }
 }
 

@@ -29,6 +29,14 @@ int gf_lga_dj(int e, int odd)
     return (odd + gf_lga_db[e] - odd2) / 2;
 }
 
+// The lattice's geometry lives here, not in lga.c, so that scenario.c (which
+// lga.c calls to build a lattice) needs nothing of lga.c.
+void gf_lga_site_position(int i, int j, double *x, double *y)
+{
+    *x = i * 0.86602540378443864676;
+    *y = j + 0.5 * (i & 1);
+}
+
 size_t gf_lga_neighbour(const gf_lga *l, int i, int j, int e)
 {
     int ni = i + gf_lga_da[e];

@@ -107,12 +107,6 @@ int64_t gf_lga_moving(const gf_lga *l)
 int gf_lga_width(const gf_lga *l) { return l->w; }
 int gf_lga_height(const gf_lga *l) { return l->h; }
 
-void gf_lga_site_position(int i, int j, double *x, double *y)
-{
-    *x = i * 0.86602540378443864676;
-    *y = j + 0.5 * (i & 1);
-}
-
 uint16_t gf_lga_site(const gf_lga *l, int i, int j)
 {
     if (i < 0 || j < 0 || i >= l->w || j >= l->h) return 0;

@@ -3,15 +3,10 @@
 // generated. Every path to a config's packing goes through here.
 #include "granflow/packing.h"
 
-gf_status gf_packing_for_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out,
-                                          gf_packing_import_report *rep)
+gf_status gf_packing_for_config(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out,
+                                gf_packing_import_report *rep)
 {
     if (rep) *rep = (gf_packing_import_report){0};
-    if (!cfg->packing_file[0]) return gf_packing_generate_stoppable(cfg, stop, out);
+    if (!cfg->packing_file[0]) return gf_packing_generate(cfg, opts, out);
     return gf_packing_import(cfg, out, rep);
-}
-
-gf_status gf_packing_for_config(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep)
-{
-    return gf_packing_for_config_stoppable(cfg, NULL, out, rep);
 }

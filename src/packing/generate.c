@@ -314,9 +314,8 @@ static inline double gf_gen_wall(double v, double lo, double hi)
 static void gf_gen_shape_wall(const gf_gen *g, double *x, double *y, double *z)
 {
     const gf_container *c = &g->box;
-    double p[3] = {*x, *y, *z + g->zoff}, rho2 = p[0] * p[0] + p[1] * p[1];
-    double ro = c->radius - 0.5, ri = c->r_in + 0.5;
-    if (p[2] >= c->z_top + 0.5 && rho2 < ro * ro && (c->r_in <= 0.0 || rho2 > ri * ri)) return; // the bulk
+    double p[3] = {*x, *y, *z + g->zoff};
+    if (gf_container_clear(c, p[0], p[1], p[2], 0.5)) return; // the bulk
     gf_wall_hit hit[GF_WALL_HITS];
     int n = gf_container_walls(c, p, 0.5, hit);
     for (int k = 0; k < n; k++) {
@@ -330,25 +329,13 @@ static void gf_gen_shape_wall(const gf_gen *g, double *x, double *y, double *z)
     *z = p[2] - g->zoff;
 }
 
-// Volume of a shaped container between the floor and height h (generation
-// coordinates), by slices: the cross-section is pi (R(z)^2 - r_i(z)^2).
-static double gf_gen_area(const gf_container *c, double z)
-{
-    if (c->kind == GF_SHAPE_MESH) return c->ops->section_area(c, z); // its slice (geom/meshshape.c)
-    double R = c->radius;
-    if (z < 0.0) R = c->r_out;
-    else if (c->sin_a > 0.0 && z < c->z_top) R = c->r_out + z * c->cos_a / c->sin_a;
-    double ri = c->r_in > 0.0 && z >= c->z_top ? c->r_in : 0.0;
-    return gf_gen_pi * (R * R - ri * ri);
-}
-
 // Height (generation coordinates) below which the container holds volume v.
 static double gf_gen_height_for(const gf_gen *g, double v)
 {
     const double dz = 0.01;
     double h = 0.0, acc = 0.0;
     while (acc < v) {
-        acc += dz * gf_gen_area(&g->box, h + 0.5 * dz + g->zoff);
+        acc += dz * g->box.ops->section_area(&g->box, h + 0.5 * dz + g->zoff);
         h += dz;
     }
     return h;
@@ -658,10 +645,8 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
                     "(set packing.fill_height = 0 to use packing.particles)",
                     (long long)cfg->packing_particles, fill);
         n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
-        if (cfg->container_shape == GF_SHAPE_CYLINDER) // and the pipe
-            n += ceil(0.66 * 0.25 * cfg->outlet_diameter * cfg->outlet_diameter * cfg->outlet_length / (1.0 / 6.0));
-        if (cfg->container_shape == GF_SHAPE_MESH && cfg->exit_z < 0.0) // and the mesh's part below z = 0
-            n += ceil(0.66 * width * depth * -cfg->exit_z / (gf_gen_pi / 6.0));
+        const gf_container c = gf_container_make(cfg); // and a pipe or chute below z = 0
+        if (c.z_bottom < 0.0) n += ceil(0.66 * gf_container_slice_volume(&c, c.z_bottom, 0.0) / (gf_gen_pi / 6.0));
     } else {
         if (cfg->packing_particles < 1)
             return gf_error_set(GF_ERR_PARAM,
@@ -689,13 +674,11 @@ static gf_status gf_gen_fits(size_t count)
                         count, need / 1e9, have / 1e9, what);
 }
 
-gf_status gf_packing_generate(const gf_config *cfg, gf_packing *out)
-{
-    return gf_packing_generate_stoppable(cfg, NULL, out);
-}
+gf_packing_opts gf_packing_opts_default(void) { return (gf_packing_opts){.stop = NULL}; }
 
-gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_packing *out)
+gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts, gf_packing *out)
 {
+    volatile sig_atomic_t *stop = opts ? opts->stop : NULL;
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
     if (stop && *stop) return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted before it began");
     size_t count = 0;
@@ -706,13 +689,13 @@ gf_status gf_packing_generate_stoppable(const gf_config *cfg, volatile sig_atomi
     g.depth = cfg->container_depth;
     g.stop = stop;
     g.box = gf_container_make(cfg);
-    g.shaped = g.box.kind != GF_SHAPE_BOX;
+    g.shaped = !gf_container_rectangular(&g.box);
     // A pipe is filled from its end up (or from the exit plane, when that is
     // higher). Below the pipe's end (or below the outlet, with no pipe) there
     // is no wall: the outlet is closed while the packing is built, as the box's
     // orifice is, and what falls through it when the run starts falls freely
     // to an exit plane lower down.
-    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, -g.box.pipe)) : 0.0;
+    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, g.box.z_bottom)) : 0.0;
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
     if (st == GF_OK && gf_gen_halted(&g)) // before the sort and the checks, long for many spheres

@@ -116,9 +116,9 @@ gf_status gf_packing_check(const gf_packing *p, const gf_config *cfg)
         gf_packing_lead(cfg, p->id[i], lead, sizeof lead, from, sizeof from);
         return gf_error_set(GF_ERR_PARAM,
                             "%sparticle id %lld at (%g, %g, %g) is outside the container "
-                            "(%s |x| <= %g, |y| <= %g, above the base except over the outlet)%s",
-                            lead, (long long)p->id[i], p->x[i], p->y[i], p->z[i],
-                            box.kind == GF_SHAPE_CYLINDER ? "a cylinder within" : "a box", box.xhi, box.yhi, from);
+                            "(a %s%s |x| <= %g, |y| <= %g, above the base except over the outlet)%s",
+                            lead, (long long)p->id[i], p->x[i], p->y[i], p->z[i], gf_container_name(&box),
+                            gf_container_rectangular(&box) ? "" : " within", box.xhi, box.yhi, from);
     }
     return GF_OK;
 }
@@ -128,15 +128,13 @@ double gf_packing_bulk_fraction(const gf_packing *p, const gf_config *cfg)
     double top = 0.0;
     for (size_t i = 0; i < p->n; i++)
         if (p->z[i] > top) top = p->z[i];
-    if (cfg->container_shape != GF_SHAPE_CYLINDER) {
-        double hw = 0.5 * cfg->container_width, hd = 0.5 * cfg->container_depth;
-        return gf_packing_fraction(p, -hw + 2, hw - 2, -hd + 2, hd - 2, 2.0, top - 3.0);
-    }
-    // A cylinder: the annulus 3 d inside the wall (and outside a column).
-    // Curved walls order the first layers: the ring 2-3 d from the wall is
-    // denser than the bulk by ~0.05 (docs/geometry.md), so it stays out.
+    // Away from the walls, where they do not order the layers
+    // (gf_container_bulk: 2 d inside flat walls, 3 d inside curved ones).
     gf_container c = gf_container_make(cfg);
-    double r1 = c.radius - 3.0, r0 = c.r_in > 0.0 ? c.r_in + 3.0 : 0.0, z0 = c.z_top + 2.0, z1 = top - 3.0;
+    gf_bulk_region b;
+    gf_container_bulk(&c, top, &b);
+    if (!b.annulus) return gf_packing_fraction(p, b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2]);
+    double r1 = b.r1, r0 = b.r0, z0 = b.lo[2], z1 = b.hi[2];
     if (!(r1 > r0 && z1 > z0)) return NAN;
     double vol = 0.0;
     for (size_t i = 0; i < p->n; i++) {

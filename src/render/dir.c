@@ -13,9 +13,9 @@
 
 enum { GF_RENDER_PATH = GF_PATH_MAX + 64 };
 
-gf_render_options gf_render_options_default(void)
+gf_render_dir_opts gf_render_dir_opts_default(void)
 {
-    return (gf_render_options){.colour = GF_RENDER_LAYER, .format = "png", .scale = 10.0, .panels = 8};
+    return (gf_render_dir_opts){.colour = GF_RENDER_LAYER, .format = "png", .scale = 10.0, .panels = 8};
 }
 
 /// The run's name for the pictures: the last component of its directory (NULL for . and ..).
@@ -74,7 +74,7 @@ static const char *gf_render_suffix(gf_render_colour colour, bool raw)
 }
 
 typedef struct gf_render_job {
-    const gf_render_options *o;
+    const gf_render_dir_opts *o;
     const gf_series *s;
     double **phi;
     gf_render_opts opts;
@@ -115,7 +115,7 @@ static size_t gf_render_panels(size_t panels, size_t n)
 static gf_status gf_render_contact_sheet(gf_render_job *j)
 {
     const gf_series *s = j->s;
-    const gf_render_options *c = j->o;
+    const gf_render_dir_opts *c = j->o;
     size_t want = gf_render_panels(c->panels, s->nframes), n = 0;
     gf_frame *fr = GF_NEW(gf_frame, want);
     const double **phi = GF_NEW(const double *, want);
@@ -141,7 +141,7 @@ static gf_status gf_render_contact_sheet(gf_render_job *j)
     return st;
 }
 
-static gf_status gf_render_check(const gf_render_options *o)
+static gf_status gf_render_check(const gf_render_dir_opts *o)
 {
     if (o->colour != GF_RENDER_LAYER && o->colour != GF_RENDER_PHI)
         return gf_error_set(GF_ERR_PARAM, "render: unknown colouring %d", (int)o->colour);
@@ -160,7 +160,7 @@ static gf_status gf_render_check(const gf_render_options *o)
 }
 
 // Where the pictures go: opts->outdir, else DIR/render, or render/ beside a dump file.
-static gf_status gf_render_outdir(const char *dir, const gf_render_options *o, char *out, size_t n)
+static gf_status gf_render_outdir(const char *dir, const gf_render_dir_opts *o, char *out, size_t n)
 {
     struct stat sb;
     int w;
@@ -180,7 +180,7 @@ static gf_status gf_render_outdir(const char *dir, const gf_render_options *o, c
 // middle and last by layer and the last by packing fraction; then the sheet.
 static gf_status gf_render_pictures(gf_render_job *j)
 {
-    const gf_render_options *c = j->o;
+    const gf_render_dir_opts *c = j->o;
     const gf_series *s = j->s;
     gf_status st = GF_OK;
     bool dflt = !c->all && !c->ntimes && !c->sheet;
@@ -203,7 +203,7 @@ static gf_status gf_render_pictures(gf_render_job *j)
 // A chosen time must lie within the run, give or take half the interval at
 // its end: "the nearest snapshot" to t = 1e17 was whichever came first in
 // the rounding (t = 0, issue 26), and any far time names no snapshot.
-static gf_status gf_render_check_times(const char *dir, const gf_render_options *o, const gf_series *s)
+static gf_status gf_render_check_times(const char *dir, const gf_render_dir_opts *o, const gf_series *s)
 {
     const size_t n = s->nframes;
     const double t0 = s->frames[0].time, t1 = s->frames[n - 1].time;
@@ -217,13 +217,13 @@ static gf_status gf_render_check_times(const char *dir, const gf_render_options 
     return GF_OK;
 }
 
-gf_status gf_render_dir(const char *dir, const gf_render_options *opt)
+gf_status gf_render_dir(const char *dir, const gf_render_dir_opts *opt)
 {
     if (!dir || !opt) return gf_error_set(GF_ERR_PARAM, "gf_render_dir: NULL argument");
     gf_status st = gf_render_check(opt);
     if (st != GF_OK) return st;
     gf_series s;
-    if ((st = gf_series_load_stoppable(dir, 0.0, opt->stop, &s)) != GF_OK) return st;
+    if ((st = gf_series_load(dir, 0.0, &(gf_series_opts){.stop = opt->stop}, &s)) != GF_OK) return st;
     if (s.nframes == 0) {
         gf_series_free(&s);
         return gf_error_set(GF_ERR_STATE, "%s: no snapshots", dir);

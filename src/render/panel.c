@@ -10,7 +10,6 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "geom/container.h"
-#include "geom/meshshape.h"
 #include "render/palette.h"
 
 enum { GF_LABEL_MIN_PX = 28, GF_BAR_MIN_PX = 84 };
@@ -138,50 +137,31 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
     cairo_paint(cr);
     cairo_set_source_rgb(cr, gf_palette_inside[0], gf_palette_inside[1], gf_palette_inside[2]);
     const gf_container box = gf_container_make(cfg);
-    const bool cyl = box.kind == GF_SHAPE_CYLINDER;
-    if (cyl) {
-        // The axial section: wall, funnel, pipe (drawn first, as thick lines
-        // the particles then cover where they touch), and the column.
-        const double zt = box.z_top, ro = box.r_out, zb = -box.pipe;
-        cairo_move_to(cr, GF_X(-hw), GF_Y(p->ztop));
-        cairo_line_to(cr, GF_X(-hw), GF_Y(zt));
-        cairo_line_to(cr, GF_X(-ro), GF_Y(0.0));
-        cairo_line_to(cr, GF_X(-ro), GF_Y(zb));
-        cairo_line_to(cr, GF_X(ro), GF_Y(zb));
-        cairo_line_to(cr, GF_X(ro), GF_Y(0.0));
-        cairo_line_to(cr, GF_X(hw), GF_Y(zt));
-        cairo_line_to(cr, GF_X(hw), GF_Y(p->ztop));
-        cairo_close_path(cr);
-        cairo_fill(cr);
-        cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
-        cairo_set_line_width(cr, 2.0 * gf_wall * s);
-        for (int side = -1; side <= 1; side += 2) {
-            cairo_move_to(cr, GF_X(side * hw), GF_Y(p->ztop));
-            cairo_line_to(cr, GF_X(side * hw), GF_Y(zt));
-            cairo_line_to(cr, GF_X(side * ro), GF_Y(0.0));
-            if (box.pipe > 0.0) cairo_line_to(cr, GF_X(side * ro), GF_Y(zb));
-            cairo_stroke(cr);
-        }
-        if (box.r_in > 0.0) {
-            gf_rect(cr, GF_X(-box.r_in), GF_Y(zt), GF_X(box.r_in), GF_Y(p->ztop));
-            cairo_fill(cr);
-        }
-    } else if (box.kind == GF_SHAPE_MESH && box.mesh) {
-        // A mesh (geom/meshshape.c): its bounding box as the inside, its
-        // section through y = 0 stroked as the walls.
-        gf_rect(cr, GF_X(box.xlo), GF_Y(box.exit_z), GF_X(box.xhi), GF_Y(p->ztop));
-        cairo_fill(cr);
-        cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
-        cairo_set_line_width(cr, 2.0 * gf_wall * s);
-        double seg[4];
-        for (size_t t = 0; t < box.mesh->sdf.mesh.nt; t++)
-            if (gf_meshshape_slice_y(box.mesh, 0.0, t, seg)) {
-                cairo_move_to(cr, GF_X(seg[0]), GF_Y(fmin(seg[1], p->ztop)));
-                cairo_line_to(cr, GF_X(seg[2]), GF_Y(fmin(seg[3], p->ztop)));
-                cairo_stroke(cr);
-            }
+    // The slice y = 0 of the container (src/geom/: each shape draws its own):
+    // the inside, then its walls as thick lines the particles then cover where
+    // they touch, and a solid part (a column). A rectangular container's
+    // walls and base are drawn after the particles, outside the inside.
+    const bool rect = gf_container_rectangular(&box);
+    gf_outline ol;
+    gf_container_outline(&box, p->ztop, &ol);
+    if (rect && ol.n == 4) {
+        gf_rect(cr, GF_X(ol.p[0][0]), GF_Y(ol.p[0][1]), GF_X(ol.p[2][0]), GF_Y(ol.p[2][1]));
     } else {
-        gf_rect(cr, GF_X(-hw), GF_Y(0.0), GF_X(hw), GF_Y(p->ztop));
+        for (int k = 0; k < ol.n; k++) (k ? cairo_line_to : cairo_move_to)(cr, GF_X(ol.p[k][0]), GF_Y(ol.p[k][1]));
+        cairo_close_path(cr);
+    }
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
+    cairo_set_line_width(cr, 2.0 * gf_wall * s);
+    for (int side = 0; side < 2; side++) {
+        if (ol.nwall[side] < 2) continue;
+        for (int k = 0; k < ol.nwall[side]; k++)
+            (k ? cairo_line_to : cairo_move_to)(cr, GF_X(ol.wall[side][k][0]), GF_Y(ol.wall[side][k][1]));
+        cairo_stroke(cr);
+    }
+    if (ol.nsolid >= 3) {
+        for (int k = 0; k < ol.nsolid; k++) (k ? cairo_line_to : cairo_move_to)(cr, GF_X(ol.solid[k][0]), GF_Y(ol.solid[k][1]));
+        cairo_close_path(cr);
         cairo_fill(cr);
     }
 
@@ -209,10 +189,10 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
 
     // walls and base, outside the container so they hide no particle
     cairo_set_source_rgb(cr, gf_palette_wall[0], gf_palette_wall[1], gf_palette_wall[2]);
-    if (!cyl) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-hw), GF_Y(p->ztop));
-    if (!cyl) gf_rect(cr, GF_X(hw), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(p->ztop));
-    if (!cyl && hl > -hw) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(hl), GF_Y(0.0));
-    if (!cyl && hr < hw) gf_rect(cr, GF_X(hr), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(0.0));
+    if (rect) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(-hw), GF_Y(p->ztop));
+    if (rect) gf_rect(cr, GF_X(hw), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(p->ztop));
+    if (rect && hl > -hw) gf_rect(cr, GF_X(-hw - gf_wall), GF_Y(-gf_wall), GF_X(hl), GF_Y(0.0));
+    if (rect && hr < hw) gf_rect(cr, GF_X(hr), GF_Y(-gf_wall), GF_X(hw + gf_wall), GF_Y(0.0));
     cairo_fill(cr);
     const double exit_plane = gf_config_exit_plane(cfg);
     if (exit_plane < 0.0) { // where particles leave, across the orifice

@@ -37,6 +37,7 @@ static const gf_report_field gf_report_fields[] = {
     {"flow_rate", "steady outflow rate", "particles/tau"},
     {"velocity_variance_slope", "growth with height of the width (variance) of v_z(x)", "d"},
     {"velocity_variance_intercept", "width (variance) of v_z(x) extrapolated to z = 0", "d^2"},
+    {"velocity_unsteady_heights", "profile heights with no steady frames (reported, not fitted)", ""},
     {"diffusion_length", "diffusion length b_p", "d"},
     {"diffusion_particles", "particles followed for the diffusion", "particles"},
     {"correlation_length", "velocity correlation length beta", "d"},

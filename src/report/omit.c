@@ -105,7 +105,8 @@ static const char *gf_omit_null_analysis(const char *key)
 {
     if (GF_OMIT_IS(key, "velocity_variance_slope", "velocity_variance_intercept"))
         return "fewer than two of the heights velocity.heights had a velocity profile to fit (heights above the "
-               "packing or outside the flow; set velocity.heights inside it)";
+               "packing or outside the flow; set velocity.heights inside it) or steady frames (velocity.window = height: "
+               "velocity_unsteady_heights counts the heights whose flow had not settled)";
     if (!strcmp(key, "diffusion_length"))
         return "no particle to follow: none started in the region of diffusion.z0 and diffusion.xhalf, or none "
                "moved there";

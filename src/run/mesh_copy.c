@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "geom/container.h"
 #include "geom/stl.h"
 
 #define GF_RUN_MESH_NAME "container.stl"
@@ -39,7 +40,8 @@ static gf_status gf_run_copy_file(const char *from, const char *to)
 
 gf_status gf_run_save_config(const gf_config *cfg, const char *dir, const char *cfgpath)
 {
-    if (cfg->container_shape != GF_SHAPE_MESH) return gf_config_save(cfg, cfgpath);
+    const gf_container box = gf_container_make(cfg);
+    if (!gf_container_reads_key(&box, "container.mesh")) return gf_config_save(cfg, cfgpath);
     char to[GF_PATH_MAX + 64];
     snprintf(to, sizeof to, "%s/%s", dir, GF_RUN_MESH_NAME);
     gf_status st = gf_run_copy_file(cfg->container_mesh, to);

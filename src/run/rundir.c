@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The run directory: the engine's snapshot and checkpoint hooks turned into files.
+#include "geom/container.h"
 #include "granflow/run.h"
 
 #include <dirent.h>
@@ -212,11 +213,11 @@ static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint6
     }
     char path[GF_PATH_MAX + 64];
     const gf_output_format fmt = rd->cfg->output_format;
-    if (fmt != GF_OUTPUT_VTK) {
+    if (fmt & GF_OUTPUT_DUMP) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
         st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, pass, time, gf_sim_get_stats(sim).events);
     }
-    if (st == GF_OK && fmt != GF_OUTPUT_DUMP) {
+    if (st == GF_OK && (fmt & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
         st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->cfg->output_vtk_encoding);
         if (st == GF_OK) st = gf_add_vtu(rd, index, time);
@@ -335,7 +336,7 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
     if (rd->reserve) gf_free(rd->reserve, rd->reserve_size);
     gf_status st = gf_sim_save(sim, path);
     rd->reserve = rd->reserve_size ? gf_alloc(rd->reserve_size) : NULL;
-    if (st == GF_OK && rd->cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_pvd(rd);
+    if (st == GF_OK && (rd->cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_pvd(rd);
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
 }
 
@@ -371,7 +372,8 @@ static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
                                 need, rd->dir, have);
         const gf_config *c = rd->cfg;
         const double left = c->run_duration - gf_sim_get_stats(sim).time;
-        const double snaps = c->output_format == GF_OUTPUT_VTK ? 0.0 : floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0;
+        const double snaps =
+            (c->output_format & GF_OUTPUT_DUMP) ? floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0 : 0.0;
         const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
         if (free_bytes < 2.0 * bound + dumps) {
             char total[32];
@@ -398,8 +400,8 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
-    gf_run_progress p = {"running", s.time, rd->cfg->run_duration, rd->t0, s.particles_initial, s.particles_remaining,
-                         wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
+    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->cfg->run_duration, rd->t0, s.particles_initial,
+                         s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
 }
 
@@ -426,7 +428,7 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
     gf_packing_import_report rep;
-    gf_status st = gf_packing_for_config_stoppable(cfg, opts->stop, pk, &rep);
+    gf_status st = gf_packing_for_config(cfg, &(gf_packing_opts){.stop = opts->stop}, pk, &rep);
     if (st == GF_ERR_INTERRUPTED)
         gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
     // A DEM packing may hold other atom types (a frozen floor) and particles
@@ -440,7 +442,7 @@ static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, 
                  "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types "
                  "dropped%s)",
                  pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types, units);
-        gf_run_progress p = {.phase = "imported", .until = cfg->run_duration, .initial = pk->n, .note = note};
+        gf_run_progress p = {.phase = GF_RUN_PHASE_IMPORTED, .until = cfg->run_duration, .initial = pk->n, .note = note};
         opts->progress(opts->ctx, &p);
     }
     return st;
@@ -499,7 +501,8 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                               cfg.run_duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {cfg.packing_file[0] ? "reading" : "packing", 0.0, cfg.run_duration, 0.0, 0, 0, 0.0, 0.0, NULL};
+            gf_run_progress p = {.phase = cfg.packing_file[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING,
+                                 .until = cfg.run_duration};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -521,9 +524,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     // made (issue 26: a packing.file with a line break left an empty one).
     if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP)
+    if (st == GF_OK && !opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK))
         st = gf_write_container(&rd, sim);
-    if (st == GF_OK && opts->resume && !opts->replica && cfg.output_format != GF_OUTPUT_DUMP) st = gf_find_vtus(&rd);
+    if (st == GF_OK && opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK)) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -536,7 +539,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     rd.moves0 = gf_sim_get_stats(sim).spot_moves;
     rd.t0 = rd.flow_t0 = gf_sim_get_stats(sim).time;
     rd.wall0 = gf_clock_now();
-    gf_run_hooks hooks = {
+    gf_sim_hooks hooks = {
         .ctx = &rd,
         .snapshot = gf_on_snapshot,
         .checkpoint = gf_on_checkpoint,
@@ -555,15 +558,14 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         // only slowly: below it a particle moves only as spots pass, there
         // is no free fall, so say so.
         char deep[256] = "";
+        const gf_container ctr = gf_container_make(&cfg);
         if (cfg.exit_z < -1.0)
             snprintf(deep, sizeof deep,
                      "; the exit plane is %g d below the %s, and a particle on its way there moves only as "
                      "spots pass (there is no free fall): raise container.exit_z, or run.stall_time to wait "
                      "longer",
                      -cfg.exit_z,
-                     cfg.container_shape != GF_SHAPE_CYLINDER ? "orifice"
-                     : cfg.outlet_length > 0.0                ? "end of the outlet pipe"
-                                                              : "outlet");
+                     gf_container_outlet_name(&ctr));
         st = gf_error_set(GF_ERR_STATE,
                           "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
                           "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau%s",
@@ -587,14 +589,14 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
                      "stopped at t = %.4g tau with %zu particles left",
                      gf_sim_exits(sim, &nexit)[nexit - 1].time, cfg.run_stall_time, reached,
                      gf_sim_get_stats(sim).particles_remaining);
-            gf_run_progress p = {.phase = "stalled", .time = reached, .until = cfg.run_duration, .note = note};
+            gf_run_progress p = {.phase = GF_RUN_PHASE_STALLED, .time = reached, .until = cfg.run_duration, .note = note};
             opts->progress(opts->ctx, &p);
         }
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_clock_now() - rd.wall0;
-            gf_run_progress p = {"done", s.time, cfg.run_duration, rd.t0, s.particles_initial, s.particles_remaining,
-                                 wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
+            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, cfg.run_duration, rd.t0, s.particles_initial,
+                                 s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
             opts->progress(opts->ctx, &p);
         }
     }
@@ -622,6 +624,12 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
 
 gf_run_opts gf_run_opts_default(void) { return (gf_run_opts){.dir = NULL}; }
 
+const char *gf_run_phase_name(gf_run_phase phase)
+{
+    static const char *const names[] = {"packing", "reading", "imported", "running", "stalled", "done"};
+    return (unsigned)phase < sizeof names / sizeof names[0] ? names[phase] : "?";
+}
+
 gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
 {
     if (!sim || !dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_sim_write_run_dir: NULL argument");
@@ -639,16 +647,16 @@ gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
         return gf_error_set(GF_ERR_EXISTS, "%s already holds a run (%s exists): clear it, force, or use another directory",
                             rd.dir, path);
     gf_status st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) st = gf_write_container(&rd, sim);
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_container(&rd, sim);
     // The snapshot of now, numbered on the snapshot grid as gf_run_dir numbers
     // them, so that a resumed run's next snapshots follow it.
     const double t = gf_sim_get_stats(sim).time, dsnap = cfg->output_snapshot_interval;
     const uint64_t index = dsnap > 0 ? (uint64_t)floor(t / dsnap + 1e-9) : 0;
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_VTK) {
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_DUMP)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd.dir, index);
         st = gf_sim_write_snapshot(sim, path);
     }
-    if (st == GF_OK && cfg->output_format != GF_OUTPUT_DUMP) {
+    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd.dir, index);
         st = gf_sim_write_vtk(sim, path);
     }

@@ -12,12 +12,7 @@
 #include "geom/container.h"
 #include "granflow/packing.h"
 
-gf_status gf_sim_create_from_config(const gf_config *cfg, gf_sim **out)
-{
-    return gf_sim_create_from_config_stoppable(cfg, NULL, out);
-}
-
-gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig_atomic_t *stop, gf_sim **out)
+gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts *opts, gf_sim **out)
 {
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "gf_sim_create_from_config: NULL argument");
     *out = NULL;
@@ -26,7 +21,7 @@ gf_status gf_sim_create_from_config_stoppable(const gf_config *cfg, volatile sig
     if (st != GF_OK) return st;
     gf_packing pk = {0};
     gf_packing_import_report rep;
-    st = gf_packing_for_config_stoppable(&c, stop, &pk, &rep);
+    st = gf_packing_for_config(&c, opts, &pk, &rep);
     if (st == GF_OK && (rep.other_types || rep.below_base))
         gf_warn("%s: %zu of %zu particles kept (%zu below the base counted as exited, %zu of other atom types dropped)",
                 c.packing_file, pk.n, rep.read, rep.below_base, rep.other_types);

@@ -96,11 +96,10 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len,
     c.run_checkpoint_interval = d.run_checkpoint_interval;
     c.run_stall_time = d.run_stall_time;
     c.run_threads = d.run_threads; // results do not depend on it
-    if (c.container_shape == GF_SHAPE_MESH) { // the mesh by its bytes: a run directory's copy is the same mesh
-        const gf_meshshape *ms;
-        if (gf_meshshape_load(&c, &ms) == GF_OK)
-            snprintf(c.container_mesh, sizeof c.container_mesh, "stl-fnv1a-%016" PRIx64, ms->digest);
-    }
+    const gf_container box = gf_container_make(&c);
+    uint64_t digest;
+    if (gf_container_reads_key(&box, "container.mesh") && gf_meshshape_digest(&c, &digest) == GF_OK)
+        snprintf(c.container_mesh, sizeof c.container_mesh, "stl-fnv1a-%016" PRIx64, digest); // a run's copy is the same mesh
     for (size_t size = (size_t)1 << 16; size <= (size_t)1 << 26; size *= 2) {
         char *buf = gf_alloc(size);
         FILE *f = buf ? fmemopen(buf, size, "w") : NULL;
@@ -236,13 +235,6 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-static gf_status gf_ckpt_fail(gf_sim *sim, unsigned char *data, size_t cap, gf_status st)
-{
-    gf_free(data, cap);
-    gf_sim_destroy(sim);
-    return st;
-}
-
 // Values the engine relies on (a checkpoint is checksummed, so only a
 // deliberately made file gets here with others): times, particles inside
 // the container (or over the hole, down to the exit plane), radii the
@@ -271,6 +263,222 @@ static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
     return GF_OK;
 }
 
+// The header of a checkpoint read into `data` (len bytes): magic, byte order,
+// version, payload size and CRC; on success `r` reads the payload.
+static gf_status gf_ckpt_header(const char *path, const unsigned char *data, size_t len, gf_rd *r)
+{
+    const size_t head = GF_CKPT_HEADER;
+    uint32_t version, bom, crc;
+    uint64_t size;
+    if (len < head || memcmp(data, GF_CKPT_MAGIC, 8) != 0)
+        return gf_error_set(GF_ERR_FORMAT, "%s: not a granflow checkpoint", path);
+    memcpy(&version, data + 8, 4);
+    memcpy(&bom, data + 12, 4);
+    memcpy(&size, data + 16, 8);
+    memcpy(&crc, data + 24, 4);
+    if (bom != GF_CKPT_BOM)
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint written on a machine of other byte order", path);
+    if (version != GF_CKPT_VERSION)
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint version %u, this granflow reads version %u", path,
+                            version, GF_CKPT_VERSION);
+    if (size != len - head)
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint %s (%zu payload bytes, header says %llu)", path,
+                            len - head < size ? "truncated" : "has trailing bytes", len - head,
+                            (unsigned long long)size);
+    if (gf_crc32(data + head, size) != crc)
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint checksum mismatch (file corrupted)", path);
+    *r = (gf_rd){data + head, size, 0, false};
+    return GF_OK;
+}
+
+// The settings: `cfg` validated into sim->cfg, and the physics the
+// checkpoint was written with (its first record) compared with it.
+static gf_status gf_ckpt_read_settings(gf_sim *sim, const gf_config *cfg, gf_rd *r, const char *path)
+{
+    sim->cfg = *cfg;
+    gf_status st = gf_config_validate(&sim->cfg);
+    if (st != GF_OK) return st;
+    uint64_t plen = 0;
+    GF_GET(r, plen);
+    char *mine = NULL;
+    size_t mlen = 0, mcap = 0;
+    if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen, &mcap)) != GF_OK) return st;
+    gf_config dcfg = gf_config_default();
+    char *def = NULL;
+    size_t dlen = 0, dcap = 0;
+    if ((st = gf_config_validate(&dcfg)) != GF_OK || (st = gf_ckpt_physics(&dcfg, &def, &dlen, &dcap)) != GF_OK) {
+        gf_free(mine, mcap);
+        return st;
+    }
+    if (r->bad || plen > r->len - r->pos)
+        st = gf_error_set(GF_ERR_FORMAT, "%s: the checkpoint's configuration text runs past its payload", path);
+    else
+        st = gf_ckpt_compare_settings(path, (const char *)r->data + r->pos, (size_t)plen, mine, mlen, def, dlen);
+    gf_free(def, dcap);
+    gf_free(mine, mcap);
+    if (st == GF_OK) r->pos += plen;
+    return st;
+}
+
+// The engine's scalars (times, RNG, counters, list parameters) and the
+// counts of the arrays: particles, alive, initial, spots, exits.
+static gf_status gf_ckpt_read_scalars(gf_sim *sim, gf_rd *r, const char *path, uint64_t counts[5])
+{
+    uint8_t pending;
+    GF_GET(r, sim->t);
+    GF_GET(r, sim->t_reached);
+    GF_GET(r, sim->t_pending);
+    GF_GET(r, pending);
+    GF_GET(r, sim->rng.s);
+    GF_GET(r, sim->next_snap);
+    GF_GET(r, sim->next_ckpt);
+    GF_GET(r, sim->st);
+    gf_get(r, counts, sizeof(uint64_t) * 5);
+    GF_GET(r, sim->rmax);
+    GF_GET(r, sim->grid_ztop);
+    GF_GET(r, sim->next_birth);
+    GF_GET(r, sim->nl_built_at);
+    GF_GET(r, sim->fstep);
+    uint32_t shift = 0;
+    GF_GET(r, shift);
+    if (shift < 4 || (1u << (shift < 31 ? shift : 31)) > GF_NL_CAP_MAX)
+        return gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path);
+    sim->nl_shift = shift;
+    sim->pending = pending;
+    return GF_OK;
+}
+
+// The arrays the counts announce, allocated once the counts are checked:
+// they must be in the payload (a few bytes claiming 10^9 spots must not
+// allocate gigabytes first).
+static gf_status gf_ckpt_alloc_arrays(gf_sim *sim, const gf_rd *r, const char *path, const uint64_t counts[5])
+{
+    uint64_t n = counts[0];
+    if (r->bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
+        (!sim->cfg.run_recirculate && counts[4] > counts[2]))
+        return gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path);
+    double need = (double)n * (double)(sizeof(gf_pos) + sizeof(gf_ref) + sizeof(int64_t) + sizeof(int32_t) + 1) +
+                  (double)counts[3] * (double)(4 * sizeof(double) + sizeof(uint32_t)) +
+                  (double)counts[4] * (double)sizeof(gf_exit);
+    if (counts[2] > GF_MAX_PARTICLES || need > (double)(r->len - r->pos))
+        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint header announces more than its payload holds", path);
+    gf_status st = gf_sim_alloc_particles(sim, counts[2]);
+    if (st != GF_OK) return st;
+    sim->n = n;
+    sim->n_alive = counts[1];
+    sim->n_initial = counts[2];
+    sim->ns = sim->ns_cap = counts[3];
+    sim->nexit = 0;
+    if (!gf_sim_exits_reserve(sim, counts[4])) return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    sim->nexit = counts[4];
+    sim->sx = GF_NEW(double, sim->ns_cap);
+    sim->sy = GF_NEW(double, sim->ns_cap);
+    sim->sz = GF_NEW(double, sim->ns_cap);
+    sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
+    sim->scount = GF_NEW(uint32_t, sim->ns_cap);
+    sim->snext = GF_NEW(double, sim->ns_cap);
+    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount || !sim->snext))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    return GF_OK;
+}
+
+// The particles, spots and exits, and their values checked.
+static gf_status gf_ckpt_read_arrays(gf_sim *sim, gf_rd *r, const char *path)
+{
+    const size_t n = sim->n;
+    gf_get(r, sim->p, sizeof(gf_pos) * n);
+    gf_get(r, sim->p0, sizeof(gf_ref) * n);
+    gf_get(r, sim->id, sizeof(int64_t) * n);
+    gf_get(r, sim->layer, sizeof(int32_t) * n);
+    gf_get(r, sim->alive, sizeof(uint8_t) * n);
+    gf_get(r, sim->hist, sizeof(gf_hist) * n);
+    gf_get(r, sim->sx, sizeof(double) * sim->ns);
+    gf_get(r, sim->sy, sizeof(double) * sim->ns);
+    gf_get(r, sim->sz, sizeof(double) * sim->ns);
+    gf_get(r, sim->sbirth, sizeof(uint64_t) * sim->ns);
+    gf_get(r, sim->scount, sizeof(uint32_t) * sim->ns);
+    gf_get(r, sim->exits, sizeof(gf_exit) * sim->nexit);
+    size_t live = 0;
+    for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;
+    if (r->bad || live != sim->n_alive)
+        return gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path);
+    return gf_ckpt_check_values(sim, path);
+}
+
+// The domain engine's spot clocks, when the payload ends with them; a
+// domain run resumed from another engine's checkpoint draws fresh ones.
+static void gf_ckpt_read_clocks(gf_sim *sim, gf_rd *r)
+{
+    bool clocks = !r->bad && r->len - r->pos == 8 + sizeof(double) * sim->ns &&
+                  !memcmp(r->data + r->pos, GF_CKPT_CLOCKS, 8);
+    if (clocks) {
+        r->pos += 8;
+        gf_get(r, sim->snext, sizeof(double) * sim->ns);
+        for (size_t k = 0; k < sim->ns; k++)
+            if (!isfinite(sim->snext[k])) r->bad = true;
+    } else if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+        for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->cfg.spot_move_rate);
+    }
+}
+
+// The cell grid's contents (the order of particles within each cell, which
+// the engine's sums depend on), then the clocks; the payload must end there.
+static gf_status gf_ckpt_read_grid(gf_sim *sim, gf_rd *r, const char *path)
+{
+    uint64_t ncell = 0;
+    GF_GET(r, ncell);
+    if (r->bad || ncell != sim->grid.ncell)
+        return gf_error_set(GF_ERR_FORMAT, "%s: grid does not match the container", path);
+    uint32_t *slot = GF_NEW(uint32_t, ncell * GF_CELL_CAP), *cnt = GF_NEW(uint32_t, ncell);
+    if (!slot || !cnt) {
+        GF_DELETE(slot, ncell * GF_CELL_CAP);
+        GF_DELETE(cnt, ncell);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory");
+    }
+    gf_get(r, cnt, sizeof(uint32_t) * ncell);
+    for (size_t c = 0; !r->bad && c < ncell; c++) {
+        if (cnt[c] > GF_CELL_CAP) r->bad = true;
+        else gf_get(r, slot + c * GF_CELL_CAP, sizeof(uint32_t) * cnt[c]);
+    }
+    gf_ckpt_read_clocks(sim, r);
+    gf_status st = r->bad || r->pos != r->len
+                       ? gf_error_set(GF_ERR_FORMAT, "%s: checkpoint payload has the wrong size", path)
+                       : gf_grid_restore(&sim->grid, cnt, slot, sim->n);
+    GF_DELETE(slot, ncell * GF_CELL_CAP);
+    GF_DELETE(cnt, ncell);
+    return st;
+}
+
+// The whole payload into sim: settings, scalars, arrays, grid.
+static gf_status gf_ckpt_read(gf_sim *sim, const gf_config *cfg, gf_rd *r, const char *path)
+{
+    gf_status st = gf_ckpt_read_settings(sim, cfg, r, path);
+    if (st != GF_OK) return st;
+    gf_sim_derive(sim);
+    uint64_t counts[5];
+    if ((st = gf_ckpt_read_scalars(sim, r, path, counts)) != GF_OK ||
+        (st = gf_ckpt_alloc_arrays(sim, r, path, counts)) != GF_OK ||
+        (st = gf_ckpt_read_arrays(sim, r, path)) != GF_OK || (st = gf_sim_make_grid(sim)) != GF_OK ||
+        (st = gf_sim_alloc_scratch(sim)) != GF_OK)
+        return st;
+    return gf_ckpt_read_grid(sim, r, path);
+}
+
+// Every live particle in the grid, and the neighbour lists rebuilt without
+// re-sorting from the saved p0 (they are a function of it, see
+// sim_internal.h): the very lists the run had, so the same order, the same
+// sums, the same bits.
+static gf_status gf_ckpt_relist(gf_sim *sim, const char *path)
+{
+    for (size_t i = 0; i < sim->n; i++)
+        if (sim->alive[i] && sim->grid.cell_of[i] == GF_NO_CELL)
+            return gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path);
+    uint64_t builds = sim->st.nlist_builds;
+    gf_status st = gf_nlist_build(sim, false);
+    sim->st.nlist_builds = builds;
+    return st;
+}
+
 gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
 {
     *out = NULL;
@@ -280,180 +488,17 @@ gf_status gf_sim_load(const gf_config *cfg, const char *path, gf_sim **out)
     // until memory ran out), as big as it is on disk.
     gf_status st = gf_fs_read_all(path, 0, &data, &len, &cap);
     if (st != GF_OK) return st;
-    const size_t head = 8 + 4 + 4 + 8 + 4;
-    uint32_t version, bom, crc;
-    uint64_t size;
-    if (len < head || memcmp(data, GF_CKPT_MAGIC, 8) != 0) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_FORMAT, "%s: not a granflow checkpoint", path);
-    }
-    memcpy(&version, data + 8, 4);
-    memcpy(&bom, data + 12, 4);
-    memcpy(&size, data + 16, 8);
-    memcpy(&crc, data + 24, 4);
-    if (bom != GF_CKPT_BOM) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint written on a machine of other byte order", path);
-    }
-    if (version != GF_CKPT_VERSION) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint version %u, this granflow reads version %u",
-                            path, version, GF_CKPT_VERSION);
-    }
-    if (size != len - head) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint %s (%zu payload bytes, header says %llu)", path,
-                            len - head < size ? "truncated" : "has trailing bytes", len - head,
-                            (unsigned long long)size);
-    }
-    uint32_t got = gf_crc32(data + head, size);
-    if (got != crc) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint checksum mismatch (file corrupted)", path);
-    }
-    gf_rd r = {data + head, size, 0, false};
-
-    gf_sim *sim = gf_alloc(sizeof *sim);
-    if (!sim) {
-        gf_free(data, cap);
-        return gf_error_set(GF_ERR_NOMEM, "out of memory");
-    }
-    sim->cfg = *cfg;
-    if ((st = gf_config_validate(&sim->cfg)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    uint64_t plen = 0;
-    GF_GET(&r, plen);
-    char *mine = NULL;
-    size_t mlen = 0, mcap = 0;
-    if ((st = gf_ckpt_physics(&sim->cfg, &mine, &mlen, &mcap)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    gf_config dcfg = gf_config_default();
-    char *def = NULL;
-    size_t dlen = 0, dcap = 0;
-    if ((st = gf_config_validate(&dcfg)) != GF_OK || (st = gf_ckpt_physics(&dcfg, &def, &dlen, &dcap)) != GF_OK) {
-        gf_free(mine, mcap);
-        return gf_ckpt_fail(sim, data, cap, st);
-    }
-    if (r.bad || plen > r.len - r.pos)
-        st = gf_error_set(GF_ERR_FORMAT, "%s: the checkpoint's configuration text runs past its payload", path);
-    else
-        st = gf_ckpt_compare_settings(path, (const char *)r.data + r.pos, (size_t)plen, mine, mlen, def, dlen);
-    gf_free(def, dcap);
-    gf_free(mine, mcap);
-    if (st != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    r.pos += plen;
-    gf_sim_derive(sim);
-
-    uint8_t pending;
-    uint64_t counts[5];
-    GF_GET(&r, sim->t);
-    GF_GET(&r, sim->t_reached);
-    GF_GET(&r, sim->t_pending);
-    GF_GET(&r, pending);
-    GF_GET(&r, sim->rng.s);
-    GF_GET(&r, sim->next_snap);
-    GF_GET(&r, sim->next_ckpt);
-    GF_GET(&r, sim->st);
-    GF_GET(&r, counts);
-    GF_GET(&r, sim->rmax);
-    GF_GET(&r, sim->grid_ztop);
-    GF_GET(&r, sim->next_birth);
-    GF_GET(&r, sim->nl_built_at);
-    GF_GET(&r, sim->fstep);
-    uint32_t shift = 0;
-    GF_GET(&r, shift);
-    if (shift < 4 || (1u << (shift < 31 ? shift : 31)) > GF_NL_CAP_MAX)
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
-    sim->nl_shift = shift;
-    sim->pending = pending;
-    uint64_t n = counts[0];
-    if (r.bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
-        (!sim->cfg.run_recirculate && counts[4] > counts[2]))
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path));
-    // The arrays the counts announce must be in the payload: a few bytes
-    // claiming 10^9 spots must not allocate gigabytes first.
-    double need = (double)n * (double)(sizeof(gf_pos) + sizeof(gf_ref) + sizeof(int64_t) + sizeof(int32_t) + 1) +
-                  (double)counts[3] * (double)(4 * sizeof(double) + sizeof(uint32_t)) +
-                  (double)counts[4] * (double)sizeof(gf_exit);
-    if (counts[2] > GF_MAX_PARTICLES || need > (double)(r.len - r.pos))
-        return gf_ckpt_fail(sim, data, cap,
-                            gf_error_set(GF_ERR_FORMAT, "%s: checkpoint header announces more than its payload holds",
-                                         path));
-    if ((st = gf_sim_alloc_particles(sim, counts[2])) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    sim->n = n;
-    sim->n_alive = counts[1];
-    sim->n_initial = counts[2];
-    sim->ns = sim->ns_cap = counts[3];
-    sim->nexit = 0;
-    if (!gf_sim_exits_reserve(sim, counts[4]))
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
-    sim->nexit = counts[4];
-    sim->sx = GF_NEW(double, sim->ns_cap);
-    sim->sy = GF_NEW(double, sim->ns_cap);
-    sim->sz = GF_NEW(double, sim->ns_cap);
-    sim->sbirth = GF_NEW(uint64_t, sim->ns_cap);
-    sim->scount = GF_NEW(uint32_t, sim->ns_cap);
-    sim->snext = GF_NEW(double, sim->ns_cap);
-    if (sim->ns_cap && (!sim->sx || !sim->sy || !sim->sz || !sim->sbirth || !sim->scount || !sim->snext))
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
-    gf_get(&r, sim->p, sizeof(gf_pos) * n);
-    gf_get(&r, sim->p0, sizeof(gf_ref) * n);
-    gf_get(&r, sim->id, sizeof(int64_t) * n);
-    gf_get(&r, sim->layer, sizeof(int32_t) * n);
-    gf_get(&r, sim->alive, sizeof(uint8_t) * n);
-    gf_get(&r, sim->hist, sizeof(gf_hist) * n);
-    gf_get(&r, sim->sx, sizeof(double) * sim->ns);
-    gf_get(&r, sim->sy, sizeof(double) * sim->ns);
-    gf_get(&r, sim->sz, sizeof(double) * sim->ns);
-    gf_get(&r, sim->sbirth, sizeof(uint64_t) * sim->ns);
-    gf_get(&r, sim->scount, sizeof(uint32_t) * sim->ns);
-    gf_get(&r, sim->exits, sizeof(gf_exit) * sim->nexit);
-    size_t live = 0;
-    for (size_t i = 0; i < n; i++) live += sim->alive[i] != 0;
-    if (r.bad || live != sim->n_alive)
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: inconsistent particle count", path));
-    if ((st = gf_ckpt_check_values(sim, path)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    if ((st = gf_sim_make_grid(sim)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
-    uint64_t ncell = 0;
-    GF_GET(&r, ncell);
-    if (r.bad || ncell != sim->grid.ncell)
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_FORMAT, "%s: grid does not match the container", path));
-    uint32_t *slot = GF_NEW(uint32_t, ncell * GF_CELL_CAP), *cnt = GF_NEW(uint32_t, ncell);
-    if (!slot || !cnt) {
-        GF_DELETE(slot, ncell * GF_CELL_CAP);
-        GF_DELETE(cnt, ncell);
-        return gf_ckpt_fail(sim, data, cap, gf_error_set(GF_ERR_NOMEM, "out of memory"));
-    }
-    gf_get(&r, cnt, sizeof(uint32_t) * ncell);
-    for (size_t c = 0; !r.bad && c < ncell; c++) {
-        if (cnt[c] > GF_CELL_CAP) r.bad = true;
-        else gf_get(&r, slot + c * GF_CELL_CAP, sizeof(uint32_t) * cnt[c]);
-    }
-    bool clocks = !r.bad && r.len - r.pos == 8 + sizeof(double) * sim->ns && !memcmp(r.data + r.pos, GF_CKPT_CLOCKS, 8);
-    if (clocks) {
-        r.pos += 8;
-        gf_get(&r, sim->snext, sizeof(double) * sim->ns);
-        for (size_t k = 0; k < sim->ns; k++)
-            if (!isfinite(sim->snext[k])) r.bad = true;
-    } else if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
-        // Resumed by the domain engine from another's checkpoint: fresh clocks.
-        for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->cfg.spot_move_rate);
-    }
-    st = r.bad || r.pos != r.len ? gf_error_set(GF_ERR_FORMAT, "%s: checkpoint payload has the wrong size", path)
-                                 : gf_grid_restore(&sim->grid, cnt, slot, n);
-    GF_DELETE(slot, ncell * GF_CELL_CAP);
-    GF_DELETE(cnt, ncell);
-    if (st != GF_OK) return gf_ckpt_fail(sim, data, cap, st);
+    gf_rd r;
+    gf_sim *sim = NULL;
+    if ((st = gf_ckpt_header(path, data, len, &r)) == GF_OK && !(sim = gf_alloc(sizeof *sim)))
+        st = gf_error_set(GF_ERR_NOMEM, "out of memory");
+    if (st == GF_OK) st = gf_ckpt_read(sim, cfg, &r, path);
     gf_free(data, cap);
-    data = NULL;
-    for (size_t i = 0; i < n; i++)
-        if (sim->alive[i] && sim->grid.cell_of[i] == GF_NO_CELL)
-            return gf_ckpt_fail(sim, NULL, 0, gf_error_set(GF_ERR_FORMAT, "%s: a particle is missing from the grid", path));
-    // Lists are rebuilt without re-sorting from the saved p0 (they are a
-    // function of it, see sim_internal.h): the very lists the run had, so
-    // the same order, the same sums, the same bits.
-    uint64_t builds = sim->st.nlist_builds;
-    if ((st = gf_nlist_build(sim, false)) != GF_OK) return gf_ckpt_fail(sim, NULL, 0, st);
-    sim->st.nlist_builds = builds;
+    if (st == GF_OK) st = gf_ckpt_relist(sim, path);
+    if (st != GF_OK) {
+        gf_sim_destroy(sim);
+        return st;
+    }
     *out = sim;
     return GF_OK;
 }

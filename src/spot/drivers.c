@@ -139,7 +139,7 @@ gf_status gf_sim_step(gf_sim *sim)
 
 // Whether the run is to stop here. MPI ranks agree (any rank's flag stops
 // all of them at the same point: every rank asks at the same points).
-static bool gf_sim_stopping(const gf_run_hooks *hooks)
+static bool gf_sim_stopping(const gf_sim_hooks *hooks)
 {
 #ifdef GF_MPI
     return gf_mpi_stop(hooks->stop);
@@ -148,11 +148,11 @@ static bool gf_sim_stopping(const gf_run_hooks *hooks)
 #endif
 }
 
-gf_run_hooks gf_run_hooks_default(void) { return (gf_run_hooks){.ctx = NULL}; }
+gf_sim_hooks gf_sim_hooks_default(void) { return (gf_sim_hooks){.ctx = NULL}; }
 
-gf_status gf_sim_run(gf_sim *sim, double until, const gf_run_hooks *hooks)
+gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
 {
-    static const gf_run_hooks none = {0};
+    static const gf_sim_hooks none = {0};
     if (!hooks) hooks = &none;
     if (isnan(until)) return gf_error_set(GF_ERR_PARAM, "gf_sim_run: the end time is NaN"); // would do nothing
     const double dsnap = sim->cfg.output_snapshot_interval, dck = sim->cfg.run_checkpoint_interval;

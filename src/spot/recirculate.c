@@ -79,9 +79,10 @@ gf_status gf_sim_check_config(const gf_config *cfg_in)
                         "%s%s and %s leave %s of the container's cross-section (%s) for re-inserted particles: "
                         "recirculation could not put them back",
                         m.lead, m.key[0], m.key[1], hits ? "almost nothing" : "nothing",
-                        box.kind == GF_SHAPE_CYLINDER ? "a sphere's centre within container.radius - 1/2 of the axis"
-                                                      : "a sphere's centre 1/2 inside the walls, |x| <= "
-                                                        "container.width / 2 - 1/2, |y| <= container.depth / 2 - 1/2");
+                        gf_container_profile_radial(&box)
+                            ? "a sphere's centre within container.radius - 1/2 of the axis"
+                            : "a sphere's centre 1/2 inside the walls, |x| <= "
+                              "container.width / 2 - 1/2, |y| <= container.depth / 2 - 1/2");
 }
 
 // A target position uniform over the allowed region (rejection from the

@@ -10,10 +10,7 @@
 
 static void gf_fuzz_progress(void *ctx, const gf_dem_progress *p)
 {
-    static const char *const phases[] = {"fill", "settle", "drain", "done"};
-    int known = 0;
-    for (size_t k = 0; k < sizeof phases / sizeof phases[0]; k++) known |= p->phase && strcmp(p->phase, phases[k]) == 0;
-    if (!known) abort();
+    if (p->phase < GF_DEM_PHASE_FILL || p->phase > GF_DEM_PHASE_DONE) abort();
     ++*(size_t *)ctx;
 }
 

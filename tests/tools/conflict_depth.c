@@ -108,7 +108,7 @@ int main(int argc, char **argv)
     }
     gf_sim *sim = NULL;
     gf_status st = gf_config_validate(&cfg);
-    if (st == GF_OK) st = gf_sim_create_from_config(&cfg, &sim);
+    if (st == GF_OK) st = gf_sim_create_from_config(&cfg, NULL, &sim);
     if (st != GF_OK) {
         fprintf(stderr, "conflict_depth: cannot build the silo (%d)\n", (int)st);
         return 1;
