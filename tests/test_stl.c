@@ -12,7 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "geom/container.h"
+#include "geom/mesh.h"
 #include "geom/meshshape.h"
 #include "geom/stl.h"
 #include "granflow/granflow.h"
@@ -76,6 +78,43 @@ static void compare(const gf_container *ana, const gf_container *mesh, const dou
                   worst_walls);
 }
 
+// Area of an outline's inside polygon (shoelace).
+static double outline_area(const gf_outline *o)
+{
+    double a = 0.0;
+    for (int j = 0; j < o->n; j++) {
+        const double *p = o->p[j], *q = o->p[(j + 1) % o->n];
+        a += p[0] * q[1] - p[1] * q[0];
+    }
+    return 0.5 * fabs(a);
+}
+
+// The ops beyond the engine's (the shape table's row): the slice y = 0 of
+// the picture encloses what the analytic shape's does, the walls are two
+// polylines, LAMMPS is refused with the reason, z_col and z_bottom agree.
+static void other_ops_agree(const gf_container *ca, const gf_container *cm, double ztop)
+{
+    gf_outline oa, om;
+    gf_container_outline(ca, ztop, &oa);
+    gf_container_outline(cm, ztop, &om);
+    double aa = outline_area(&oa), am = outline_area(&om);
+    if (fabs(aa - am) > 0.01 * aa) fail_msg("outline area %g, analytic %g", am, aa);
+    assert_true(om.nwall[0] >= 2 && om.nwall[1] >= 2);
+    for (int j = 0; j < om.n; j++)
+        assert_true(om.p[j][1] <= ztop && om.p[j][0] >= cm->xlo - 1e-9 && om.p[j][0] <= cm->xhi + 1e-9);
+    assert_true(gf_container_lammps_walls(cm, NULL, NULL, NULL, 0.0, 0.0) == GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "LAMMPS' granular walls"));
+    assert_true(gf_container_lammps_pour(cm, NULL, 0.0, 0.0, 1.0) == GF_ERR_PARAM);
+    gf_error_clear();
+    assert_false(gf_container_profile_radial(cm));
+    if (fabs(cm->z_col - ca->z_col) > 1.0) fail_msg("z_col %g, analytic %g", cm->z_col, ca->z_col);
+    assert_true(fabs(cm->z_bottom - ca->z_bottom) < 1e-9);
+    gf_mesh mesh;
+    assert_int_equal(gf_container_mesh(cm, ztop, 64, &mesh), GF_OK);
+    assert_int_equal(mesh.nt, cm->u.mesh->sdf.mesh.nt);
+    gf_mesh_free(&mesh);
+}
+
 static void the_box_from_stl_matches_the_box(void **state)
 {
     (void)state;
@@ -94,6 +133,7 @@ static void the_box_from_stl_matches_the_box(void **state)
     gf_container ca = gf_container_make(&a), cm = gf_container_make(&m);
     assert_non_null(cm.u.mesh);
     compare(&ca, &cm, (double[3]){-10.5, -4.5, 0.001}, (double[3]){10.5, 4.5, 30});
+    other_ops_agree(&ca, &cm, 30.0);
     gf_meshshape_cache_clear();
 }
 
@@ -121,6 +161,7 @@ static void the_hopper_from_stl_matches_the_cylinder(void **state)
         if (fabs(sa - sm) > 2e-3 * sa) fail_msg("z = %g: section %g, cylinder %g", z, sm, sa);
     }
     compare(&ca, &cm, (double[3]){-10.5, -10.5, -3.0}, (double[3]){10.5, 10.5, 40});
+    other_ops_agree(&ca, &cm, 30.0);
     gf_meshshape_cache_clear();
 }
 
