@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Internal: the check of a container's files (container.mesh) that the
 // configuration's validation (config/) asks of the shapes (geom/), a sibling
-// it may not call: geom registers it when the library is loaded. To go when
-// the shapes own the validation of their keys (issue 24, item 1).
+// it may not call: geom registers it when the library is loaded
+// (geom/meshload.c). It stays while config validates the shapes' keys
+// (docs/geometry.md, "Adding a shape", step 2): only the mesh needs a file
+// read, and its bounding box taken, at validation.
 #ifndef GF_CORE_SHAPE_CHECK_H
 #define GF_CORE_SHAPE_CHECK_H
 

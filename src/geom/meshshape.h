@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Internal: container.shape = mesh, walls from an STL file (docs/geometry.md,
-// "Containers from STL"). The mesh is read and its field built once per
-// (file, scale, resolution, outlet) in a process and kept for its life (a
-// gf_container is a plain value, copied freely, never freed): every container
-// made from the same configuration shares it.
+// "Containers from STL"): its ops and row in meshshape.c, its loading in
+// meshload.c. The mesh is read and its field built once per (file, scale,
+// resolution, outlet) in a process and kept for its life (a gf_container is
+// a plain value, copied freely, never freed): every container made from the
+// same configuration shares it.
 #ifndef GF_GEOM_MESHSHAPE_H
 #define GF_GEOM_MESHSHAPE_H
 
@@ -37,6 +38,9 @@ typedef struct gf_meshshape {
 /// from the outlet, reaching below the exit plane, an outlet that opens
 /// onto no inside).
 gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out);
+
+/// Area of the mesh's horizontal cross-section at height z, d^2 (0 below the exit plane).
+double gf_meshshape_section(const gf_meshshape *ms, double z);
 
 /// The segment (x0, z0, x1, z1) where triangle t of the mesh crosses the
 /// plane y (pictures: the outline of the section); false when it does not.
