@@ -26,6 +26,7 @@ typedef enum gf_container_shape {
     GF_SHAPE_BOX = 0,      ///< walls at x = +-width/2, y = +-depth/2, flat base z = 0 with an orifice
     GF_SHAPE_CYLINDER = 1, ///< wall at radius `radius` about the z axis, optional conical funnel, outlet pipe, inner column
     GF_SHAPE_WEDGE = 2,    ///< plane-flow hopper: walls at y = +-depth/2, two walls inclined at hopper_angle down to a slit, chute
+    GF_SHAPE_MESH = 3,     ///< walls from an STL file (container.mesh), the outlet the orifice keys' on the plane exit_z
 } gf_container_shape;
 
 /// Where the ball of a spot step is centred (thesis Sec. 3.4).
@@ -126,6 +127,9 @@ typedef struct gf_config {
     double outlet_diameter;            ///< cylinder: diameter of the outlet (and pipe), d; default 8
     double outlet_length;              ///< cylinder, wedge: length of the straight pipe (chute) below z = 0, d; default 0
     double inner_radius;               ///< cylinder: radius of a solid central column (0: none, default), d
+    char container_mesh[GF_PATH_MAX];  ///< mesh: the STL file (relative to the INI file that names it)
+    double container_mesh_scale;       ///< mesh: the file's coordinates times this are in d; default 1
+    double container_mesh_resolution;  ///< mesh: spacing of the signed distance field's grid, d; default 0.5
 
     // [packing]
     int64_t packing_particles;         ///< number of spheres to generate; default 55000

@@ -77,7 +77,10 @@ gf_steady_height gf_steady_height_find(const double *m, size_t n)
             break;
         }
     }
-    snprintf(r.why, sizeof r.why, "frame pairs %zu to %zu of %zu: the mean v_z is at its late value %.4g d/tau from pair %zu",
-             r.first + 1, n, n, L, r.first + 1);
+    // The return value looked at: gcc (without LTO) otherwise warns that the
+    // reason may be cut short, which is harmless here.
+    if (snprintf(r.why, sizeof r.why, "frame pairs %zu to %zu of %zu: the mean v_z is at its late value %.4g d/tau from pair %zu",
+                 r.first + 1, n, n, L, r.first + 1) < 0)
+        r.why[0] = 0;
     return r;
 }

@@ -20,6 +20,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/shape_check.h"
 #include "core/textscan.h"
 
 // "gfCF": marks a gf_config that came from gf_config_default().
@@ -164,6 +165,22 @@ static char *gf_config_read_line(char *str, int num, void *stream)
     return str;
 }
 
+// container.mesh, relative, is read from the INI file's folder (a run
+// directory's config.ini names its own copy, container.stl, so).
+static gf_status gf_config_mesh_path(gf_config_loader *ld, const char *lead)
+{
+    char *mesh = ld->cfg->container_mesh;
+    const char *slash = strrchr(ld->path, '/');
+    if (!mesh[0] || mesh[0] == '/' || !slash) return GF_OK;
+    char joined[2 * GF_PATH_MAX];
+    int n = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - ld->path), ld->path, mesh);
+    if (n >= GF_PATH_MAX)
+        return gf_error_set(GF_ERR_PARAM, "%s: container.mesh: path too long from the INI file's folder (%d bytes, at most %d)",
+                            lead, n, GF_PATH_MAX - 1);
+    memcpy(mesh, joined, (size_t)n + 1);
+    return GF_OK;
+}
+
 // libinih handler: one `name = value` of `section` on line ld->line.
 static int gf_config_on_pair(void *user, const char *section, const char *name, const char *value)
 {
@@ -180,6 +197,7 @@ static int gf_config_on_pair(void *user, const char *section, const char *name, 
     } else {
         const gf_key *k;
         st = gf_keys_apply(&gf_config_keys, ld->cfg, lead, true, s, name, value ? value : "", &k);
+        if (st == GF_OK && k->offset == offsetof(gf_config, container_mesh)) st = gf_config_mesh_path(ld, lead);
         if (st == GF_OK) gf_config_mark(ld->cfg, k, ld->path, ld->line);
     }
     if (st != GF_OK) {
@@ -323,6 +341,21 @@ static gf_status gf_config_validate_cylinder(gf_config *cfg)
     return GF_OK;
 }
 
+// The mesh's file: read and checked by the shapes (geom/meshshape.c, through
+// core/shape_check.h), which put its bounding box in container.width, depth.
+static gf_status gf_config_validate_mesh(gf_config *cfg)
+{
+    gf_shape_check_fn *check = gf_shape_check_get();
+    if (!cfg->container_mesh[0]) {
+        gf_config_msg m;
+        gf_config_msg_make(&m, cfg, "container.shape", "container.mesh");
+        return gf_error_set(GF_ERR_PARAM, "%s%s = mesh needs %s = FILE.stl (the walls as an STL file)", m.lead,
+                            m.key[0], m.key[1]);
+    }
+    if (!check) return gf_error_set(GF_ERR_STATE, "container.shape = mesh: the geometry library is not linked in");
+    return check(cfg);
+}
+
 // The checks of a wedge hopper (docs/geometry.md, "The wedge hopper"): its
 // outlet is a slit (container.orifice_diameter wide, at container.orifice_x)
 // between walls inclined at container.hopper_angle > 0.
@@ -370,6 +403,7 @@ gf_status gf_config_validate(gf_config *cfg)
     if (isnan(cfg->dem_gammat)) cfg->dem_gammat = 0.5 * cfg->dem_gamman;
 
     if (cfg->container_shape == GF_SHAPE_CYLINDER && (st = gf_config_validate_cylinder(cfg)) != GF_OK) return st;
+    if (cfg->container_shape == GF_SHAPE_MESH && (st = gf_config_validate_mesh(cfg)) != GF_OK) return st;
     if (cfg->container_shape == GF_SHAPE_WEDGE && (st = gf_config_validate_wedge(cfg)) != GF_OK) return st;
     if (!(cfg->orifice_diameter < cfg->container_width)) {
         gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.width");

@@ -23,7 +23,7 @@ _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == siz
                "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
-static const char *const gf_keys_shape_names[] = {"box", "cylinder", "wedge", NULL};
+static const char *const gf_keys_shape_names[] = {"box", "cylinder", "wedge", "mesh", NULL};
 static const char *const gf_keys_ball_names[] = {"midpoint", "end", NULL};
 static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
 static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
@@ -63,7 +63,7 @@ const gf_key gf_keys[] = {
     {"container", "exit_z", GF_KEY_DOUBLE, GF_OFF(exit_z), .min = -1e5, .max = 0.5, .def = "0",
      .unit = "d", .doc = "particles whose centre falls below this height (less container.outlet_length) leave"},
     {"container", "shape", GF_KEY_ENUM, GF_OFF(container_shape), .names = gf_keys_shape_names, .def = "box",
-     .unit = "", .doc = "box (width x depth, flat base with an orifice), cylinder (radius, funnel, outlet pipe) or wedge (width x depth, inclined walls down to a slit, chute)"},
+     .unit = "", .doc = "box (width x depth, flat base with an orifice), cylinder (radius, funnel, outlet pipe) wedge (width x depth, inclined walls down to a slit, chute) or mesh (container.mesh)"},
     {"container", "radius", GF_KEY_DOUBLE, GF_OFF(container_radius), .min = 0, .max = 5e4, .min_open = true, .def = "12.5", .unit = "d",
      .doc = "cylinder: radius of the wall about the z axis (width and depth become 2 radius)"},
     {"container", "hopper_angle", GF_KEY_DOUBLE, GF_OFF(hopper_angle), .min = 0, .max = 80, .def = "0",
@@ -74,6 +74,14 @@ const gf_key gf_keys[] = {
      .doc = "cylinder: length of the straight pipe below the outlet; wedge: of the chute below the slit; particles leave at its end"},
     {"container", "inner_radius", GF_KEY_DOUBLE, GF_OFF(inner_radius), .min = 0, .max = 5e4, .def = "0", .unit = "d",
      .doc = "cylinder: radius of a solid central column down to the top of the funnel (0: none)"},
+    {"container", "mesh", GF_KEY_PATH, GF_OFF(container_mesh), .def = "", .unit = "",
+     .doc = "mesh: the walls as an STL file (ASCII or binary; a relative path is read from the INI file's folder), "
+            "closed except for the outlet"},
+    {"container", "mesh_scale", GF_KEY_DOUBLE, GF_OFF(container_mesh_scale), .min = 0, .max = 1e9, .min_open = true,
+     .def = "1", .unit = "d per file unit", .doc = "mesh: the file's coordinates are multiplied by this (1: they are in d)"},
+    {"container", "mesh_resolution", GF_KEY_DOUBLE, GF_OFF(container_mesh_resolution), .min = 0.05, .max = 10,
+     .def = "0.5", .unit = "d",
+     .doc = "mesh: grid spacing of the signed distance field (wall distances are exact near the walls whatever it is)"},
 
     {"packing", "particles", GF_KEY_INT64, GF_OFF(packing_particles), .min = 1, .max = 50000000,
      .def = "55000", .unit = "", .doc = "number of spheres to generate"},

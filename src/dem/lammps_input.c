@@ -92,7 +92,7 @@ static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double 
             "fix gravity flow gravity 1.0 vector 0 0 -1\n",
             law, c->dem_timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM);
     const gf_container box = gf_container_make(c);
-    gf_container_lammps_walls(&box, f, pre, law, zlo, zhi); // the container's walls (src/geom/)
+    (void)gf_container_lammps_walls(&box, f, pre, law, zlo, zhi); // the container's walls (src/geom/; asked before)
     fprintf(f,
             "compute ke flow ke\n"
             "variable nflow equal count(flow)\n"
@@ -166,6 +166,13 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     if (!dir || !*dir) return gf_error_set(GF_ERR_PARAM, "gf_dem_write_inputs: no directory");
     gf_dem_plan plan = {0};
     const gf_container box = gf_container_make(c);
+    // Whether LAMMPS can hold the walls at all (a mesh's triangles: no).
+    if ((st = gf_container_lammps_walls(&box, NULL, NULL, NULL, 0.0, 0.0)) != GF_OK) {
+        char where[GF_PATH_MAX + 32], why[1024];
+        snprintf(why, sizeof why, "%s", gf_last_error());
+        if (gf_config_where(c, "container.shape", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
+        return gf_error_set(st, "%s: %s", where, why);
+    }
     if (c->dem_fill_method == GF_DEM_POUR && (st = gf_container_lammps_pour(&box, NULL, 0.0, 0.0, 0.0)) != GF_OK)
         return st;
     // The column's cross-section, above any funnel.

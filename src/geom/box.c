@@ -152,9 +152,10 @@ static void gf_box_outline(const gf_container *c, double ztop, gf_outline *o)
 }
 
 // Four planes; the base comes in the drain stage (gf_box_lammps_base).
-static void gf_box_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+static gf_status gf_box_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
                                 double zhi)
 {
+    if (!f) return GF_OK; // LAMMPS holds these walls
     (void)pre;
     (void)zlo;
     (void)zhi;
@@ -162,6 +163,7 @@ static void gf_box_lammps_walls(const gf_container *c, FILE *f, const char *pre,
             "fix wall_x flow wall/gran hertz/history %s xplane %.10g %.10g\n"
             "fix wall_y flow wall/gran hertz/history %s yplane %.10g %.10g\n",
             law, c->xlo, c->xhi, law, c->ylo, c->yhi);
+    return GF_OK;
 }
 
 static void gf_box_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)

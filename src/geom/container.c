@@ -130,10 +130,10 @@ void gf_container_bulk(const gf_container *c, double top, gf_bulk_region *b)
     b->hi[1] = c->yhi - 2;
 }
 
-void gf_container_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+gf_status gf_container_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
                                double zhi)
 {
-    c->ops->lammps_walls(c, f, pre, law, zlo, zhi);
+    return c->ops->lammps_walls(c, f, pre, law, zlo, zhi);
 }
 
 void gf_container_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)

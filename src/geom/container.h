@@ -38,8 +38,8 @@ typedef enum gf_profile_coord {
     GF_PROFILE_R = 1,
 } gf_profile_coord;
 
-/// Most points of one polyline of an outline.
-#define GF_OUTLINE_MAX 12
+/// Most points of one polyline of an outline (a mesh's slice, simplified, may need more than the analytic shapes).
+#define GF_OUTLINE_MAX 32
 
 /// The container cut by the plane y = 0, seen from -y, for pictures
 /// (render/panel.c): the inside as one polygon in (x, z), the walls as up to
@@ -111,7 +111,9 @@ typedef struct gf_shape_ops {
     /// LAMMPS commands of the walls `fix wall/gran` acts on in both stages of
     /// `granflow dem` (src/dem/lammps_input.c), regions named `pre`_*,
     /// contact law `law` (the wall/gran arguments), simulation box zlo..zhi.
-    void (*lammps_walls)(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo, double zhi);
+    /// f = NULL: only whether LAMMPS can hold the walls (GF_ERR_PARAM and a
+    /// message saying why not: a mesh's triangles).
+    gf_status (*lammps_walls)(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo, double zhi);
     /// LAMMPS commands of the base during drainage only (the box's plate with
     /// its hole; nothing when lammps_walls holds the whole vessel).
     void (*lammps_base)(const gf_container *c, FILE *f, const char *law, double zlo);
@@ -186,6 +188,7 @@ struct gf_container {
     union {
         gf_cylinder_params cyl;
         gf_wedge_params wedge;
+        const struct gf_meshshape *mesh; ///< a mesh's loaded walls (meshshape.c), shared by every copy; NULL: none
         unsigned char raw[128]; ///< room for a shape of another file (a test's; a mesh's handle)
     } u;
 };
@@ -196,6 +199,7 @@ extern const gf_shape_ops gf_wedge_ops;
 extern const gf_shape gf_box_shape;
 extern const gf_shape gf_cylinder_shape;
 extern const gf_shape gf_wedge_shape;
+extern const gf_shape gf_mesh_shape;
 
 /// Container of `cfg` (validated: SPEC 1.1, docs/geometry.md). A
 /// container.shape with no row in the table gets the box's walls and a
@@ -305,7 +309,7 @@ void gf_container_outline(const gf_container *c, double ztop, gf_outline *o);
 void gf_container_bulk(const gf_container *c, double top, gf_bulk_region *b);
 
 /// The LAMMPS walls of `granflow dem` (see gf_shape_ops).
-void gf_container_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+gf_status gf_container_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
                                double zhi);
 void gf_container_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo);
 gf_status gf_container_lammps_pour(const gf_container *c, FILE *f, double inset, double zlo, double zhi);

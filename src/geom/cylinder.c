@@ -191,9 +191,10 @@ static void gf_cyl_outline(const gf_container *c, double ztop, gf_outline *o)
 // the wall above the funnel, the funnel (a cone), the outlet pipe continued
 // to zlo (particles leave below its end), less a central column; open faces
 // where the parts join, so that only the container's surface pushes.
-static void gf_cyl_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+static gf_status gf_cyl_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
                                 double zhi)
 {
+    if (!f) return GF_OK; // LAMMPS holds these walls
     const gf_cylinder_params *b = &c->u.cyl;
     fprintf(f, "# the cylinder: wall radius %g, funnel at %g degrees to the outlet of radius %g at z = 0, pipe %g d\n",
             b->radius, b->angle, b->r_out, b->pipe);
@@ -220,6 +221,7 @@ static void gf_cyl_lammps_walls(const gf_container *c, FILE *f, const char *pre,
                 "region %s_vessel intersect 2 %s_shell %s_column\n",
                 pre, b->r_in, c->z_col, zhi + 1.0, pre, pre, pre);
     fprintf(f, "fix walls flow wall/gran/region hertz/history %s region %s_vessel\n", law, pre);
+    return GF_OK;
 }
 
 static void gf_cyl_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)

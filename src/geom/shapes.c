@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The table of container shapes (docs/geometry.md, "Adding a shape"): one row
 // per value of container.shape. A shape is one file (box.c, cylinder.c,
-// wedge.c) defining its gf_shape_ops and its row's gf_shape; this table is
+// wedge.c, meshshape.c) defining its gf_shape_ops and its row's gf_shape; this table is
 // the only place that lists them.
 #include "geom/container.h"
 
@@ -11,6 +11,7 @@ static const gf_shape *const gf_shapes_builtin[] = {
     &gf_box_shape,
     &gf_cylinder_shape,
     &gf_wedge_shape,
+    &gf_mesh_shape,
 };
 
 // Shapes added at run time (tests plant one here). Not thread-safe: register

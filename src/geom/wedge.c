@@ -202,9 +202,10 @@ static gf_status gf_wedge_mesh(const gf_container *c, double top, int segments, 
 // as the cylinder's pipe, so that leaving particles fall freely). The union
 // drops each part's surface inside the other (LAMMPS region union): the
 // plane z = 0 over the slit and the chute's walls above z = 0.
-static void gf_wedge_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
+static gf_status gf_wedge_lammps_walls(const gf_container *c, FILE *f, const char *pre, const char *law, double zlo,
                                   double zhi)
 {
+    if (!f) return GF_OK; // LAMMPS holds these walls
     (void)zhi;
     const gf_wedge_params *w = &c->u.wedge;
     const double xa = c->ox - c->hole, xb = c->ox + c->hole;
@@ -224,6 +225,7 @@ static void gf_wedge_lammps_walls(const gf_container *c, FILE *f, const char *pr
             w->angle, xa, xb, w->chute, law, c->ylo, c->yhi, pre, c->xlo, pre, c->xhi, pre, xa, w->sin_a, w->cos_a,
             pre, xb, -w->sin_a, w->cos_a, pre, pre, pre, pre, pre, pre, pre, pre, xa, xb, zlo, pre, pre, pre, law,
             pre);
+    return GF_OK;
 }
 
 static void gf_wedge_lammps_base(const gf_container *c, FILE *f, const char *law, double zlo)

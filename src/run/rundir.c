@@ -27,6 +27,7 @@
 #include "geom/mesh.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
+#include "run/mesh_copy.h"
 #ifdef GF_MPI
 #include "spot/par_mpi.h"
 #endif
@@ -461,7 +462,7 @@ static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
     if (st == GF_OK) st = gf_lock_dir(rd->dir, &rd->lock_fd);
     if (st == GF_OK && !rd->opts->resume) st = gf_clear_run(rd->dir);
     if (st == GF_OK) st = gf_fs_mkdirs(snaps);
-    if (st == GF_OK) st = gf_config_save(rd->cfg, cfgpath);
+    if (st == GF_OK) st = gf_run_save_config(rd->cfg, rd->dir, cfgpath); // and a mesh container's STL
     if (st == GF_OK) st = gf_write_exits(rd, sim);
     if (st != GF_OK) return st;
     rd->exits = fopen(exits, "a");

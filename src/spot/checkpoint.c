@@ -3,6 +3,7 @@
 // Layout: "GFCKPT\r\n", u32 version, u32 byte-order mark, u64 payload size,
 // u32 CRC-32 of the payload, then the payload (native doubles and integers).
 #include <errno.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "geom/meshshape.h"
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
@@ -94,6 +96,10 @@ static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len,
     c.run_checkpoint_interval = d.run_checkpoint_interval;
     c.run_stall_time = d.run_stall_time;
     c.run_threads = d.run_threads; // results do not depend on it
+    const gf_container box = gf_container_make(&c);
+    uint64_t digest;
+    if (gf_container_reads_key(&box, "container.mesh") && gf_meshshape_digest(&c, &digest) == GF_OK)
+        snprintf(c.container_mesh, sizeof c.container_mesh, "stl-fnv1a-%016" PRIx64, digest); // a run's copy is the same mesh
     for (size_t size = (size_t)1 << 16; size <= (size_t)1 << 26; size *= 2) {
         char *buf = gf_alloc(size);
         FILE *f = buf ? fmemopen(buf, size, "w") : NULL;

@@ -29,8 +29,7 @@ static void gf_fuzz_cleanup(void)
     for (int k = 0; k < gf_fuzz_nmade; k++) {
         unlink(gf_fuzz_made[k]);
         char tmp[300]; // what an atomic write into it may have left
-        snprintf(tmp, sizeof tmp, "%s.tmp", gf_fuzz_made[k]);
-        unlink(tmp);
+        if (snprintf(tmp, sizeof tmp, "%s.tmp", gf_fuzz_made[k]) < (int)sizeof tmp) unlink(tmp); // never a cut name
     }
     if (gf_fuzz_made_dir[0]) {
         gf_fuzz_empty(gf_fuzz_made_dir, 0);
