@@ -392,7 +392,16 @@ static gf_status gf_sdf_signs(gf_sdf *s, uint8_t *in)
 static gf_status gf_sdf_field(gf_sdf *s)
 {
     const gf_stl *m = &s->mesh;
-    size_t nn = (size_t)s->nx * s->ny * s->nz;
+    // A bounded node count (also what lets the compiler see the sizes below
+    // are sane: an unchecked product made GCC's LTO warn in gf_alloc).
+    if (s->nx <= 0 || s->ny <= 0 || s->nz <= 0 ||
+        (double)s->nx * (double)s->ny * (double)s->nz > (double)GF_SDF_MAX_NODES)
+        return gf_error_set(GF_ERR_PARAM,
+                            "the mesh's field would have %g nodes (%d x %d x %d), more than %g: a coarser "
+                            "container.mesh_resolution",
+                            (double)s->nx * (double)s->ny * (double)s->nz, s->nx, s->ny, s->nz,
+                            (double)GF_SDF_MAX_NODES);
+    size_t nn = (size_t)s->nx * (size_t)s->ny * (size_t)s->nz;
     uint8_t *in = GF_NEW(uint8_t, nn);
     s->d = GF_NEW(float, nn);
     if (!in || !s->d) {
