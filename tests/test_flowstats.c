@@ -291,6 +291,18 @@ static void surface_angle_regression(void **state)
 // ---------------------------------------------------------------------------
 // Residence times.
 
+/// The residence times of rtd_series' first exits (layer 1 {1, 3, 8}, layer
+/// 2 {4, 6}: see rtd_per_layer).
+static void assert_rtd_layers(const gf_measure_out *out)
+{
+    const gf_table *t = gf_test_table(out, "rtd");
+    assert_int_equal(t->nrow, 2);
+    const double want[2][6] = {{1, 3, 4, sqrt(13.0), 3, 1}, {2, 2, 5, sqrt(2.0), 5, 4}};
+    for (size_t r = 0; r < 2; r++)
+        for (size_t c = 0; c < 6; c++) gf_assert_near(cell(t, r, c), want[r][c], 1e-12);
+    gf_assert_near(gf_test_value(out, "rtd_mean"), 4.4, 1e-12);
+}
+
 /// Frames at t = 2 and 12: ids 1-3 in layer 1 and 4-6 in layer 2 at z = 5 i
 /// in the first; only id 6 (z = 1) in the last.
 static void rtd_series(gf_series *s)
@@ -319,12 +331,7 @@ static void rtd_per_layer(void **state)
     gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
-    const gf_table *t = gf_test_table(&out, "rtd");
-    assert_int_equal(t->nrow, 2);
-    const double want[2][6] = {{1, 3, 4, sqrt(13.0), 3, 1}, {2, 2, 5, sqrt(2.0), 5, 4}};
-    for (size_t r = 0; r < 2; r++)
-        for (size_t c = 0; c < 6; c++) gf_assert_near(cell(t, r, c), want[r][c], 1e-12);
-    gf_assert_near(gf_test_value(&out, "rtd_mean"), 4.4, 1e-12);
+    assert_rtd_layers(&out);
     gf_assert_near(gf_test_value(&out, "rtd_median"), 4.0, 0.0);
     assert_true(gf_test_value(&out, "rtd_exited") == 5.0);
     // Histogram: per layer, pdf = count / (n bw) in bins of 0.25 tau.
@@ -373,12 +380,7 @@ static void rtd_counts_the_first_exit(void **state)
     gf_analysis_opts o = gf_analysis_opts_default();
     gf_measure_out out = {0};
     assert_int_equal(gf_measure_rtd(&s, &o, &out), GF_OK);
-    const gf_table *t = gf_test_table(&out, "rtd");
-    assert_int_equal(t->nrow, 2);
-    const double want[2][6] = {{1, 3, 4, sqrt(13.0), 3, 1}, {2, 2, 5, sqrt(2.0), 5, 4}};
-    for (size_t r = 0; r < 2; r++)
-        for (size_t c = 0; c < 6; c++) gf_assert_near(cell(t, r, c), want[r][c], 1e-12);
-    gf_assert_near(gf_test_value(&out, "rtd_mean"), 4.4, 1e-12);
+    assert_rtd_layers(&out);
     assert_true(gf_test_value(&out, "rtd_exited") == 5.0);
     gf_measure_free(&out);
     gf_series_free(&s);
