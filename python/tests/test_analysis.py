@@ -15,6 +15,8 @@ def _other(value):
         return [[v + 0.5 for v in value], value[:2]]
     if isinstance(value, (int, float)):
         return [value + 1, value * 1.25, value * 0.8, value - 1, 1, 2]
+    if isinstance(value, str):  # a word-valued option (velocity.window): its words
+        return [w for w in ("height", "run") if w != value]
     return []
 
 
