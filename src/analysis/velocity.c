@@ -35,7 +35,7 @@ typedef struct gf_vel_acc {
     double *pp;     ///< npairs x nh x np x 2: the profiles of each pair
     double *band;   ///< npairs x nh x 2: sum vz, samples of each height's band (its steadiness)
     gf_steady_height *verdict; ///< nh: each height's steady pairs
-    double *tpair;  ///< npairs + 1: the frames' times
+    const gf_frame *frames; ///< the window's frames: pair j is frames j and j + 1
     size_t ny;      ///< depth bins
     double y0;      ///< lower edge of depth bin 0, d
     double *depth;  ///< ny x 2: sum vz, samples
@@ -47,7 +47,6 @@ static void gf_vel_acc_free(gf_vel_acc *a)
     if (a->pp) GF_DELETE(a->pp, 2 * a->npairs * a->nh * a->np + 1);
     if (a->band) GF_DELETE(a->band, 2 * a->npairs * a->nh + 1);
     if (a->verdict) GF_DELETE(a->verdict, a->nh);
-    if (a->tpair) GF_DELETE(a->tpair, a->npairs + 1);
     if (a->depth) GF_DELETE(a->depth, 2 * a->ny);
     gf_vfield_free(&a->field);
 }
@@ -184,8 +183,9 @@ static gf_status gf_vel_tables(const gf_vel_acc *a, const gf_analysis_opts *o, g
             st = gf_table_add(tp, row);
         }
         const gf_steady_height *v = &a->verdict[h];
-        double row[7] = {o->vel_heights[h], var, amp, mu, v->steady ? a->tpair[v->first] : NAN,
-                         v->steady ? a->tpair[a->npairs] : NAN, v->steady ? 1.0 : 0.0};
+        bool timed = v->steady && a->frames;
+        double row[7] = {o->vel_heights[h], var, amp, mu, timed ? a->frames[v->first].time : NAN,
+                         timed ? a->frames[a->npairs].time : NAN, v->steady ? 1.0 : 0.0};
         if (st == GF_OK) st = gf_table_add(tv, row);
         if (isfinite(var)) {
             hz[*nfit] = o->vel_heights[h];
@@ -312,16 +312,15 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
         a.np = (size_t)ceil(gf_container_outer_radius(&c) / o->vel_bin);
     }
     double depth = s->cfg.container_depth;
+    a.frames = k1 > k0 ? s->frames + k0 : NULL; // NULL: no frame in the window
     a.npairs = k1 > k0 + 1 ? k1 - k0 - 1 : 0;
     if (st == GF_OK && a.nh) {
         a.prof = GF_NEW(double, 2 * a.nh * a.np + 1);
         a.pp = GF_NEW(double, 2 * a.npairs * a.nh * a.np + 1);
         a.band = GF_NEW(double, 2 * a.npairs * a.nh + 1);
         a.verdict = GF_NEW(gf_steady_height, a.nh);
-        a.tpair = GF_NEW(double, a.npairs + 1);
-        if (!a.prof || !a.pp || !a.band || !a.verdict || !a.tpair)
+        if (!a.prof || !a.pp || !a.band || !a.verdict)
             st = gf_error_set(GF_ERR_NOMEM, "velocity: out of memory for the profiles of %zu frame pairs", a.npairs);
-        for (size_t j = 0; st == GF_OK && j <= a.npairs; j++) a.tpair[j] = s->frames[k0 + j].time;
     }
     if (st == GF_OK && depth > 0.0) {
         a.ny = (size_t)ceil(depth / GF_VELY_BIN - 1e-9);

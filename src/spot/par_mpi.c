@@ -197,26 +197,41 @@ static uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes)
     return h;
 }
 
-gf_status gf_mpi_agree(const gf_sim *sim)
+/// The particles' arrays (positions, start positions, ids, layers, alive flags, histories) into h.
+static uint64_t gf_mpi_hash_particles(uint64_t h, const gf_sim *sim)
 {
-    if (gf_mpi_size() < 2) return GF_OK;
-    const size_t n = sim->n, ns = sim->ns;
-    uint64_t h = 0xcbf29ce484222325ull, counts[5] = {sim->n, sim->n_alive, sim->n_initial, sim->ns, sim->nexit};
-    h = gf_mpi_hash(h, counts, sizeof counts);
-    h = gf_mpi_hash(h, &sim->t, sizeof sim->t);
-    h = gf_mpi_hash(h, &sim->fstep, sizeof sim->fstep);
-    h = gf_mpi_hash(h, &sim->next_snap, sizeof sim->next_snap);
-    h = gf_mpi_hash(h, &sim->rng.s, sizeof sim->rng.s);
+    const size_t n = sim->n;
     h = gf_mpi_hash(h, sim->p, n * sizeof *sim->p);
     h = gf_mpi_hash(h, sim->p0, n * sizeof *sim->p0);
     h = gf_mpi_hash(h, sim->id, n * sizeof *sim->id);
     h = gf_mpi_hash(h, sim->layer, n * sizeof *sim->layer);
     h = gf_mpi_hash(h, sim->alive, n * sizeof *sim->alive);
     h = gf_mpi_hash(h, sim->hist, n * sizeof *sim->hist);
+    return h;
+}
+
+/// The spots' arrays (positions and move counts) into h.
+static uint64_t gf_mpi_hash_spots(uint64_t h, const gf_sim *sim)
+{
+    const size_t ns = sim->ns;
     h = gf_mpi_hash(h, sim->sx, ns * sizeof *sim->sx);
     h = gf_mpi_hash(h, sim->sy, ns * sizeof *sim->sy);
     h = gf_mpi_hash(h, sim->sz, ns * sizeof *sim->sz);
     h = gf_mpi_hash(h, sim->scount, ns * sizeof *sim->scount);
+    return h;
+}
+
+gf_status gf_mpi_agree(const gf_sim *sim)
+{
+    if (gf_mpi_size() < 2) return GF_OK;
+    uint64_t h = 0xcbf29ce484222325ull, counts[5] = {sim->n, sim->n_alive, sim->n_initial, sim->ns, sim->nexit};
+    h = gf_mpi_hash(h, counts, sizeof counts);
+    h = gf_mpi_hash(h, &sim->t, sizeof sim->t);
+    h = gf_mpi_hash(h, &sim->fstep, sizeof sim->fstep);
+    h = gf_mpi_hash(h, &sim->next_snap, sizeof sim->next_snap);
+    h = gf_mpi_hash(h, &sim->rng.s, sizeof sim->rng.s);
+    h = gf_mpi_hash_particles(h, sim);
+    h = gf_mpi_hash_spots(h, sim);
     h = gf_mpi_hash(h, sim->exits, sim->nexit * sizeof *sim->exits);
     uint64_t h0 = h;
     MPI_Bcast(&h0, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
@@ -235,22 +250,14 @@ static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void
     const size_t n = sim->n;
     const gf_grid *g = &sim->grid;
     uint64_t h = 0xcbf29ce484222325ull;
-    h = gf_mpi_hash(h, sim->p, n * sizeof *sim->p);
-    h = gf_mpi_hash(h, sim->p0, n * sizeof *sim->p0);
-    h = gf_mpi_hash(h, sim->id, n * sizeof *sim->id);
-    h = gf_mpi_hash(h, sim->layer, n * sizeof *sim->layer);
-    h = gf_mpi_hash(h, sim->alive, n * sizeof *sim->alive);
-    h = gf_mpi_hash(h, sim->hist, n * sizeof *sim->hist);
+    h = gf_mpi_hash_particles(h, sim);
     h = gf_mpi_hash(h, sim->mark, n * sizeof *sim->mark);
     if (sim->use_nlist && sim->nl) h = gf_mpi_hash(h, sim->nl, (n << sim->nl_shift) * sizeof *sim->nl);
     h = gf_mpi_hash(h, g->count, g->ncell * sizeof *g->count);
     h = gf_mpi_hash(h, g->slot, g->ncell * GF_CELL_CAP * sizeof *g->slot);
     h = gf_mpi_hash(h, g->cell_of, g->np * sizeof *g->cell_of);
     h = gf_mpi_hash(h, g->slot_of, g->np * sizeof *g->slot_of);
-    h = gf_mpi_hash(h, sim->sx, sim->ns * sizeof *sim->sx);
-    h = gf_mpi_hash(h, sim->sy, sim->ns * sizeof *sim->sy);
-    h = gf_mpi_hash(h, sim->sz, sim->ns * sizeof *sim->sz);
-    h = gf_mpi_hash(h, sim->scount, sim->ns * sizeof *sim->scount);
+    h = gf_mpi_hash_spots(h, sim);
     h = gf_mpi_hash(h, dead, sim->ns);
     h = gf_mpi_hash(h, blocks, block_bytes);
     uint64_t mine[2] = {h, ~h}, most[2]; // the largest hash and the complement of the smallest
