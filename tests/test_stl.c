@@ -106,7 +106,12 @@ static void other_ops_agree(const gf_container *ca, const gf_container *cm, doub
     assert_non_null(strstr(gf_last_error(), "LAMMPS' granular walls"));
     assert_true(gf_container_lammps_pour(cm, NULL, 0.0, 0.0, 1.0) == GF_ERR_PARAM);
     gf_error_clear();
-    assert_false(gf_container_profile_radial(cm));
+    // A solid of revolution about z (the hopper) is measured as the cylinder
+    // is, radially, out to its wall; the box across x.
+    assert_int_equal(gf_container_profile_radial(cm), gf_container_profile_radial(ca));
+    if (gf_container_profile_radial(ca) &&
+        fabs(gf_container_outer_radius(cm) - gf_container_outer_radius(ca)) > 1e-6)
+        fail_msg("outer radius %g, analytic %g", gf_container_outer_radius(cm), gf_container_outer_radius(ca));
     if (fabs(cm->z_col - ca->z_col) > 1.0) fail_msg("z_col %g, analytic %g", cm->z_col, ca->z_col);
     assert_true(fabs(cm->z_bottom - ca->z_bottom) < 1e-9);
     gf_mesh mesh;
@@ -162,6 +167,36 @@ static void the_hopper_from_stl_matches_the_cylinder(void **state)
     }
     compare(&ca, &cm, (double[3]){-10.5, -10.5, -3.0}, (double[3]){10.5, 10.5, 40});
     other_ops_agree(&ca, &cm, 30.0);
+    gf_meshshape_cache_clear();
+}
+
+// A square box is not a solid of revolution (its field differs between the
+// faces and the corners), nor is a hopper whose outlet is off the axis.
+static void only_solids_of_revolution_are_radial(void **state)
+{
+    (void)state;
+    const char *box = make_stl("box", "square.stl", "--width 12 --depth 12 --height 30 --orifice 5");
+    gf_config m = gf_config_default();
+    m.container_shape = GF_SHAPE_MESH;
+    snprintf(m.container_mesh, sizeof m.container_mesh, "%s", box);
+    m.orifice_diameter = 5;
+    if (gf_config_validate(&m) != GF_OK) fail_msg("%s", gf_last_error());
+    gf_container c = gf_container_make(&m);
+    assert_non_null(c.u.mesh);
+    assert_false(gf_container_profile_radial(&c));
+    const char *hop = make_stl("hopper", "hopper-r.stl", "--radius 7 --angle 60 --outlet 5 --pipe 2 --height 30");
+    snprintf(m.container_mesh, sizeof m.container_mesh, "%s", hop);
+    m.exit_z = -2;
+    assert_int_equal(gf_config_validate(&m), GF_OK);
+    c = gf_container_make(&m);
+    assert_true(gf_container_profile_radial(&c));
+    assert_true(fabs(gf_container_outer_radius(&c) - 7.0) < 1e-6);
+    m.orifice_shape = GF_ORIFICE_SLIT; // the outlet's keys describe no disc about the axis
+    if (gf_config_validate(&m) == GF_OK) {
+        c = gf_container_make(&m);
+        if (c.u.mesh) assert_false(gf_container_profile_radial(&c));
+    }
+    gf_error_clear();
     gf_meshshape_cache_clear();
 }
 
@@ -349,6 +384,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(the_box_from_stl_matches_the_box),
         cmocka_unit_test(the_hopper_from_stl_matches_the_cylinder),
+        cmocka_unit_test(only_solids_of_revolution_are_radial),
         cmocka_unit_test(a_good_cube_is_accepted),
         cmocka_unit_test(malformed_meshes_are_refused),
         cmocka_unit_test(mesh_path_is_relative_to_the_ini),

@@ -275,14 +275,17 @@ static bool gf_ms_clear(const gf_container *c, double x, double y, double z, dou
 
 static void gf_ms_radii(const gf_container *c, double r[2])
 {
+    const gf_meshshape *ms = c->u.mesh;
     r[0] = 0.0;
-    r[1] = hypot(fmax(-c->xlo, c->xhi), fmax(-c->ylo, c->yhi));
+    r[1] = ms && ms->axis_r > 0.0 ? ms->axis_r : hypot(fmax(-c->xlo, c->xhi), fmax(-c->ylo, c->yhi));
 }
 
 static gf_profile_coord gf_ms_profile(const gf_container *c)
 {
-    (void)c;
-    return GF_PROFILE_X; // an STL has no axis granflow knows of
+    // A solid of revolution about z (meshload.c) is measured as a cylinder;
+    // any other mesh across x, as a box.
+    const gf_meshshape *ms = c->u.mesh;
+    return ms && ms->axis_r > 0.0 ? GF_PROFILE_R : GF_PROFILE_X;
 }
 
 // ---- the outline: the mesh cut by y = 0, chained, simplified -----------------

@@ -28,6 +28,7 @@ typedef struct gf_meshshape {
     uint32_t *vfirst;       ///< each vertex's lowest-numbered triangle
     bool closed;            ///< no open edge: the outlet is cut out of the walls by the orifice keys
     double z_col;           ///< where the cross-section stops changing (a funnel's top; the floor for straight walls)
+    double axis_r;          ///< > 0: a solid of revolution about the z axis (a cylinder, a cone) of this wall radius; 0: none
     char path[GF_PATH_MAX]; ///< container.mesh as given (messages)
 } gf_meshshape;
 
