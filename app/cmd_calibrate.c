@@ -190,6 +190,7 @@ int gf_cmd_calibrate(int argc, char **argv)
             printf("refined parameters: spot.radius = %.4g, spot.step_xy = %.4g, spot.w = %.4g, "
                    "spot.insertion_rate = %.4g, spot.move_rate = %.4g\n",
                    cfg.spot_radius, cfg.spot_step_xy, cfg.spot_w, cfg.spot_insertion_rate, cfg.spot_move_rate);
+            gf_dem_refine_print(&res, stdout);
         }
     }
     gf_packing_free(&start);

@@ -323,16 +323,26 @@ typedef struct gf_dem_refine_result {
     gf_dem_flowstats first, last;    ///< the spot runs of the first guess and of the final parameters
     int runs;                        ///< spot runs made
     bool matched;                    ///< the final parameters meet both tolerances
+    /// The kept parameters fitted jointly to the flow and the Var(z) line,
+    /// each with its standard error (the kept run's noise carried through
+    /// the model; err NaN: not fitted, e.g. r_s fixed by the correlation length).
+    gf_dem_value insertion_rate, step_xy, radius;
+    char unreached[512];             ///< when not matched: which targets were missed and why ("" when matched)
 } gf_dem_refine_result;
 /// Closed-loop calibration: runs the spot model from the DEM's first frame
 /// with the parameters of `cfg` (the thesis relations' first guess) over the
-/// DEM's window, compares, and adjusts them (spot.insertion_rate for the flow
-/// rate, spot.step_xy for the profile widths, spot.w for b_p, spot.move_rate
-/// for the density drop, spot.radius for beta) until the flow rate is within
+/// DEM's window, compares, and adjusts them (spot.insertion_rate, step_xy and
+/// radius together for the flow rate and the slope and level of the Var(z)
+/// line, a least-squares step on a model learnt from the runs; spot.w for
+/// b_p, spot.move_rate for the density drop, spot.radius from beta on the
+/// first run when the DEM's correlation length is usable) until the flow rate is within
 /// flow_tol and Var at every height within var_tol, or max_iter runs; `cfg`
 /// ends with the best parameters found (the run closest to the targets).
 GF_API gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_config *cfg,
                                const gf_dem_refine_opts *ro, gf_dem_refine_result *res);
+/// Prints the jointly fitted parameters with their standard errors and,
+/// when the targets were not all met, which were missed and why.
+GF_API void gf_dem_refine_print(const gf_dem_refine_result *res, FILE *out);
 
 // ---------------------------------------------------------------------------
 // Comparison (thesis Sec. 3.5).

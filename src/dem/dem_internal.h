@@ -20,19 +20,42 @@ typedef struct gf_dem_var_lines {
 void gf_dem_var_lines_fit(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double vtol,
                           gf_dem_var_lines *l);
 
-/// The refinement's update of the two parameters that set the widths of the
-/// v_z(x) profiles, Var(z) ~ 2 b_s (z + r_s) + r_s^2 / 5 + birth spread:
-/// step_xy sets the growth rate (b_s ~ dx^2: dx x sqrt(slope_DEM / slope_spot)),
-/// r_s the level (taken as d Var / d r_s = 2 b_s + 2 r_s / 5). When a single
-/// factor on every Var (the step alone: the weighted geometric mean of
-/// Var_DEM / Var_spot) would bring every measured height within vtol, only
-/// dx moves, by that factor; so it does when r_s is not `rs_free` (the DEM's
-/// correlation length fixed it). Else, with at least two measured heights,
-/// both are fitted (r_s only for a level difference beyond twice its
-/// uncertainty). The level is compared at zm, where the spot's
-/// Var after the step change is predicted as ka Var (ka = the change of
-/// b_s). Each factor is limited to [1 / maxf, maxf].
-void gf_dem_refine_width(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double vtol, bool rs_free,
-                         double maxf, double *step_xy, double *r_s);
+// ---- the joint step (refine_step.c; issue 27 item 3) ---------------------------
+
+/// Targets (rows) and parameters (columns) of the joint step: p = (ln(lambda /
+/// w), ln step_xy, r_s) set y = (ln Q, ln d Var / dz, ln Var at zm).
+enum { GF_REF_FLOW = 0, GF_REF_SLOPE = 1, GF_REF_LEVEL = 2 };
+enum { GF_REF_LAMBDA = 0, GF_REF_STEP = 1, GF_REF_RADIUS = 2 };
+/// The three targets of a DEM and a spot run, each with the combined
+/// standard error of their difference; ok: measured (the slope needs two
+/// heights, the level one).
+typedef struct gf_ref_targets {
+    double dem[3], spot[3], sig[3];
+    bool ok[3];
+    gf_dem_var_lines lines;
+} gf_ref_targets;
+void gf_ref_targets_make(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double vtol, gf_ref_targets *t);
+/// The linear model dy = J dp of the targets' response to the parameters.
+typedef struct gf_ref_model {
+    double J[3][3];
+    double diag0[3]; ///< each target's slope in its own parameter at the start (kept within a factor 4)
+} gf_ref_model;
+/// J from the thesis' relations at r_s and the spot's Var line (slope, level).
+void gf_ref_model_init(gf_ref_model *m, double r_s, double slope, double level);
+/// Broyden's update of the rows `ok` from a run's change dp -> dy, each only
+/// when the change (observed or predicted) exceeds twice its noise sig.
+void gf_ref_model_update(gf_ref_model *m, const double dp[3], const double dy[3], const double sig[3],
+                         const bool ok[3], double r_s);
+/// The weighted least-squares step dp over the rows `row` (residuals r,
+/// errors sig) and the free columns `col`, with a prior of standard
+/// deviation rs_prior (d; 0: none) against moving r_s; cov gets the
+/// covariance of the free parameters (the inverse of the weighted normal
+/// matrix, the prior included). Returns the number of free parameters
+/// solved for (0: none, or singular).
+int gf_ref_step(const gf_ref_model *m, const double r[3], const double sig[3], const bool row[3], const bool col[3],
+                double rs_prior, double dp[3], double cov[3][3]);
+/// Scales dp so that no log moves by more than ln maxf and r_s by no more
+/// than a factor maxf; returns the factor applied (1: none).
+double gf_ref_limit(double dp[3], double r_s, double maxf);
 
 #endif

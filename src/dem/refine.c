@@ -2,15 +2,16 @@
 // Closed-loop calibration: the thesis' relations (Sec. 3.3) give a first
 // guess of the five spot parameters; short spot runs from the DEM's own first
 // frame then adjust them until the spot model flows like the DEM (flow rate,
-// widths of the v_z(x) profiles). Each update follows the relation that ties
-// a parameter to what it controls:
-//   Q = lambda p / w              -> lambda *= Q_dem / Q_spot (and follows w, r_s^3)
-//   d Var / dz = 2 b_s ~ dx^2     -> step_xy *= sqrt(slope_dem / slope_spot), and r_s
-//                                    moves the level (lines fitted over the heights;
-//                                    r_s only when beta left it free)
+// widths of the v_z(x) profiles). The flow rate and the line Var(z) through
+// the measured heights (slope and level) are fitted together by lambda / w,
+// step_xy and r_s (refine_step.c: a least-squares step on a model that
+// starts from Q = lambda p / w, p ~ r_s^3, d Var / dz = 2 b_s ~ dx^2 and
+// learns from the runs; issue 27 item 3). The others follow the relation
+// that ties a parameter to what it controls:
 //   b_p = b_s / w                 -> w *= b_p,spot / b_p,dem
 //   dN = Q h / (mu dz)            -> mu *= dN_spot / dN_dem
-//   beta = 0.72 r_s               -> r_s *= beta_dem / beta_spot (first run only)
+//   beta = 0.72 r_s               -> r_s *= beta_dem / beta_spot (first run only; r_s
+//                                    then stays out of the joint step)
 #include <math.h>
 #include <string.h>
 
@@ -22,6 +23,7 @@
 
 #define GF_REF_MAXSTEP 1.5 // no parameter changes by more than this factor per run
 #define GF_REF_MIN_RS 1.0  // the width fit never makes a spot smaller than a particle
+#define GF_REF_RS_PRIOR 0.25 // r_s moves by this fraction at the cost of one target's standard error
 
 /// Snapshots of a spot run kept in memory as a series.
 typedef struct gf_ref_capture {
@@ -107,10 +109,12 @@ static double gf_ref_score(const gf_dem_flowstats *d, const gf_dem_flowstats *s,
     double score = fabs(s->flow.value - d->flow.value) / (fabs(d->flow.value) * ftol);
     if (!isfinite(score)) return INFINITY;
     for (size_t z = 0; z < d->nz && z < s->nz; z++) {
-        // A height the spot run never had steady (no Var) counts as unmatched.
         if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
         double e = fabs(s->var[z].value - d->var[z].value) / (fabs(d->var[z].value) * vtol);
-        score = fmax(score, isfinite(e) ? e : INFINITY);
+        // A height the spot run never had steady (no Var) counts as
+        // unmatched, as twice the tolerance: the runs still compare on the
+        // others (as infinite, it made the first guess the best run).
+        score = fmax(score, isfinite(e) ? e : 2.0);
     }
     return score;
 }
@@ -125,22 +129,6 @@ static double gf_ref_ratio(gf_dem_value a, gf_dem_value b)
     double ea = isfinite(a.err) ? a.err / a.value : 0.0, eb = isfinite(b.err) ? b.err / b.value : 0.0;
     if (fabs(r - 1.0) <= 2.0 * hypot(ea, eb)) return 1.0;
     return fmin(GF_REF_MAXSTEP, fmax(1.0 / GF_REF_MAXSTEP, r));
-}
-
-/// Var_dem / Var_spot over the heights the DEM measured precisely enough
-/// (gf_dem_flowstats_measured): the geometric mean, weighted by 1 / rel. err^2.
-static double gf_ref_var_ratio(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, double maxf)
-{
-    double sum = 0.0, wsum = 0.0;
-    for (size_t z = 0; z < d->nz && z < s->nz; z++) {
-        double a = d->var[z].value, b = s->var[z].value;
-        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(b > 0) || !isfinite(b)) continue;
-        double e = isfinite(d->var[z].err) ? fmax(d->var[z].err / a, 0.01) : 0.05;
-        sum += log(a / b) / (e * e);
-        wsum += 1.0 / (e * e);
-    }
-    double r = wsum > 0 ? exp(sum / wsum) : 1.0;
-    return fmin(maxf, fmax(1.0 / maxf, r));
 }
 
 void gf_dem_var_lines_fit(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, gf_dem_var_lines *l)
@@ -182,41 +170,58 @@ void gf_dem_var_lines_fit(const gf_dem_flowstats *d, const gf_dem_flowstats *s, 
     }
 }
 
-void gf_dem_refine_width(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double vtol, bool rs_free,
-                         double maxf, double *step_xy, double *r_s)
+/// res->unreached: which targets the kept run missed and why (empty when it
+/// met them all).
+static void gf_ref_explain(gf_dem_refine_result *res, const gf_ref_targets *t, const bool col[3], double scale,
+                           double r_s, double ftol, double vtol, int max_iter)
 {
-    gf_dem_var_lines l;
-    gf_dem_var_lines_fit(d, s, vtol, &l);
-    double a_d = l.slope[0].value, a_s = l.slope[1].value;
-    // One knob when it is enough: the step alone scales every Var by k1;
-    // the level moves r_s only when no such scale brings every measured
-    // height within vtol (r_s and step_xy trade off over a short range of
-    // heights, so r_s stays at the thesis' value unless it must move).
-    double k1 = gf_ref_var_ratio(d, s, vtol, INFINITY); // unlimited: would it fit?
-    bool one_knob = true;
+    char *o = res->unreached;
+    size_t cap = sizeof res->unreached, n = 0;
+    o[0] = '\0';
+#define GF_REF_SAY(...)                                                                  \
+    do {                                                                                 \
+        if (n < cap) n += (size_t)snprintf(o + n, cap - n, __VA_ARGS__);               \
+    } while (0)
+    const gf_dem_flowstats *d = &res->dem, *s = &res->last;
+    double dq = (s->flow.value - d->flow.value) / d->flow.value;
+    if (!(fabs(dq) <= ftol)) {
+        if (!col[GF_REF_LAMBDA])
+            GF_REF_SAY("flow rate: no outflow to fit in the spot run. ");
+        else
+            GF_REF_SAY("flow rate %+.1f%%: %s. ", 100.0 * dq,
+                       scale < 1.0 ? "the last step was cut to a factor 1.5; more runs would go on"
+                                   : "the model's step did not get there in the runs allowed");
+    }
+    char hs[160] = "";
+    size_t nh = 0, off = 0;
     for (size_t z = 0; z < d->nz && z < s->nz; z++) {
-        if (!gf_dem_flowstats_measured(d->var[z], vtol) || !(s->var[z].value > 0)) continue;
-        if (fabs(k1 * s->var[z].value - d->var[z].value) > vtol * d->var[z].value) one_knob = false;
+        if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
+        double e = (s->var[z].value - d->var[z].value) / d->var[z].value;
+        if (fabs(e) <= vtol) continue;
+        nh++;
+        if (off < sizeof hs) off += (size_t)snprintf(hs + off, sizeof hs - off, "%s%g (%+.0f%%)", nh > 1 ? ", " : "", d->z[z], 100.0 * e);
     }
-    // With r_s fixed (by the correlation length), the slope alone would
-    // leave the level wrong: the one factor is then the best dx can do.
-    if (one_knob || !rs_free || l.n < 2 || !(a_d > 0) || !(a_s > 0)) {
-        *step_xy *= sqrt(fmin(maxf, fmax(1.0 / maxf, k1)));
-        return;
+    if (nh > 0) {
+        bool line_ok = true;
+        for (int k = GF_REF_SLOPE; k <= GF_REF_LEVEL; k++)
+            if (t->ok[k] && fabs(t->dem[k] - t->spot[k]) > 2.0 * t->sig[k]) line_ok = false;
+        GF_REF_SAY("Var at z = %s: ", hs);
+        if (line_ok && t->ok[GF_REF_SLOPE])
+            GF_REF_SAY("the line through the heights matches (slope and level within twice their noise), the "
+                       "heights about it do not: Var(z) is not straight the same way in both, which lambda, "
+                       "step_xy and r_s (they set the line) cannot change. ");
+        else if (!t->ok[GF_REF_SLOPE])
+            GF_REF_SAY("fewer than two heights measured well enough to fit a slope: only one factor on the widths. ");
+        else if (col[GF_REF_RADIUS] && r_s <= GF_REF_MIN_RS + 1e-12)
+            GF_REF_SAY("spot.radius is at its floor of 1 d and the level is still too %s. ",
+                       t->spot[GF_REF_LEVEL] > t->dem[GF_REF_LEVEL] ? "high" : "low");
+        else if (!col[GF_REF_RADIUS])
+            GF_REF_SAY("spot.radius is fixed by the DEM's correlation length, so step_xy alone sets slope and level. ");
+        else
+            GF_REF_SAY("%d runs were not enough (each step is limited to a factor 1.5). ", max_iter);
     }
-    // The growth rate: b_s ~ dx^2.
-    double ka = fmin(maxf * maxf, fmax(1.0 / (maxf * maxf), a_d / a_s));
-    *step_xy *= sqrt(ka);
-    // The level at zm, the spot's predicted after the step change: its
-    // profiles widen in proportion (measured: the spot's Var(z) lines pass
-    // close to the origin, the birth depth and the ball hardly show).
-    double a_new = ka * a_s, m_new = ka * l.level[1].value;
-    double dm = l.level[0].value - m_new;
-    double em = hypot(l.level[0].err, l.level[1].err);
-    if (!(fabs(dm) > 2.0 * em) || !isfinite(dm)) return;
-    double r = *r_s + dm / (a_new + 0.4 * *r_s);
-    r = fmin(*r_s * maxf, fmax(*r_s / maxf, r));
-    *r_s = fmax(GF_REF_MIN_RS, r);
+    if (n > 0 && o[n - 1] == ' ') o[n - 1] = '\0';
+#undef GF_REF_SAY
 }
 
 gf_dem_refine_opts gf_dem_refine_opts_default(void) { return (gf_dem_refine_opts){.max_iter = 0}; }
@@ -238,6 +243,10 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
                             res->dem.t0, res->dem.t1);
     gf_config cur = *cfg, best = *cfg;
     double best_score = INFINITY;
+    gf_ref_model model;
+    gf_ref_targets prev_t = {0}, best_t = {0};
+    double prev_p[3] = {0}, best_cov[3][3] = {{0}}, best_scale = 1.0;
+    bool best_col[3] = {false, false, false};
     for (int it = 1; it <= max_iter; it++) {
         if (ro->stop && *ro->stop) return gf_error_set(GF_ERR_INTERRUPTED, "refine: interrupted");
         gf_series spot;
@@ -254,37 +263,102 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         double score = gf_ref_score(&res->dem, &fs, ftol, vtol);
         bool match = score <= 1.0;
         if (ro->progress) ro->progress(ro->ctx, it, max_iter, &cur, &res->dem, &fs, match);
+        // The targets and what this run says of the model (issue 27 item 3).
+        gf_ref_targets t;
+        gf_ref_targets_make(&res->dem, &fs, vtol, &t);
+        const double p[3] = {log(cur.spot_insertion_rate / cur.spot_w), log(cur.spot_step_xy), cur.spot_radius};
+        if (it == 1) {
+            gf_ref_model_init(&model, cur.spot_radius, t.ok[GF_REF_SLOPE] ? exp(t.spot[GF_REF_SLOPE]) : 0.0,
+                              t.ok[GF_REF_LEVEL] ? exp(t.spot[GF_REF_LEVEL]) : 0.0);
+        } else {
+            double dp[3], dy[3], sig[3];
+            bool ok[3];
+            for (int k = 0; k < 3; k++) {
+                dp[k] = p[k] - prev_p[k];
+                dy[k] = t.spot[k] - prev_t.spot[k];
+                ok[k] = t.ok[k] && prev_t.ok[k];
+                sig[k] = t.sig[k];
+            }
+            gf_ref_model_update(&model, dp, dy, sig, ok, cur.spot_radius);
+        }
+        prev_t = t;
+        memcpy(prev_p, p, sizeof prev_p);
+        // The next parameters: r_s from the correlation length when the
+        // DEM's region can hold it (first run only), else free; lambda / w,
+        // step_xy and r_s by the joint step; then w and mu by their own
+        // relations.
+        gf_config next = cur;
+        bool beta_ok = res->dem.beta.value >= GF_DEM_BETA_MIN && res->dem.beta.value <= 0.5 * o->corr_size;
+        double fr = it == 1 && beta_ok ? gf_ref_ratio(res->dem.beta, fs.beta) : 1.0;
+        double r[3], dp[3], cov[3][3];
+        bool row[3], col[3] = {t.ok[GF_REF_FLOW], t.ok[GF_REF_SLOPE] || t.ok[GF_REF_LEVEL],
+                               !beta_ok && t.ok[GF_REF_SLOPE] && t.ok[GF_REF_LEVEL]};
+        double drs = cur.spot_radius * (fr - 1.0); // imposed by beta
+        for (int k = 0; k < 3; k++) {
+            row[k] = t.ok[k];
+            r[k] = t.dem[k] - t.spot[k] - model.J[k][GF_REF_RADIUS] * drs;
+            // The widths follow only a difference beyond their noise; the
+            // flow, the target, always.
+            if (k != GF_REF_FLOW && fabs(t.dem[k] - t.spot[k]) <= 2.0 * t.sig[k]) r[k] = 0.0;
+        }
+        gf_ref_step(&model, r, t.sig, row, col, GF_REF_RS_PRIOR * cur.spot_radius, dp, cov);
+        double scale = gf_ref_limit(dp, cur.spot_radius, GF_REF_MAXSTEP);
         if (score < best_score) {
             best_score = score;
             best = cur;
             res->last = fs;
+            best_t = t;
+            memcpy(best_cov, cov, sizeof best_cov);
+            memcpy(best_col, col, sizeof best_col);
+            best_scale = scale;
         }
         if (match) break;
-        // The updates (the relations in the header comment).
-        gf_config next = cur;
-        // r_s only from a correlation length the DEM's region can hold.
-        bool beta_ok = res->dem.beta.value >= GF_DEM_BETA_MIN && res->dem.beta.value <= 0.5 * o->corr_size;
-        double fr = it == 1 && beta_ok ? gf_ref_ratio(res->dem.beta, fs.beta) : 1.0;
-        // The widths: step_xy for their growth with height, and r_s for
-        // their level when the correlation length left r_s free.
-        double rs = cur.spot_radius, dx = cur.spot_step_xy;
-        gf_dem_refine_width(&res->dem, &fs, vtol, !beta_ok, GF_REF_MAXSTEP, &dx, &rs);
-        if (!beta_ok) fr = rs / cur.spot_radius;
-        next.spot_radius = cur.spot_radius * fr;
-        next.spot_step_xy = dx;
-        double fw = gf_ref_ratio(fs.bp, res->dem.bp);
-        next.spot_w = cur.spot_w * fw;
-        next.spot_move_rate = cur.spot_move_rate * gf_ref_ratio(fs.drop, res->dem.drop);
-        gf_dem_value qd = res->dem.flow, qs = fs.flow;
-        qd.err = qs.err = 0.0; // the flow is the target: always follow it
-        double fq = gf_ref_ratio(qd, qs);
-        next.spot_insertion_rate = cur.spot_insertion_rate * fq * fw / (fr * fr * fr);
+        double rs = fmax(GF_REF_MIN_RS, cur.spot_radius + drs + dp[GF_REF_RADIUS]);
+        next.spot_radius = rs;
+        next.spot_step_xy = cur.spot_step_xy * exp(dp[GF_REF_STEP]);
+        // w and mu by their relations, but only from a run that already flows
+        // as the DEM does (mu: the drop dN ~ Q / mu) and whose widths grow as
+        // the DEM's (w: b_p = b_s / w, b_s ~ step_xy^2): compared at another
+        // flow or step, the particles' diffusion and the drop move for those
+        // reasons too, and w and mu ran off (measured: w 399 -> 177 on a
+        // reference made with w = 399, issue 27).
+        bool flow_ok = fabs(fs.flow.value - res->dem.flow.value) <= ftol * res->dem.flow.value;
+        bool growth_ok = !t.ok[GF_REF_SLOPE] || fabs(t.dem[GF_REF_SLOPE] - t.spot[GF_REF_SLOPE]) <=
+                                                    fmax(2.0 * t.sig[GF_REF_SLOPE], log(1.0 + vtol));
+        if (flow_ok && growth_ok) next.spot_w = cur.spot_w * gf_ref_ratio(fs.bp, res->dem.bp);
+        if (flow_ok) next.spot_move_rate = cur.spot_move_rate * gf_ref_ratio(fs.drop, res->dem.drop);
+        next.spot_insertion_rate = next.spot_w * exp(p[GF_REF_LAMBDA] + dp[GF_REF_LAMBDA]);
         next.spot_insertion_margin = NAN; // auto: follow the radius
         next.relax_radius = NAN;
         if ((st = gf_config_validate(&next)) != GF_OK) return st;
         cur = next;
     }
+    // The kept parameters with their standard errors: the noise of the kept
+    // run's targets carried through the model (cov = (J^T W J)^-1).
+    res->insertion_rate = (gf_dem_value){best.spot_insertion_rate,
+                                         best_col[GF_REF_LAMBDA] ? best.spot_insertion_rate * sqrt(best_cov[0][0]) : NAN};
+    res->step_xy = (gf_dem_value){best.spot_step_xy, best_col[GF_REF_STEP] ? best.spot_step_xy * sqrt(best_cov[1][1]) : NAN};
+    res->radius = (gf_dem_value){best.spot_radius, best_col[GF_REF_RADIUS] ? sqrt(best_cov[2][2]) : NAN};
+    gf_ref_explain(res, &best_t, best_col, best_scale, best.spot_radius, ftol, vtol, max_iter);
     res->matched = best_score <= 1.0;
     *cfg = best;
     return GF_OK;
+}
+
+// One "name = value +- err" (or "(held)" without an error).
+static void gf_ref_print_value(FILE *out, const char *name, gf_dem_value v, const char *sep)
+{
+    if (isfinite(v.err))
+        fprintf(out, "%s = %.4g +- %.2g%s", name, v.value, v.err, sep);
+    else
+        fprintf(out, "%s = %.4g (held)%s", name, v.value, sep);
+}
+
+void gf_dem_refine_print(const gf_dem_refine_result *res, FILE *out)
+{
+    fprintf(out, "fitted together (flow rate, Var(z) slope and level): ");
+    gf_ref_print_value(out, "spot.insertion_rate", res->insertion_rate, ", ");
+    gf_ref_print_value(out, "spot.step_xy", res->step_xy, ", ");
+    gf_ref_print_value(out, "spot.radius", res->radius, "\n");
+    if (res->unreached[0]) fprintf(out, "not reached: %s\n", res->unreached);
 }
