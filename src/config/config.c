@@ -437,6 +437,11 @@ gf_status gf_config_validate(gf_config *cfg)
         return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not combine with %s > 0 (the flow rule "
                             "biases the walk itself)", m.lead, m.key[1]);
     }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && !(cfg->spot_step_xy > 0.0)) {
+        // The slip-line step's length is set by the lateral step (docs/stress.md).
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "spot.step_xy");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr needs %s > 0", m.lead, m.key[1]);
+    }
     if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->run_mode == GF_MODE_FIXED &&
         (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS)) {
         // Their blocks assume a spot moves up by step_z and across by step_xy; sfr steps go down too.

@@ -12,7 +12,6 @@
 // friction is fully mobilised (S_rt = -tan(phi_w) S_tt): the axis value
 // s(0) is found by shooting.
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -104,9 +103,6 @@ gf_status gf_radial_solve(double phi_deg, double phi_w_deg, double theta_w_deg, 
             continue;
         }
         double g = gf_radial_wall(o.a, mu_w, ww);
-#ifdef GF_RADIAL_DEBUG
-        fprintf(stderr, "s0 %g ww %g g %g\n", s0, ww * 180 / GF_PI, g);
-#endif
         if (isfinite(prev_g) && (g < 0.0) != (prev_g < 0.0)) {
             lo = prev_s0;
             hi = s0;
