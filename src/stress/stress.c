@@ -9,7 +9,9 @@
 // active root of the yield condition (the material everywhere at incipient
 // failure, major principal stress near vertical as in a filled silo); the
 // walls fully mobilise their friction. The section [lo(h), hi(h)] may
-// narrow with depth (a hopper): the cells are mapped to xi in [0, 1].
+// narrow with depth: the cells are mapped to xi in [0, 1]. Below the top of
+// a converging section (a funnel) the field is Jenike's passive radial field
+// instead (radial.c), when one exists.
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +29,6 @@
 typedef struct gf_yield {
     double s, s2;   // sin(phi), its square
     double tan_phi;
-    bool passive;   // the passive root (sigma_uu >= sigma_zz, major principal stress near horizontal)
 } gf_yield;
 
 static double gf_yield_x(const gf_yield *y, double Z, double *T, bool *clamped)
@@ -40,19 +41,18 @@ static double gf_yield_x(const gf_yield *y, double Z, double *T, bool *clamped)
     }
     double d = y->s2 * Z * Z - (1.0 - y->s2) * (*T) * (*T);
     d = d > 0.0 ? sqrt(d) : 0.0;
-    return (Z * (1.0 + y->s2) + (y->passive ? 2.0 : -2.0) * d) / (1.0 - y->s2);
+    return (Z * (1.0 + y->s2) - 2.0 * d) / (1.0 - y->s2);
 }
 
 // Largest |characteristic speed| du/dh of the state (Z, T): the roots of
 // l^2 + X_T l - X_Z = 0, the Jacobian of the fluxes (-T, -X(Z, T)).
 static double gf_yield_speed(const gf_yield *y, double Z, double T)
 {
-    double sg = y->passive ? -1.0 : 1.0;
-    if (Z <= 0.0) return sqrt(y->passive ? (1.0 + y->s) / (1.0 - y->s) : (1.0 - y->s) / (1.0 + y->s));
+    if (Z <= 0.0) return sqrt((1.0 - y->s) / (1.0 + y->s));
     double d = y->s2 * Z * Z - (1.0 - y->s2) * T * T;
     d = fmax(d, 1e-6 * y->s2 * Z * Z); // the edge of the surface, where the root is singular
     d = sqrt(d);
-    double xz = ((1.0 + y->s2) - sg * 2.0 * y->s2 * Z / d) / (1.0 - y->s2), xt = sg * 2.0 * T / d;
+    double xz = ((1.0 + y->s2) - 2.0 * y->s2 * Z / d) / (1.0 - y->s2), xt = 2.0 * T / d;
     double disc = xt * xt + 4.0 * xz;
     if (disc < 0.0) disc = 0.0;
     return 0.5 * (fabs(xt) + sqrt(disc));
@@ -200,9 +200,9 @@ static void gf_wall_state(const gf_march *m, const gf_level *L, int side, double
 }
 
 // The hoop stress (Haar-von Karman): the in-plane principal stress that is
-// horizontal on the axis, so that sigma_rr = sigma_tt there: the minor one
-// in the active state, the major one in the passive.
-static double gf_hoop(const gf_yield *y, double P) { return P * (y->passive ? 1.0 + y->s : 1.0 - y->s); }
+// horizontal on the axis, so that sigma_rr = sigma_tt there: in the active
+// state the minor one (radial.c has the passive state's).
+static double gf_hoop(const gf_yield *y, double P) { return P * (1.0 - y->s); }
 
 static void gf_fluxes(gf_march *m, const gf_level *L, double *G)
 {
