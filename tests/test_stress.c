@@ -200,6 +200,32 @@ static void shallow_cone_has_no_radial_field(void **state)
     assert_non_null(strstr(gf_last_error(), "too shallow for mass flow"));
 }
 
+// The papers' 60-degree cone (a half-angle of 30) is too shallow for a radial
+// field with phi_w = 20: the field takes the most wall friction that has one,
+// mobilised at the wall, and its force still drives spots up the axis.
+static void shallow_cone_mobilises_less_wall_friction(void **state)
+{
+    (void)state;
+    gf_config cfg = cfg_of((const char *const[]){"container.shape=cylinder", "container.radius=8",
+                                                 "container.hopper_angle=60", "container.outlet_diameter=5", NULL});
+    gf_stress_field f;
+    solve(&cfg, 30.0, &f);
+    bool radial = f.radial;
+    double mob = f.wall_mobilised;
+    gf_stress_point axis;
+    bool at = gf_stress_at(&f, 0.0, 0.5 * f.apex_z + 0.5 * 8.0 / tan(PI / 3), &axis);
+    gf_radial rf;
+    gf_status rs = gf_radial_solve(30, mob, 90 - 60, 1, &rf);
+    gf_status none = gf_radial_solve(30, mob + 0.01, 90 - 60, 1, &rf);
+    print_message("wall friction mobilised %.3f of 20 deg; axis f = (%.3g, %.3g)\n", mob, axis.f[0], axis.f[1]);
+    gf_stress_free(&f);
+    assert_true(radial && at);
+    assert_true(mob > 1.0 && mob < 20.0);
+    assert_int_equal(rs, GF_OK);
+    assert_int_equal(none, GF_ERR_STATE);
+    assert_true(axis.f[1] < 0.0);
+}
+
 static void bad_input_is_refused(void **state)
 {
     (void)state;
@@ -230,6 +256,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(radial_field_of_a_cone),
     cmocka_unit_test(radial_field_of_a_wedge),
     cmocka_unit_test(shallow_cone_has_no_radial_field),
+    cmocka_unit_test(shallow_cone_mobilises_less_wall_friction),
     cmocka_unit_test(bad_input_is_refused),
 };
 

@@ -77,10 +77,14 @@ gf_status gf_stress_write_csv(const gf_stress_field *f, const char *path)
     const char *u = f->axisym ? "r" : "x";
     fprintf(fp, "# limit-state Mohr-Coulomb stress (docs/stress.md): ztop = %.17g, phi = %g deg, phi_w = %g deg, %s; "
                 "stresses in rho_b g d, compressive positive; psi: major principal direction from the %s axis, "
-                "degrees; f: out-of-balance force div(P R(psi)); clamped states: %ld%s\n",
+                "degrees; f: out-of-balance force div(P R(psi)); clamped states: %ld%s",
             f->ztop, f->def.friction_angle, f->def.wall_friction_angle,
             f->axisym ? "axisymmetric (r, z), Haar-von Karman hoop stress" : "plane strain (x, z)", u, f->clamped,
             f->radial ? "; below the top of the funnel: the radial field" : "");
+    if (f->radial && f->wall_mobilised < f->def.wall_friction_angle)
+        fprintf(fp, " (with the wall friction partly mobilised, %.4g of phi_w = %g deg: too shallow for mass flow)",
+                f->wall_mobilised, f->def.wall_friction_angle);
+    fputc('\n', fp);
     fprintf(fp, "%s,z,s_%s%s,s_zz,s_%sz,s_%s,p,psi_deg,f_%s,f_z\n", u, u, u, u, f->axisym ? "tt" : "yy", u);
     for (int j = 0; j < f->nz; j++)
         for (int i = 0; i < f->nu; i++) {

@@ -427,9 +427,33 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
             out->apex_z = ztop - (hp + dapex);
             double thw = m.axisym ? atan(-Lc.dhi) : 0.5 * (atan(Lc.dlo) + atan(-Lc.dhi));
             out->theta_w = thw;
-            gf_status rs = gf_radial_solve(def->friction_angle, def->wall_friction_angle, thw * 180.0 / GF_PI,
-                                           m.axisym, &rf);
-            out->radial = rs == GF_OK;
+            double thd = thw * 180.0 / GF_PI, pw = def->wall_friction_angle;
+            out->radial = gf_radial_solve(def->friction_angle, pw, thd, m.axisym, &rf) == GF_OK;
+            out->wall_mobilised = pw;
+            if (!out->radial) {
+                // Too shallow for mass flow at phi_w (Jenike): the walls cannot
+                // hold the passive field with their friction fully mobilised.
+                // Take the field with the most wall friction that has one
+                // (partly mobilised friction, as at the edge of funnel flow).
+                double lo = -1.0, hi = pw;
+                for (double t = floor(pw - 1e-9); t >= 1.0 && lo < 0.0; t -= 1.0) { // whole degrees down to 1
+                    if (gf_radial_solve(def->friction_angle, t, thd, m.axisym, &rf) == GF_OK)
+                        lo = t;
+                    else
+                        hi = t;
+                }
+                if (lo >= 0.0) {
+                    for (int it = 0; it < 20; it++) {
+                        double mid = 0.5 * (lo + hi);
+                        if (gf_radial_solve(def->friction_angle, mid, thd, m.axisym, &rf) == GF_OK)
+                            lo = mid;
+                        else
+                            hi = mid;
+                    }
+                    out->radial = gf_radial_solve(def->friction_angle, lo, thd, m.axisym, &rf) == GF_OK;
+                    out->wall_mobilised = lo;
+                }
+            }
             gf_error_clear();
         }
     }
@@ -510,6 +534,7 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
             }
 #undef GF_AUU
 #undef GF_AUZ
+            if (m.k && u < 0.5 * out->du) fu = 0.0; // on the axis, by symmetry
             out->pt[k].f[0] = fu;
             out->pt[k].f[1] = fz;
         }

@@ -43,6 +43,8 @@ typedef struct gf_stress_field {
     long clamped;         ///< states pulled back onto the yield surface while marching (should be 0)
     bool radial;          ///< below the top of the funnel (z < zcol) the field is the radial one
     double apex_u, apex_z, theta_w; ///< its apex and wall half-angle from the vertical (radians)
+    double wall_mobilised; ///< the wall friction angle of the radial field, degrees: phi_w, or less when
+                           ///< the hopper is too shallow for a field at phi_w (funnel flow by Jenike's criterion)
 } gf_stress_field;
 
 /// Solves the field of container c filled up to `ztop` (the free surface,
