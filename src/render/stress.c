@@ -137,7 +137,9 @@ gf_status gf_render_stress(const gf_stress_field *f, const gf_container *c, cons
         for (double x = lo[0] + 0.5 * step; x < hi[0]; x += step) {
             gf_stress_point p;
             double sg;
-            if (!gf_stress_pic_at(f, x, z, &p, &sg)) continue;
+            if (!gf_container_contains(c, x, 0.5 * (lo[1] + hi[1]), z, 0.25 * bar, 0.0) ||
+                !gf_stress_pic_at(f, x, z, &p, &sg))
+                continue;
             double psi = sg > 0 ? p.psi : GF_PI - p.psi, dx = 0.5 * bar * cos(psi), dz = 0.5 * bar * sin(psi);
             cairo_move_to(cr, gf_px(&v, x - dx), gf_py(&v, z - dz));
             cairo_line_to(cr, gf_px(&v, x + dx), gf_py(&v, z + dz));
