@@ -437,6 +437,13 @@ gf_status gf_config_validate(gf_config *cfg)
         return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not combine with %s > 0 (the flow rule "
                             "biases the walk itself)", m.lead, m.key[1]);
     }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->container_shape == GF_SHAPE_CYLINDER &&
+        cfg->inner_radius > 0.0) {
+        // The stress solver has no annulus (docs/stress.md).
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "container.inner_radius");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not support a central column (%s > 0)",
+                            m.lead, m.key[1]);
+    }
     if (cfg->spot_flow_rule == GF_FLOW_SFR && !(cfg->spot_step_xy > 0.0)) {
         // The slip-line step's length is set by the lateral step (docs/stress.md).
         gf_config_msg_make(&m, cfg, "spot.flow_rule", "spot.step_xy");

@@ -373,8 +373,7 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
         return gf_error_set(GF_ERR_PARAM, "stress.spacing = %g must be in (0, 100] d", def->spacing);
     if (!(ztop > 0.0)) return gf_error_set(GF_ERR_PARAM, "the free surface z = %g is not above the base", ztop);
     if (gf_container_inner_radius(c) > 0.0)
-        return gf_error_set(GF_ERR_STATE, "the stress field has no solution with a central column (container.%s)",
-                            "column_radius");
+        return gf_error_set(GF_ERR_STATE, "the stress field has no solution with a central column");
     gf_outline o;
     gf_container_outline(c, ztop + 1.0, &o);
     gf_march m = {.def = def, .o = &o, .axisym = gf_container_profile_radial(c), .ztop = ztop};

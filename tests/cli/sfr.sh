@@ -47,6 +47,10 @@ expect_err "spot.flow_rule" "sfr with bias_exponent"
 gf run -q "${SMALL[@]}" --set stress.wall_friction_angle=40 -o bad
 expect_rc 2 "wall friction above internal friction"
 expect_err "stress.wall_friction_angle" "wall friction above internal friction"
+gf run -q --set spot.flow_rule=sfr --set container.shape=cylinder --set container.radius=10 \
+    --set container.hopper_angle=60 --set container.outlet_diameter=5 --set container.inner_radius=3 -o bad
+expect_rc 2 "sfr with a central column"
+expect_err "container.inner_radius" "sfr with a central column"
 ok "refused combinations exit 2 naming the key"
 
 echo "cli $NAME: $PASS passed, 0 failed"
