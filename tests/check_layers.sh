@@ -22,7 +22,7 @@ cd "$root"
 declare -A layer=(
   [core]=0
   [geom]=1 [config]=1 [draw]=1
-  [io]=2
+  [io]=2 [stress]=2
   [packing]=3
   [spot]=4
   [run]=5

@@ -55,6 +55,20 @@ typedef enum gf_spot_walls {
     GF_WALLS_REFLECT = 1,  ///< d_w = 0 and the ball's part beyond a wall is reflected back
 } gf_spot_walls;
 
+/// How a spot chooses its step (issue 28; docs/stress.md).
+typedef enum gf_flow_rule {
+    GF_FLOW_DIFFUSIVE = 0, ///< the papers' walk: up by step_z, across by +-step_xy (the default)
+    GF_FLOW_SFR = 1,       ///< Kamrin and Bazant's stochastic flow rule: along the slip lines of the stress field
+} gf_flow_rule;
+
+/// The parameters of the limit-state stress solver (src/stress/; docs/stress.md),
+/// made from the [stress] keys by gf_config_stress_def.
+typedef struct gf_stress_def {
+    double friction_angle;      ///< internal friction angle phi, degrees, in (0, 60)
+    double wall_friction_angle; ///< wall friction angle phi_w, degrees, in [0, phi]
+    double spacing;             ///< grid spacing, d, > 0
+} gf_stress_def;
+
 /// How often relax() runs (2009 paper Sec. 5; SPEC 1.5).
 typedef enum gf_relax_method {
     GF_RELAX_FULL = 0,    ///< after every spot move
@@ -160,6 +174,12 @@ typedef struct gf_config {
     double spot_weighting_zmin;        ///< no weighting for balls centred below this height, d; default 30
     double spot_weighting_bulk_count;  ///< p_bulk, the bulk population of a ball; default 81.7
     gf_spot_walls spot_walls;          ///< truncate (default) or reflect
+    gf_flow_rule spot_flow_rule;       ///< diffusive (default) or sfr (issue 28)
+
+    // [stress] the limit-state stress field the sfr walk follows (docs/stress.md)
+    double stress_friction_angle;      ///< internal friction angle phi, degrees; default 30
+    double stress_wall_friction_angle; ///< wall friction angle phi_w, degrees; default 20
+    double stress_spacing;             ///< grid spacing, d; default 1
 
     // [relax] elastic relaxation (SPEC 1.3)
     double relax_alpha;                ///< fraction of an overlap removed per relaxation; default 0.8
@@ -241,6 +261,9 @@ GF_API gf_status gf_config_load(gf_config *cfg, const char *path);
 /// Applies one `section.key=value` assignment; `origin` names where it came
 /// from in error messages (e.g. "--set").
 GF_API gf_status gf_config_set(gf_config *cfg, const char *assignment, const char *origin);
+
+/// The stress solver's parameters from cfg's [stress] keys (the one place that reads them).
+GF_API gf_stress_def gf_config_stress_def(const gf_config *cfg);
 
 /// Resolves derived defaults (relax.radius = spot.radius + 1, insertion margin
 /// = spot.radius) and checks cross-key constraints. A message starts with where

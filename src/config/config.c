@@ -427,6 +427,34 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_config_msg_make(&m, cfg, "relax.radius", "spot.radius");
         return gf_error_set(GF_ERR_PARAM, "%s%s must be at least %s", m.lead, m.key[0], m.key[1]);
     }
+    if (!(cfg->stress_wall_friction_angle <= cfg->stress_friction_angle)) {
+        // A wall rougher than the material: the material shears inside, not on the wall.
+        gf_config_msg_make(&m, cfg, "stress.wall_friction_angle", "stress.friction_angle");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be at most %s", m.lead, m.key[0], m.key[1]);
+    }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->spot_bias_exponent > 0.0) {
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "spot.bias_exponent");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not combine with %s > 0 (the flow rule "
+                            "biases the walk itself)", m.lead, m.key[1]);
+    }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->container_shape == GF_SHAPE_CYLINDER &&
+        cfg->inner_radius > 0.0) {
+        // The stress solver has no annulus (docs/stress.md).
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "container.inner_radius");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not support a central column (%s > 0)",
+                            m.lead, m.key[1]);
+    }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && !(cfg->spot_step_xy > 0.0)) {
+        // The slip-line step's length is set by the lateral step (docs/stress.md).
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "spot.step_xy");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr needs %s > 0", m.lead, m.key[1]);
+    }
+    if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->run_mode == GF_MODE_FIXED &&
+        (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS)) {
+        // Their blocks assume a spot moves up by step_z and across by step_xy; sfr steps go down too.
+        gf_config_msg_make(&m, cfg, "spot.flow_rule", "run.order");
+        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr needs %s = random or newest", m.lead, m.key[1]);
+    }
     // Output intervals: a bounded number per run (an interval below the
     // rounding of the time would never advance, and the run never end).
     st = gf_check_outputs(cfg, cfg->output_snapshot_interval, "output.snapshot_interval", "snapshots", "");

@@ -19,7 +19,8 @@ _Static_assert(sizeof(gf_reinsert) == sizeof(int) && sizeof(gf_output_format) ==
                    sizeof(gf_vtk_encoding) == sizeof(int),
                "enum keys are stored as int");
 _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == sizeof(int) &&
-                   sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int),
+                   sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int) &&
+                   sizeof(gf_flow_rule) == sizeof(int),
                "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
@@ -31,6 +32,7 @@ static const char *const gf_keys_lga_flow_names[] = {"mass", "funnel", NULL};
 static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
 static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", "domains", NULL};
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
+static const char *const gf_keys_flow_rule_names[] = {"diffusive", "sfr", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
 // output.format: bit i of gf_output_format is names[i] (a third format is one more name and bit).
@@ -139,6 +141,19 @@ const gf_key gf_keys[] = {
      .def = "81.7", .unit = "particles", .doc = "influence weighting: p_bulk, the population of a ball in the bulk"},
     {"spot", "walls", GF_KEY_ENUM, GF_OFF(spot_walls), .names = gf_keys_walls_names, .def = "truncate",
      .unit = "", .doc = "truncate the walk at wall_distance, or reflect (d_w = 0, ball reflected at the walls)"},
+    {"spot", "flow_rule", GF_KEY_ENUM, GF_OFF(spot_flow_rule), .names = gf_keys_flow_rule_names,
+     .def = "diffusive", .unit = "",
+     .doc = "diffusive (the papers' walk) or sfr (the stochastic flow rule: steps along the slip lines of the "
+            "stress field, docs/stress.md)"},
+
+    {"stress", "friction_angle", GF_KEY_DOUBLE, GF_OFF(stress_friction_angle), .min = 0, .max = 60,
+     .min_open = true, .max_open = true, .def = "30", .unit = "deg",
+     .doc = "internal friction angle phi of the Mohr-Coulomb stress field (sfr; 30: glass beads)"},
+    {"stress", "wall_friction_angle", GF_KEY_DOUBLE, GF_OFF(stress_wall_friction_angle), .min = 0, .max = 60,
+     .max_open = true, .def = "20", .unit = "deg",
+     .doc = "wall friction angle phi_w of the stress field, at most stress.friction_angle"},
+    {"stress", "spacing", GF_KEY_DOUBLE, GF_OFF(stress_spacing), .min = 0.05, .max = 100, .def = "1",
+     .unit = "d", .doc = "grid spacing of the stress field (stress.csv)"},
 
     {"relax", "alpha", GF_KEY_DOUBLE, GF_OFF(relax_alpha), .min = 0, .max = 1, .min_open = true,
      .def = "0.8", .unit = "", .doc = "fraction of an overlap removed per relaxation"},
@@ -235,7 +250,7 @@ const gf_key gf_keys[] = {
     {"lga", "feed_rate", GF_KEY_DOUBLE, GF_OFF(lga_feed_rate), .min = 0, .max = 1000, .min_open = true,
      .def = "8", .unit = "1/iteration", .doc = "pile: particles added at the top per iteration"},
     {"lga", "hopper_angle", GF_KEY_AUTO, GF_OFF(lga_hopper_angle), .min = 0, .max = 80,
-     .min_open = true, .def = "auto", .unit = "degrees",
+     .min_open = true, .def = "auto", .unit = "deg",
      .doc = "silo: hopper wall angle from the vertical (auto: by silo_flow)"},
     {"lga", "outlet_width", GF_KEY_DOUBLE, GF_OFF(lga_outlet_width), .min = 1, .max = INFINITY,
      .def = "16", .unit = "d", .doc = "silo: width of the outlet at the bottom of the hopper"},

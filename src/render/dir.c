@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "granflow/render.h"
+#include "render/stress.h"
 
 enum { GF_RENDER_PATH = GF_PATH_MAX + 64 };
 
@@ -248,6 +249,11 @@ gf_status gf_render_dir(const char *dir, const gf_render_dir_opts *opt)
     j.opts.zmax = zmax;
     j.phi = GF_NEW(double *, s.nframes);
     st = j.phi ? gf_render_pictures(&j) : gf_error_set(GF_ERR_NOMEM, "render: out of memory");
+    if (st == GF_OK) { // a run with spot.flow_rule = sfr: the stress field it followed
+        const char *pic = NULL;
+        st = gf_render_stress_of_run(dir, &s.cfg, j.outdir, opt->format, j.opts.title, &pic);
+        if (st == GF_OK && pic) gf_render_written(&j, pic);
+    }
     if (j.phi) {
         for (size_t k = 0; k < s.nframes; k++)
             if (j.phi[k]) GF_DELETE(j.phi[k], gf_render_phi_len(&s.frames[k].pk));

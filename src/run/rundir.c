@@ -28,6 +28,7 @@
 #include "granflow/packing.h"
 #include "io/vtk.h"
 #include "run/mesh_copy.h"
+#include "spot/sim_internal.h"
 #ifdef GF_MPI
 #include "spot/par_mpi.h"
 #endif
@@ -64,7 +65,7 @@ static gf_status gf_clear_run(const char *dir)
     static const char *const files[] = {"checkpoint.bin", "checkpoint.bin.tmp", "summary.json", "summary.json.tmp",
                                         "exits.csv",      "exits.csv.tmp",      "config.ini",   "config.ini.tmp",
                                         "container.vtk",  "container.vtk.tmp",  "container.vtp",
-                                        "container.vtp.tmp", "snapshots.pvd", "snapshots.pvd.tmp"};
+                                        "container.vtp.tmp", "snapshots.pvd", "snapshots.pvd.tmp", "stress.csv"};
     static const char *const trees[] = {"analysis", "render"};
     char path[GF_PATH_MAX + 32];
     gf_status st = GF_OK;
@@ -464,6 +465,7 @@ static gf_status gf_prepare_dir(gf_rundir *rd, const gf_sim *sim)
     if (st == GF_OK) st = gf_fs_mkdirs(snaps);
     if (st == GF_OK) st = gf_run_save_config(rd->cfg, rd->dir, cfgpath); // and a mesh container's STL
     if (st == GF_OK) st = gf_write_exits(rd, sim);
+    if (st == GF_OK && !rd->opts->resume) st = gf_sim_write_stress(sim, rd->dir); // sfr: the field it follows
     if (st != GF_OK) return st;
     rd->exits = fopen(exits, "a");
     if (!rd->exits) return gf_error_set(GF_ERR_IO, "%s: cannot open for appending: %s", exits, strerror(errno));

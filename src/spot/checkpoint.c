@@ -459,7 +459,7 @@ static gf_status gf_ckpt_read(gf_sim *sim, const gf_config *cfg, gf_rd *r, const
     if ((st = gf_ckpt_read_scalars(sim, r, path, counts)) != GF_OK ||
         (st = gf_ckpt_alloc_arrays(sim, r, path, counts)) != GF_OK ||
         (st = gf_ckpt_read_arrays(sim, r, path)) != GF_OK || (st = gf_sim_make_grid(sim)) != GF_OK ||
-        (st = gf_sim_alloc_scratch(sim)) != GF_OK)
+        (st = gf_sim_alloc_scratch(sim)) != GF_OK || (st = gf_sim_make_stress(sim)) != GF_OK)
         return st;
     return gf_ckpt_read_grid(sim, r, path);
 }

@@ -4,6 +4,7 @@
 // grid and workers, destroy it, and the small public queries. Layer: the top
 // of the engine beside the drivers (drivers.c); it frees what parallel.c made.
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -57,8 +58,33 @@ gf_status gf_sim_make_grid(gf_sim *sim)
     return gf_grid_init(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap);
 }
 
+gf_status gf_sim_make_stress(gf_sim *sim)
+{
+    sim->sfr = sim->cfg.spot_flow_rule == GF_FLOW_SFR; // the one place the engine reads the key
+    if (!sim->sfr) return GF_OK;
+    // The surface the run began with, as gf_sim_make_grid recorded it in
+    // grid_ztop (a checkpoint keeps that, so a resumed run solves the same field).
+    double top = sim->grid_ztop - 2.0;
+    if (sim->cfg.run_recirculate) top = (top - 8.0) / 1.5;
+    top += 0.5; // centres to the surface
+    gf_stress_def def = gf_config_stress_def(&sim->cfg);
+    gf_status st = gf_stress_solve(&def, &sim->box, top, &sim->stress);
+    if (st != GF_OK) return st;
+    sim->sfr_walk = gf_sfr_walk_make(sim->cfg.spot_step_xy, sim->cfg.spot_step_z, sim->stress.eps);
+    return GF_OK;
+}
+
+gf_status gf_sim_write_stress(const gf_sim *sim, const char *dir)
+{
+    if (!sim->sfr) return GF_OK;
+    char path[GF_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/stress.csv", dir);
+    return gf_stress_write_csv(&sim->stress, path);
+}
+
 static void gf_sim_free_all(gf_sim *sim)
 {
+    gf_stress_free(&sim->stress);
     GF_DELETE(sim->p, sim->cap);
     GF_DELETE(sim->p0, sim->cap);
     GF_DELETE(sim->id, sim->cap);
@@ -120,6 +146,7 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
         goto fail;
     }
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
+    if ((st = gf_sim_make_stress(sim)) != GF_OK) goto fail;
     if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
     gf_rng_seed(&sim->rng, cfg->run_seed, 0x5350u /* "SP": the spot stream */);
     sim->st.particles_initial = sim->n_initial;

@@ -14,6 +14,8 @@
 #include "geom/container.h"
 #include "geom/grid.h"
 #include "granflow/sim.h"
+#include "spot/sfr.h"
+#include "stress/stress.h"
 
 /// Particle positions and radius packed in one 32-byte record: spot and relax
 /// touch particles in random order, and one cache line then brings all four.
@@ -167,6 +169,11 @@ struct gf_sim {
     double rs, rs2, re, re2, alpha, inv_w, ball_frac;
     double spot_ins_r;  ///< radius (circle) or half-width (slit) where spots are born
     double spot_birth_z;
+    // The stochastic flow rule (spot.flow_rule = sfr; docs/stress.md): the
+    // container's stress field, solved once when the engine is made.
+    bool sfr;
+    gf_stress_field stress;
+    gf_sfr_walk sfr_walk;
 
     gf_sim_stats st;
     bool timing;
@@ -320,6 +327,13 @@ gf_status gf_spot_move(gf_sim *sim, size_t k);
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
 gf_status gf_sim_make_grid(gf_sim *sim);
+
+/// With spot.flow_rule = sfr: solves the container's stress field up to the
+/// packing's top (docs/stress.md) and the walk's constants; nothing otherwise.
+gf_status gf_sim_make_stress(gf_sim *sim);
+
+/// With spot.flow_rule = sfr: writes the stress field to dir/stress.csv (docs/stress.md).
+gf_status gf_sim_write_stress(const gf_sim *sim, const char *dir);
 /// On resume (checkpoint.c): the configuration text a checkpoint stored
 /// (slen bytes, from the file) against the one this run would store (mine)
 /// and the defaults' (def), setting by setting (ckpt_settings.c). GF_OK, or

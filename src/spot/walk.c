@@ -119,14 +119,23 @@ static void gf_spot_delete(gf_sim *sim, size_t k)
 // Candidate `dir` of a move from s: the BCC walk (+-dx, 0, dz), (0, +-dy, dz)
 // (2009 paper Sec. 2), truncated d_w from each side wall (0 with reflection,
 // Sec. 4) and, below the base, kept over the region spots are born in.
+static void gf_walk_finish(const gf_sim *sim, double n[3]);
+
 static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir, double n[3])
 {
     const gf_config *c = &sim->cfg;
-    const gf_container *b = &sim->box;
     double h = c->spot_step_xy;
     n[0] = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
     n[1] = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
     n[2] = s[2] + c->spot_step_z;
+    gf_walk_finish(sim, n);
+}
+
+// A candidate's wall truncation and, below the base, the birth region.
+static void gf_walk_finish(const gf_sim *sim, double n[3])
+{
+    const gf_config *c = &sim->cfg;
+    const gf_container *b = &sim->box;
     double dw = c->spot_walls == GF_WALLS_REFLECT ? 0.0 : c->spot_wall_distance;
     b->ops->spot_clamp(b, n, dw);
     double nx = n[0], ny = n[1], nz = n[2];
@@ -146,6 +155,44 @@ static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir
     n[0] = nx;
     n[1] = ny;
     n[2] = nz;
+}
+
+// The stochastic flow rule's step (sfr.c; docs/stress.md): along a slip line
+// of the stress at s, biased against the out-of-balance force, plus an
+// out-of-plane step (y, or the hoop direction about the axis). Outside the
+// field (below the base, on the way up from its birth) the papers' walk. A
+// step that would end below the floor goes the other way along its line.
+static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double n[3])
+{
+    const gf_stress_field *f = &sim->stress;
+    gf_stress_point p;
+    double u = gf_stress_u(f, s[0], s[1]);
+    if (s[2] < f->zstop || !gf_stress_at(f, u, s[2], &p)) {
+        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
+        return;
+    }
+    double du, dz, dv;
+    gf_sfr_draw(&sim->sfr_walk, p.psi, p.f, w->rng, &du, &dz, &dv);
+    double eu[2] = {1.0, 0.0}, ev[2] = {0.0, 1.0}; // in-plane and out-of-plane horizontal directions
+    if (f->axisym) {
+        if (u > 1e-9) {
+            eu[0] = s[0] / u;
+            eu[1] = s[1] / u;
+        }
+        ev[0] = -eu[1];
+        ev[1] = eu[0];
+    }
+    const gf_container *b = &sim->box;
+    for (int t = 0; t < 2; t++) {
+        n[0] = s[0] + du * eu[0] + dv * ev[0];
+        n[1] = s[1] + du * eu[1] + dv * ev[1];
+        n[2] = s[2] + dz;
+        if (t == 1 || gf_container_over_hole(b, n[0], n[1]) || n[2] >= gf_container_floor_z(b, n[0], n[1], 0.0))
+            break;
+        du = -du;
+        dz = -dz;
+    }
+    gf_walk_finish(sim, n);
 }
 
 // Sec. 3 biased walk: candidate i with probability p_i^beta / sum_j p_j^beta,
@@ -215,8 +262,11 @@ gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bo
             return GF_OK;
         }
     } else {
-        // The BCC walk, each candidate with probability 1/4.
-        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
+        // The BCC walk, each candidate with probability 1/4; or the flow rule's.
+        if (sim->sfr)
+            gf_walk_sfr(sim, w, s, n);
+        else
+            gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
         // SPEC 1.3 removal: above the highest particle of its column (in the
         // parallel step: as the column was when the step began).
         double top = w->coltop ? w->coltop[gf_grid_column(&sim->grid, n[0], n[1])]

@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: MIT
+// The stochastic flow rule's walk (src/spot/sfr.c, docs/stress.md "The sfr
+// walk"): its mean drift and second moments in a uniform field against the
+// formula, its reduction to the papers' walk under a vertical major stress,
+// the field of a box at its centre, and a short drain with spot.flow_rule = sfr.
+#include "support.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/rng.h"
+#include "geom/container.h"
+#include "granflow/granflow.h"
+#include "spot/sfr.h"
+#include "spot/sim_internal.h"
+#include "stress/stress.h"
+
+#define PI 3.14159265358979323846
+
+// The formula (docs/stress.md): slip lines alpha, beta at psi -+ eps; the
+// drift direction g = -f/|f| = a alpha + b beta; P(+-alpha) = (1 +- d a)/4,
+// P(+-beta) = (1 +- d b)/4 with d = min(delta, 1/max(|a|, |b|)). Per step:
+//   mean = (L d / 2) (a alpha + b beta),
+//   E[step step^T] = (L^2 / 2) (alpha alpha^T + beta beta^T),
+// and the out-of-plane step +-h/sqrt 2: mean 0, variance h^2 / 2.
+static void formula(const gf_sfr_walk *wk, double psi, const double f[2], double mean[2], double m2[3])
+{
+    double al[2] = {cos(psi - wk->eps), sin(psi - wk->eps)}, be[2] = {cos(psi + wk->eps), sin(psi + wk->eps)};
+    double nf = hypot(f[0], f[1]), g[2] = {-f[0] / nf, -f[1] / nf};
+    double det = sin(2.0 * wk->eps);
+    double a = (g[0] * be[1] - g[1] * be[0]) / det, b = (al[0] * g[1] - al[1] * g[0]) / det;
+    double d = fmin(wk->delta, 1.0 / fmax(fabs(a), fabs(b)));
+    for (int q = 0; q < 2; q++) mean[q] = 0.5 * wk->L * d * (a * al[q] + b * be[q]);
+    double h = 0.5 * wk->L * wk->L;
+    m2[0] = h * (al[0] * al[0] + be[0] * be[0]); // uu
+    m2[1] = h * (al[1] * al[1] + be[1] * be[1]); // zz
+    m2[2] = h * (al[0] * al[1] + be[0] * be[1]); // uz
+}
+
+static void sample_and_compare(const gf_sfr_walk *wk, double psi, const double f[2], uint64_t seed)
+{
+    const long n = 400000;
+    gf_rng rng;
+    gf_rng_seed(&rng, seed, 7);
+    double s[2] = {0, 0}, s2[3] = {0, 0, 0}, sv = 0, sv2 = 0;
+    for (long i = 0; i < n; i++) {
+        double du, dz, dv;
+        gf_sfr_draw(wk, psi, f, &rng, &du, &dz, &dv);
+        s[0] += du;
+        s[1] += dz;
+        s2[0] += du * du;
+        s2[1] += dz * dz;
+        s2[2] += du * dz;
+        sv += dv;
+        sv2 += dv * dv;
+    }
+    double mean[2], m2[3];
+    formula(wk, psi, f, mean, m2);
+    double L2 = wk->L * wk->L, se = wk->L / sqrt((double)n); // a standard error of a mean step component
+    print_message("psi %.1f deg, f (%.2f, %.2f): mean (%.5f, %.5f) vs (%.5f, %.5f); E[uu] %.5f vs %.5f, E[zz] %.5f "
+                  "vs %.5f, E[uz] %.5f vs %.5f\n",
+                  psi * 180 / PI, f[0], f[1], s[0] / n, s[1] / n, mean[0], mean[1], s2[0] / n, m2[0], s2[1] / n, m2[1],
+                  s2[2] / n, m2[2]);
+    for (int q = 0; q < 2; q++) assert_true(fabs(s[q] / n - mean[q]) < 5.0 * se);
+    for (int q = 0; q < 3; q++) assert_true(fabs(s2[q] / n - m2[q]) < 0.01 * L2);
+    double h = wk->hperp;
+    assert_true(fabs(sv / n) < 5.0 * h / sqrt((double)n));
+    assert_true(fabs(sv2 / n - h * h) < 1e-9 * h * h); // every out-of-plane step is +-h/sqrt 2
+}
+
+static void sfr_walk_moments_in_a_uniform_field(void **state)
+{
+    (void)state;
+    gf_sfr_walk wk = gf_sfr_walk_make(0.676, 0.1, PI / 4 - PI / 12); // phi = 30 degrees
+    const double cases[][3] = {
+        {PI / 2, 0.0, -1.0},   // a silo's centre: vertical major stress, grains pushed down
+        {PI / 2 + 0.3, 0.4, -1.0}, // tilted near a wall
+        {0.2, -0.3, -0.8},     // a passive field (major stress near horizontal)
+        {PI / 2, 1.0, 0.05},   // a sideways drift, across the bisector of the slip lines
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        double f[2] = {cases[i][1], cases[i][2]};
+        sample_and_compare(&wk, cases[i][0], f, 11 + i);
+    }
+}
+
+// With the major stress vertical and the drift up, the moments are the
+// papers' walk's by construction: E[du] = 0, E[dz] = step_z, E[du^2] =
+// step_xy^2 / 2 (as the BCC walk's x), and the out-of-plane likewise.
+static void sfr_walk_reduces_to_the_papers_walk(void **state)
+{
+    (void)state;
+    const double h = 0.676, dz = 0.1, eps = PI / 6;
+    gf_sfr_walk wk = gf_sfr_walk_make(h, dz, eps);
+    assert_float_equal(wk.L, h / (sqrt(2.0) * sin(eps)), 1e-12);
+    double mean[2], m2[3], f[2] = {0.0, -1.0};
+    formula(&wk, PI / 2, f, mean, m2);
+    assert_float_equal(mean[0], 0.0, 1e-12);
+    assert_float_equal(mean[1], dz, 1e-12);
+    assert_float_equal(m2[0], h * h / 2, 1e-12);
+    assert_float_equal(m2[2], 0.0, 1e-12);
+    assert_float_equal(wk.hperp * wk.hperp, h * h / 2, 1e-12);
+    double e[4][2], p[4];
+    gf_sfr_probs(&wk, PI / 2, f, e, p);
+    assert_float_equal(p[0] + p[1] + p[2] + p[3], 1.0, 1e-12);
+    assert_float_equal(p[0], p[2], 1e-12); // symmetric between the two slip lines
+    assert_true(p[0] > p[1]);              // forwards (up) more often than back
+}
+
+// The box's field at its centre line: major stress vertical, the grains'
+// out-of-balance force downward (P grows with depth): spots drift up.
+static void sfr_box_field_drifts_spots_up(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_container box = gf_container_make(&c);
+    gf_stress_def def = gf_config_stress_def(&c);
+    gf_stress_field f;
+    assert_int_equal(gf_stress_solve(&def, &box, 60.0, &f), GF_OK);
+    for (double z = 5; z < 55; z += 10) {
+        gf_stress_point p;
+        assert_true(gf_stress_at(&f, 0.0, z, &p));
+        assert_float_equal(p.psi, PI / 2, 1e-6);
+        assert_true(fabs(p.f[0]) < 1e-9 && p.f[1] < 0.0);
+    }
+    gf_stress_free(&f);
+}
+
+// A short drain with the flow rule: particles leave through the orifice,
+// none is lost, the field is the box's.
+static void sfr_drains_a_silo(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.packing_particles = 6000;
+    c.spot_flow_rule = GF_FLOW_SFR;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_packing pk = {0};
+    assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create(&c, &pk, &sim), GF_OK);
+    gf_packing_free(&pk);
+    assert_true(sim->sfr && sim->stress.nu > 0 && !sim->stress.axisym);
+    assert_int_equal(gf_sim_run(sim, 2.0, NULL), GF_OK);
+    gf_sim_stats st = gf_sim_get_stats(sim);
+    print_message("sfr: %zu exited, %zu spot moves\n", (size_t)st.particles_exited, (size_t)st.spot_moves);
+    assert_int_equal(st.particles_remaining + st.particles_exited, st.particles_initial);
+    assert_true(st.particles_exited > 10);
+    gf_sim_destroy(sim);
+}
+
+static const struct CMUnitTest tests[] = {
+    cmocka_unit_test(sfr_walk_moments_in_a_uniform_field),
+    cmocka_unit_test(sfr_walk_reduces_to_the_papers_walk),
+    cmocka_unit_test(sfr_box_field_drifts_spots_up),
+    cmocka_unit_test(sfr_drains_a_silo),
+};
+
+GF_TEST_MAIN("sfr", tests)
