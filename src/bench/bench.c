@@ -12,6 +12,9 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "granflow/lga.h"
+#ifdef GF_MPI
+#include "spot/par_mpi.h"
+#endif
 
 gf_bench_opts gf_bench_opts_default(void)
 {
@@ -67,6 +70,27 @@ static double gf_bench_drain_seconds(const gf_bench_spot *b)
     return 0.5 * b->moves_per_tau * ((double)b->remaining / b->flow) / b->sps_all;
 }
 
+static double gf_bench_peak_rss(void)
+{
+    struct rusage ru;
+    return getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : 0;
+}
+
+// Every rank's peak resident set and bytes sent per phase, gathered on rank 0
+// (one process: its own). A collective under MPI: every rank calls it.
+static void gf_bench_ranks(gf_bench_spot *b)
+{
+    double rss = gf_bench_peak_rss();
+#ifdef GF_MPI
+    double phases[GF_BENCH_RANKS];
+    b->ranks = gf_mpi_rank_figures(rss, b->rank_peak_rss_bytes, b->rank_exchange_bytes_per_phase, phases, GF_BENCH_RANKS);
+#else
+    b->ranks = 1;
+    b->rank_peak_rss_bytes[0] = rss;
+    b->rank_exchange_bytes_per_phase[0] = 0;
+#endif
+}
+
 // Packs cfg's silo the way a run does, warms it up, then times three windows:
 // all threads, one thread, one thread with spot() and relax() clocked call by call.
 static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_bench_spot *out)
@@ -99,6 +123,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     double dummy;
     if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &dummy, &c, &d);
     out->prof = gf_sim_par_profile(sim);
+    gf_bench_ranks(out); // (before the engine goes: its exchange counters go with it)
     gf_sim_destroy(sim);
     if (st == GF_ERR_INTERRUPTED) return gf_error_set(st, "bench: interrupted");
     if (st != GF_OK) return st;
@@ -111,12 +136,6 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     out->remaining = d.particles_remaining;
     out->drain_s = gf_bench_drain_seconds(out);
     return GF_OK;
-}
-
-static double gf_bench_peak_rss(void)
-{
-    struct rusage ru;
-    return getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : 0;
 }
 
 gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_report *out)

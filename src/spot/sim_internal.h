@@ -74,6 +74,9 @@ typedef struct gf_work {
     bool timed;      ///< exits take the time t below (the domain engine's moves each have their own)
     double t;        ///< time of the move being made, when timed
     bool log;        ///< log what the moves change into touched[] (MPI ranks)
+    /// The domain engine's slabs across MPI ranks (slabs.h), else NULL: a
+    /// particle moved into or out of a rank's region is logged whole, with its row.
+    const struct gf_slabs *slabs;
     bool log_failed; ///< a log could not grow (out of memory)
     gf_touch touched[GF_TOUCH_KINDS];
 } gf_work;
