@@ -13,9 +13,9 @@ static void slabs_cut_whole_domains_and_add_a_halo(void **state)
     (void)state;
     gf_slabs s;
     assert_int_equal(gf_slabs_make(&s, 2, 78, 10, 3, 5, 16, 4, 7), GF_OK);
-    // ceil(r 5 / 4): domains [0,2), [2,3), [3,4), [4,5)
-    const int lo[4] = {0, 32, 48, 64}, hi[4] = {32, 48, 64, 78};
-    const int rlo[4] = {0, 25, 41, 57}, rhi[4] = {39, 55, 71, 78};
+    // r 5 / 4 rounded down: domains [0,1), [1,2), [2,3), [3,5)
+    const int lo[4] = {0, 16, 32, 48}, hi[4] = {16, 32, 48, 78};
+    const int rlo[4] = {0, 9, 25, 41}, rhi[4] = {23, 39, 55, 78};
     for (int r = 0; r < 4; r++) {
         assert_int_equal(s.lo[r], lo[r]);
         assert_int_equal(s.hi[r], hi[r]);

@@ -43,9 +43,14 @@ typedef struct gf_bench_spot {
     /// GF_BENCH_RANKS; filled on rank 0): its peak resident set when the silo
     /// was done (bytes, getrusage ru_maxrss), and the bytes it sent per
     /// exchanged phase over the warm-up and the windows (0 on one rank).
+    /// Also the particles in its region (slab and halo) and in its slab
+    /// when the silo was done: what it would hold were the memory divided
+    /// (one process: every particle).
     int ranks;
     double rank_peak_rss_bytes[GF_BENCH_RANKS];
     double rank_exchange_bytes_per_phase[GF_BENCH_RANKS];
+    double rank_region_particles[GF_BENCH_RANKS];
+    double rank_slab_particles[GF_BENCH_RANKS];
 } gf_bench_spot;
 
 /// The lattice-gas automaton's speed: the paper's channel (the lga.* keys of

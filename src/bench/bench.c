@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "granflow/lga.h"
+#include "spot/sim_internal.h"
 #ifdef GF_MPI
 #include "spot/par_mpi.h"
 #endif
@@ -76,17 +77,29 @@ static double gf_bench_peak_rss(void)
     return getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : 0;
 }
 
-// Every rank's peak resident set and bytes sent per phase, gathered on rank 0
-// (one process: its own). A collective under MPI: every rank calls it.
-static void gf_bench_ranks(gf_bench_spot *b)
+// Every rank's peak resident set, bytes sent per phase and particles in its
+// region and slab, gathered on rank 0 (one process: its own). A collective
+// under MPI: every rank calls it.
+static void gf_bench_ranks(gf_bench_spot *b, const gf_sim *sim)
 {
-    double rss = gf_bench_peak_rss();
+    uint64_t region = 0, owned = 0;
+    gf_dom_region_particles(sim, &region, &owned);
+    const double mine[3] = {gf_bench_peak_rss(), (double)region, (double)owned};
 #ifdef GF_MPI
-    double phases[GF_BENCH_RANKS];
-    b->ranks = gf_mpi_rank_figures(rss, b->rank_peak_rss_bytes, b->rank_exchange_bytes_per_phase, phases, GF_BENCH_RANKS);
+    enum { F = GF_MPI_FIGURES + 2 };
+    double all[GF_BENCH_RANKS * F];
+    b->ranks = gf_mpi_rank_figures(mine, all, GF_BENCH_RANKS);
+    for (int r = 0; r < b->ranks && r < GF_BENCH_RANKS; r++) {
+        b->rank_peak_rss_bytes[r] = all[r * F];
+        b->rank_region_particles[r] = all[r * F + 1];
+        b->rank_slab_particles[r] = all[r * F + 2];
+        b->rank_exchange_bytes_per_phase[r] = all[r * F + GF_MPI_FIGURES];
+    }
 #else
     b->ranks = 1;
-    b->rank_peak_rss_bytes[0] = rss;
+    b->rank_peak_rss_bytes[0] = mine[0];
+    b->rank_region_particles[0] = mine[1];
+    b->rank_slab_particles[0] = mine[2];
     b->rank_exchange_bytes_per_phase[0] = 0;
 #endif
 }
@@ -123,7 +136,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     double dummy;
     if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &dummy, &c, &d);
     out->prof = gf_sim_par_profile(sim);
-    gf_bench_ranks(out); // (before the engine goes: its exchange counters go with it)
+    gf_bench_ranks(out, sim); // (before the engine goes: its exchange counters go with it)
     gf_sim_destroy(sim);
     if (st == GF_ERR_INTERRUPTED) return gf_error_set(st, "bench: interrupted");
     if (st != GF_OK) return st;

@@ -269,7 +269,9 @@ static gf_status gf_dom_make(gf_sim *sim)
         q->work[t].defer_exits = true;
         q->work[t].timed = true;
         q->work[t].coltop = q->coltop;
-        q->work[t].slabs = q->owner ? &q->slabs : NULL;
+#ifdef GF_MPI
+        q->work[t].slabs = q->owner && !gf_mpi_test_break("entry") ? &q->slabs : NULL;
+#endif
     }
     return GF_OK;
 }
@@ -617,6 +619,30 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
 }
 
 uint64_t gf_dom_shared_phases(const gf_sim *sim) { return sim->dom ? sim->dom->shared : 0; }
+
+void gf_dom_region_particles(const gf_sim *sim, uint64_t *region, uint64_t *owned)
+{
+    const gf_grid *g = &sim->grid;
+    const gf_dom *q = sim->dom;
+    *region = *owned = 0;
+#ifdef GF_MPI
+    const int me = gf_mpi_rank();
+#endif
+    for (size_t c = 0; c < g->ncell; c++) {
+        bool in = true, own = true;
+#ifdef GF_MPI
+        if (q && q->owner) {
+            int L = gf_slabs_layer(&q->slabs, (uint32_t)c);
+            in = gf_slabs_holds(&q->slabs, me, L);
+            own = L >= q->slabs.lo[me] && L < q->slabs.hi[me];
+        }
+#else
+        (void)q;
+#endif
+        *region += in ? g->count[c] : 0;
+        *owned += own ? g->count[c] : 0;
+    }
+}
 
 gf_status gf_dom_test_drop_crossing(gf_sim *sim)
 {

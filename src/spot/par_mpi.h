@@ -107,12 +107,19 @@ gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *colto
 /// every rank, so that all hold the single process's state again. Nothing to
 /// do when no slab phase ran since. A collective (every rank decides alike).
 gf_status gf_mpi_whole(gf_sim *sim);
+/// Tests only: whether GF_MPI_TEST_BREAK names this break of the slabs'
+/// exchange ("moved": moved positions kept from the neighbours; "entry":
+/// particles entering a region not sent whole), which GF_MPI_CHECK must catch.
+bool gf_mpi_test_break(const char *what);
 /// Forgets the slabs (their owner frees them) and whether the state is whole.
 void gf_mpi_slabs_release(void);
-/// Rank 0 gets every rank's peak resident set (bytes, getrusage), bytes sent
-/// per phase and phases exchanged, up to `cap` ranks (arrays of cap entries;
-/// the others' are left alone); returns the number of ranks. A collective.
-int gf_mpi_rank_figures(double rss, double *rss_all, double *sent_per_phase, double *phases, int cap);
+/// Rank 0 gets every rank's figures: rank r's mine[k] (its own, e.g. its
+/// peak resident set) in all[r (GF_MPI_FIGURES + 2) + k], then its bytes sent
+/// per phase and phases exchanged, for the first `cap` ranks (`all` holds
+/// cap (GF_MPI_FIGURES + 2) doubles on every rank); returns the number of
+/// ranks. A collective.
+#define GF_MPI_FIGURES 3
+int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap);
 /// Which of a colour phase's n blocks (heaviest first, load[k] moves each)
 /// this rank runs: each block in turn goes to the rank with the fewest moves
 /// so far (the lowest rank on a tie), as threads taking blocks in turn would

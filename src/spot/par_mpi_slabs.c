@@ -94,15 +94,18 @@ static int gf_slab_route(const gf_sim *sim, const gf_slabs *s, int k, uint32_t v
     }
 }
 
-// GF_MPI_TEST_BREAK=moved (tests only): the moved particles' positions are not sent to the
-// neighbours, so the halos go wrong and GF_MPI_CHECK must say so.
+bool gf_mpi_test_break(const char *what)
+{
+    const char *e = getenv("GF_MPI_TEST_BREAK");
+    return e && strcmp(e, what) == 0;
+}
+
+// GF_MPI_TEST_BREAK=moved (tests only): the moved particles' positions are
+// not sent to the neighbours, so the halos go wrong and GF_MPI_CHECK must say so.
 static bool gf_slab_broken(void)
 {
     static int known = -1;
-    if (known < 0) {
-        const char *e = getenv("GF_MPI_TEST_BREAK");
-        known = e && strcmp(e, "moved") == 0;
-    }
+    if (known < 0) known = gf_mpi_test_break("moved");
     return known == 1;
 }
 
@@ -416,27 +419,20 @@ gf_status gf_mpi_whole(gf_sim *sim)
     return gf_mpi_checking() ? gf_mpi_check(sim, NULL, NULL, 0) : GF_OK;
 }
 
-int gf_mpi_rank_figures(double rss, double *rss_all, double *sent_per_phase, double *phases, int cap)
+int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap)
 {
+    enum { F = GF_MPI_FIGURES + 2 };
     const int R = gf_mpi_size(), me = gf_mpi_rank();
     const gf_mpi_tallies *t = gf_mpi_tally();
-    double mine[3] = {rss, t->phases ? (double)t->sent / (double)t->phases : 0.0, (double)t->phases};
-    if (R < 2) {
-        if (cap > 0) {
-            rss_all[0] = mine[0];
-            sent_per_phase[0] = mine[1];
-            phases[0] = mine[2];
-        }
-        return 1;
+    // Every rank fills its own entries of a zeroed table and the sum lands on
+    // rank 0: exact (one non-zero term an entry), and nothing to allocate.
+    memset(all, 0, (size_t)cap * F * sizeof(double));
+    if (me < cap) {
+        for (int k = 0; k < GF_MPI_FIGURES; k++) all[me * F + k] = mine[k];
+        all[me * F + GF_MPI_FIGURES] = t->phases ? (double)t->sent / (double)t->phases : 0.0;
+        all[me * F + GF_MPI_FIGURES + 1] = (double)t->phases;
     }
-    double *all = GF_NEW(double, 3 * (size_t)R);
-    MPI_Gather(mine, 3, MPI_DOUBLE, all, all ? 3 : 0, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    if (me == 0 && all)
-        for (int r = 0; r < R && r < cap; r++) {
-            rss_all[r] = all[3 * r];
-            sent_per_phase[r] = all[3 * r + 1];
-            phases[r] = all[3 * r + 2];
-        }
-    if (all) GF_DELETE(all, 3 * (size_t)R);
+    if (R > 1)
+        MPI_Reduce(me == 0 ? MPI_IN_PLACE : all, all, cap * F, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
     return R;
 }

@@ -274,6 +274,10 @@ void gf_dom_free(gf_sim *sim);
 gf_par_profile gf_dom_profile(const gf_sim *sim);
 /// Phases so far that had two or more sectors to run side by side.
 uint64_t gf_dom_shared_phases(const gf_sim *sim);
+/// MPI slabs: the particles in this rank's region (its slab and halo) and in
+/// its slab, what it would hold were the memory divided; one process: every
+/// particle in the grid, twice.
+void gf_dom_region_particles(const gf_sim *sim, uint64_t *region, uint64_t *owned);
 /// Tests only: makes the engine wrong on purpose (a spot whose move leaves
 /// its sector is lost, with all its later moves, as a domain engine that
 /// cannot hand spots over would lose them), to show that the flow test sees it.

@@ -32,8 +32,8 @@ gf_status gf_slabs_make(gf_slabs *s, int axis, int n, int nx, int ny, int D, int
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the slabs of %d ranks", R);
     }
     for (int r = 0; r < R; r++) {
-        // Rounded up: with fewer domains than ranks the last ranks go without.
-        long d0 = ((long)r * D + R - 1) / R, d1 = ((long)(r + 1) * D + R - 1) / R;
+        // With fewer domains than ranks, one each and the last ranks none.
+        long d0 = D >= R ? (long)r * D / R : (r < D ? r : D), d1 = D >= R ? (long)(r + 1) * D / R : (r + 1 < D ? r + 1 : D);
         s->lo[r] = (int)(d0 * per < n ? d0 * per : n);
         s->hi[r] = (int)(d1 * per < n ? d1 * per : n);
         if (r == R - 1) s->hi[r] = n;

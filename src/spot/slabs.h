@@ -27,7 +27,8 @@ typedef struct gf_slabs {
 
 /// The slabs of R ranks over n layers cut into `D` domains of `per` layers
 /// each along `axis` (the last may be shorter): rank r owns domains
-/// [ceil(r D / R), ceil((r + 1) D / R)) (the last ranks none when D < R);
+/// [r D / R, (r + 1) D / R) (rounded down; when D < R one each, the last
+/// ranks none);
 /// its region adds `halo` layers each side.
 gf_status gf_slabs_make(gf_slabs *s, int axis, int n, int nx, int ny, int D, int per, int R, int halo);
 void gf_slabs_free(gf_slabs *s);

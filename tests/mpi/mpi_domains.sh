@@ -4,7 +4,7 @@
 # write the single process's run directory byte for byte (snapshots,
 # exits.csv, summary.json without its timing fields), the ranks each running
 # their own slab of domains (issue 23: a tall silo cut into 4 slabs along z,
-# every halo checked after every phase, and a broken halo caught); a run stopped at
+# every halo checked after every phase, and two broken halos caught); a run stopped at
 # 4 ranks resumes on 1 process to the uninterrupted run; a rank killed with
 # SIGKILL ends the job with a non-zero status within 30 s, and the
 # checkpoint written before it resumes.
@@ -81,6 +81,20 @@ GF_MPI_TEST_BREAK=moved GF_MPI_CHECK=1 mpi 4 run -q "${TALL[@]}" --set run.durat
 [ "$RC" -ne 0 ] || fail "positions kept from the neighbours: the run passed GF_MPI_CHECK"
 grep -q "a ghost differs from its owner's particle" "$T/err" || fail "no halo message: $(cat "$T/err")"
 ok "a halo missing the neighbours' moved positions fails GF_MPI_CHECK: $(grep -o 'ranks [0-9]* and [0-9]* hold' "$T/err" | head -1)"
+
+# A particle moved into a rank's region from beyond it is sent whole, with its
+# list row (that rank's record of it is old). On the wide slit with no
+# snapshot (no gather) before t = 2, the run with GF_MPI_CHECK=1 passes and
+# gives the single process's exits; with that logging broken (test-only) the
+# check fails.
+GF_MPI_CHECK=1 mpi 4 run -q "${SILO[@]}" --set output.snapshot_interval=2 --set run.duration=2 --set run.threads=1 -o E4
+expect_rc 0 "wide slit, 4 ranks, one gather in 2 tau (GF_MPI_CHECK=1)"
+cmp -s S/exits.csv E4/exits.csv || fail "wide slit, one gather: exits.csv differs from the single process's"
+GF_MPI_TEST_BREAK=entry GF_MPI_CHECK=1 mpi 4 run -q "${SILO[@]}" --set output.snapshot_interval=2 \
+    --set run.duration=2 --set run.threads=1 -o EB
+[ "$RC" -ne 0 ] || fail "particles entering a region not sent whole: the run passed GF_MPI_CHECK"
+grep -q "a ghost differs from its owner's particle" "$T/err" || fail "no halo message: $(cat "$T/err")"
+ok "particles entering a region are sent whole: without it GF_MPI_CHECK fails, with it the exits are the single process's"
 
 # kill -9 of rank 1: mpirun ends the job (every rank) with a non-zero status
 # within 30 s; the checkpoint written before it (every 0.5 tau) resumes.
