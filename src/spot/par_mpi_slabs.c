@@ -207,7 +207,7 @@ static gf_status gf_slab_apply(gf_sim *sim, const gf_slabs *s, int me, int R, ui
         const unsigned char *a = gf_slab_st.all + gf_slab_st.displs[r];
         if ((st = gf_mpi_records_check(sim, a, (size_t)gf_slab_st.counts[r], nblock, block_size, r)) != GF_OK)
             return st;
-        if (s && gf_slabs_partners(s, me, r) &&
+        if (gf_slabs_partners(s, me, r) &&
             (st = gf_mpi_records_check(sim, gf_slab_st.in[r].b, gf_slab_st.in[r].len, nblock, block_size, r)) != GF_OK)
             return st;
     }
@@ -217,7 +217,7 @@ static gf_status gf_slab_apply(gf_sim *sim, const gf_slabs *s, int me, int R, ui
             gf_mpi_records_apply(sim, gf_slab_st.all + gf_slab_st.displs[r], dead, blocks, nblock, block_size,
                                  pass == 1, &t->applied_p, &t->applied_c);
             if (pass == 0) t->applied += (uint64_t)gf_slab_st.counts[r];
-            if (!s || !gf_slabs_partners(s, me, r)) continue;
+            if (!gf_slabs_partners(s, me, r)) continue;
             gf_mpi_records_apply(sim, gf_slab_st.in[r].b, dead, blocks, nblock, block_size, pass == 1, &t->applied_p,
                                  &t->applied_c);
             if (pass == 0) t->applied += gf_slab_st.in[r].len;
@@ -407,14 +407,37 @@ gf_status gf_mpi_whole(gf_sim *sim)
         }
     }
     m->len = need;
+    // One rank's records at a time (MPI_Bcast from each in turn, applied
+    // before the next): a rank holds its own message and one other, not every
+    // rank's at once (on 2,000,000 spheres and 4 ranks that buffer was
+    // ~270 MB a rank). The ranks' records are disjoint (each cell and the
+    // particles in it come from its owner only), so the order is free.
     gf_mpi_tallies *t = gf_mpi_tally();
     double t0 = MPI_Wtime();
-    uint64_t total = 0;
-    gf_status st = gf_slab_allgather(m, R, &total);
+    int len = (int)need;
+    MPI_Allgather(&len, 1, MPI_INT, gf_slab_st.counts, 1, MPI_INT, MPI_COMM_WORLD);
+    size_t most = 0;
+    for (int r = 0; r < R; r++)
+        if (r != me && (size_t)gf_slab_st.counts[r] > most) most = (size_t)gf_slab_st.counts[r];
+    gf_slab_buf *in = &gf_slab_st.in[me]; // (the point-to-point buffer nobody sends this rank from itself)
+    // (Out of memory here fails this rank; mpi_app aborts the job, so the
+    // others do not wait for it in the broadcast.)
+    if (!gf_mpi_room((void **)&in->b, &in->cap, most + 1, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI gather of the state (%zu bytes)", most);
+    gf_status st = GF_OK;
+    for (int r = 0; r < R; r++) {
+        unsigned char *buf = r == me ? m->b : in->b;
+        MPI_Bcast(buf, gf_slab_st.counts[r], MPI_BYTE, r, MPI_COMM_WORLD);
+        if (r == me || st != GF_OK) continue;
+        const size_t n = (size_t)gf_slab_st.counts[r];
+        if ((st = gf_mpi_records_check(sim, buf, n, 0, 0, r)) != GF_OK) continue;
+        gf_mpi_records_apply(sim, buf, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
+        gf_mpi_records_apply(sim, buf, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
+        t->applied += n;
+    }
     t->wait += MPI_Wtime() - t0;
     t->wholes++;
     if (st != GF_OK) return st;
-    if ((st = gf_slab_apply(sim, NULL, me, R, NULL, NULL, 0, 0)) != GF_OK) return st;
     gf_grid_recompute_top(&sim->grid);
     return gf_mpi_checking() ? gf_mpi_check(sim, NULL, NULL, 0) : GF_OK;
 }
