@@ -7,6 +7,9 @@
 
 #include "cli.h"
 #include "granflow/bench.h"
+#ifdef GF_MPI
+#include "mpi_app.h"
+#endif
 
 static void gf_bench_on_packed(void *ctx, const gf_bench_spot *b, const gf_sim *sim, double warmup)
 {
@@ -35,12 +38,19 @@ int gf_cmd_bench(int argc, char **argv)
     if (cli.bench_particles > 0) o.particles = (size_t)cli.bench_particles;
     if (cli.bench_warmup > 0) o.warmup = cli.bench_warmup;
     if (cli.bench_window > 0) o.window = cli.bench_window;
-    if (!cli.json) o.packed = gf_bench_on_packed;
+    // Under mpirun every rank runs the silo (the domain engine's ranks share
+    // each phase) and rank 0 alone speaks, with every rank's figures.
+#ifdef GF_MPI
+    const bool speaks = gf_mpi_app_rank() == 0;
+#else
+    const bool speaks = true;
+#endif
+    if (!cli.json && speaks) o.packed = gf_bench_on_packed;
     gf_bench_report r;
     o.stop = gf_cli_catch_stop();
     gf_status st = gf_bench(&cfg, &o, &r);
     if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("bench", "no figures");
     if (st != GF_OK) return gf_cli_fail("bench", st);
-    gf_bench_write(stdout, &r, cli.json);
+    if (speaks) gf_bench_write(stdout, &r, cli.json);
     return GF_EXIT_OK;
 }

@@ -113,6 +113,12 @@ static void packing_types_give_the_bidisperse_packing(void **state)
     assert_false(r.large);
     assert_true(r.silo.threads >= 1);
     assert_int_equal(r.lga.iterations, 1);
+    // One process: one rank, its peak resident set, nothing exchanged (issue 23).
+    assert_int_equal(r.silo.ranks, 1);
+    assert_true(r.silo.rank_peak_rss_bytes[0] > 1e6);
+    assert_true(r.silo.rank_exchange_bytes_per_phase[0] == 0.0);
+    assert_true(r.silo.rank_region_particles[0] > 0 && r.silo.rank_region_particles[0] <= (double)r.silo.particles);
+    assert_true(r.silo.rank_slab_particles[0] == r.silo.rank_region_particles[0]);
     // Without packing.types every type is imported.
     c = mixture_config(path, "");
     s = (seen){0};
@@ -127,7 +133,9 @@ static void report_as_json(void **state)
     (void)state;
     gf_bench_report r = {.engine = "event", .warmup = 40, .window = 1, .step_us = 2.5, .efficiency = 1,
                          .peak_rss_bytes = 4000};
-    r.silo = (gf_bench_spot){.particles = 2, .threads = 1, .spot_us = 1.25, .sps_all = 4e5, .sps_one = 4e5};
+    r.silo = (gf_bench_spot){.particles = 2, .threads = 1, .spot_us = 1.25, .sps_all = 4e5, .sps_one = 4e5, .ranks = 2,
+                             .rank_peak_rss_bytes = {3000, 5000}, .rank_exchange_bytes_per_phase = {0, 1234.4},
+                             .rank_region_particles = {2, 1}, .rank_slab_particles = {1, 1}};
     r.lga = (gf_bench_lga){.site_updates_per_second = 1.5e7, .sites = 50000, .iterations = 1000};
     char *buf = NULL;
     size_t len = 0;
@@ -139,7 +147,10 @@ static void report_as_json(void **state)
                        "\"spot_us\": 1.2500, \"relax_us\": 0.0000, \"step_us\": 2.5000, \"steps_per_second\": 400000.0, "
                        "\"steps_per_second_1thread\": 400000.0, \"parallel_efficiency\": 1.000, \"spots_active\": 0, "
                        "\"flow_rate\": 0.00, \"moves_per_tau\": 0, \"memory_bytes_per_particle\": 0.0, "
-                       "\"peak_rss_bytes_per_particle\": 2000.0, \"peak_rss_bytes\": 4000, \"projected_drain_seconds\": 0, \"pack_seconds\": 0.00, "
+                       "\"peak_rss_bytes_per_particle\": 2000.0, \"peak_rss_bytes\": 4000, \"ranks\": 2, "
+                       "\"rank_peak_rss_bytes\": [3000, 5000], \"rank_exchange_bytes_per_phase\": [0, 1234], "
+                       "\"rank_region_particles\": [2, 1], \"rank_slab_particles\": [1, 1], "
+                       "\"projected_drain_seconds\": 0, \"pack_seconds\": 0.00, "
                        "\"warmup_seconds\": 0.00, \"lga_site_updates_per_second\": 15000000, \"lga_sites\": 50000, "
                        "\"lga_iterations\": 1000}\n";
     if (strcmp(buf, want)) fail_msg("wrote\n%s\nexpected\n%s", buf, want);

@@ -23,6 +23,9 @@
 extern "C" {
 #endif
 
+/// Ranks whose figures gf_bench_spot keeps one by one.
+#define GF_BENCH_RANKS 64
+
 /// Figures of one silo in steady flow.
 typedef struct gf_bench_spot {
     size_t particles, spots;   ///< particles at the start; spots active at the end
@@ -36,6 +39,18 @@ typedef struct gf_bench_spot {
     double drain_s;            ///< projected wall seconds to drain what is left, all threads
     size_t remaining;          ///< particles left at the end
     gf_par_profile prof;       ///< the parallel engine's blocks (sectors), over the timed one-thread window
+    /// MPI ranks the silo ran on (1 without mpirun), and per rank (the first
+    /// GF_BENCH_RANKS; filled on rank 0): its peak resident set when the silo
+    /// was done (bytes, getrusage ru_maxrss), and the bytes it sent per
+    /// exchanged phase over the warm-up and the windows (0 on one rank).
+    /// Also the particles in its region (slab and halo) and in its slab
+    /// when the silo was done: what it would hold were the memory divided
+    /// (one process: every particle).
+    int ranks;
+    double rank_peak_rss_bytes[GF_BENCH_RANKS];
+    double rank_exchange_bytes_per_phase[GF_BENCH_RANKS];
+    double rank_region_particles[GF_BENCH_RANKS];
+    double rank_slab_particles[GF_BENCH_RANKS];
 } gf_bench_spot;
 
 /// The lattice-gas automaton's speed: the paper's channel (the lga.* keys of

@@ -12,6 +12,10 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "granflow/lga.h"
+#include "spot/sim_internal.h"
+#ifdef GF_MPI
+#include "spot/par_mpi.h"
+#endif
 
 gf_bench_opts gf_bench_opts_default(void)
 {
@@ -67,6 +71,39 @@ static double gf_bench_drain_seconds(const gf_bench_spot *b)
     return 0.5 * b->moves_per_tau * ((double)b->remaining / b->flow) / b->sps_all;
 }
 
+static double gf_bench_peak_rss(void)
+{
+    struct rusage ru;
+    return getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : 0;
+}
+
+// Every rank's peak resident set, bytes sent per phase and particles in its
+// region and slab, gathered on rank 0 (one process: its own). A collective
+// under MPI: every rank calls it.
+static void gf_bench_ranks(gf_bench_spot *b, const gf_sim *sim)
+{
+    uint64_t region = 0, owned = 0;
+    gf_dom_region_particles(sim, &region, &owned);
+    const double mine[3] = {gf_bench_peak_rss(), (double)region, (double)owned};
+#ifdef GF_MPI
+    enum { F = GF_MPI_FIGURES + 2 };
+    double all[GF_BENCH_RANKS * F];
+    b->ranks = gf_mpi_rank_figures(mine, all, GF_BENCH_RANKS);
+    for (int r = 0; r < b->ranks && r < GF_BENCH_RANKS; r++) {
+        b->rank_peak_rss_bytes[r] = all[r * F];
+        b->rank_region_particles[r] = all[r * F + 1];
+        b->rank_slab_particles[r] = all[r * F + 2];
+        b->rank_exchange_bytes_per_phase[r] = all[r * F + GF_MPI_FIGURES];
+    }
+#else
+    b->ranks = 1;
+    b->rank_peak_rss_bytes[0] = mine[0];
+    b->rank_region_particles[0] = mine[1];
+    b->rank_slab_particles[0] = mine[2];
+    b->rank_exchange_bytes_per_phase[0] = 0;
+#endif
+}
+
 // Packs cfg's silo the way a run does, warms it up, then times three windows:
 // all threads, one thread, one thread with spot() and relax() clocked call by call.
 static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_bench_spot *out)
@@ -99,6 +136,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     double dummy;
     if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &dummy, &c, &d);
     out->prof = gf_sim_par_profile(sim);
+    gf_bench_ranks(out, sim); // (before the engine goes: its exchange counters go with it)
     gf_sim_destroy(sim);
     if (st == GF_ERR_INTERRUPTED) return gf_error_set(st, "bench: interrupted");
     if (st != GF_OK) return st;
@@ -111,12 +149,6 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     out->remaining = d.particles_remaining;
     out->drain_s = gf_bench_drain_seconds(out);
     return GF_OK;
-}
-
-static double gf_bench_peak_rss(void)
-{
-    struct rusage ru;
-    return getrusage(RUSAGE_SELF, &ru) == 0 ? 1024.0 * (double)ru.ru_maxrss : 0;
 }
 
 gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_report *out)

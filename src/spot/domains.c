@@ -30,6 +30,12 @@
 // sectors of a phase touch disjoint state, counters are summed sector by
 // sector and the cycle's exits are sorted by (time, id): the result depends
 // on the seed and the parallel keys, never on the number of threads.
+//
+// MPI ranks (GF_MPI=ON): the domains are cut into one slab a rank along the
+// axis with the most of them (slabs.h); each rank runs its slab's sectors in
+// every phase and exchanges with its neighbour slabs (par_mpi_slabs.c). The
+// sectors of a phase are independent whoever runs them, so the result does
+// not depend on the number of ranks either.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -95,6 +101,8 @@ typedef struct gf_dom {
     bool drop_crossing;     ///< tests only: a spot whose move leaves its sector is lost with its moves
     gf_par_profile prof;
     bool profiling;
+    gf_slabs slabs;         ///< MPI ranks: the slab of domains each owns (slabs.h)
+    int *owner;             ///< MPI ranks: per sector, the rank that runs it (NULL: one process)
 } gf_dom;
 
 void gf_dom_free(gf_sim *sim)
@@ -119,9 +127,11 @@ void gf_dom_free(gf_sim *sim)
     GF_DELETE(q->mine, q->nblock);
     GF_DELETE(q->rankload, q->nblock);
     GF_DELETE(q->secs, q->nblock);
+    if (q->owner) GF_DELETE(q->owner, q->nblock);
+    gf_mpi_release(); // (it forgets the slabs before they go)
+    gf_slabs_free(&q->slabs);
     gf_free(q, sizeof *q);
     sim->dom = NULL;
-    gf_mpi_release();
 }
 
 // Sectors along one axis of n cells (cell size h): a sector spans `need`
@@ -148,6 +158,37 @@ static gf_status gf_dom_axis(int n, double need, double size, int S, double h, i
     }
     return GF_OK;
 }
+
+#ifdef GF_MPI
+// MPI ranks: the domains cut into one slab a rank along the axis with the
+// most domains (the tallest; z on a tie), each sector run by its slab's rank.
+// The halo: a reach and a cell diagonal, in whole layers.
+static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q, const int n[3])
+{
+    const gf_grid *g = &sim->grid;
+    int axis = 2, D = 1;
+    for (int a = 0; a < 3; a++) {
+        int d = (q->nb[a] + q->nc[a] - 1) / q->nc[a];
+        if (q->nc[a] > 1 && d >= D) {
+            axis = a;
+            D = d;
+        }
+    }
+    const int per = q->nc[axis] * q->bs[axis];
+    const int halo = (int)ceil((gf_par_reach(sim) + sqrt(3.0) * g->h) / g->h);
+    gf_status st = gf_slabs_make(&q->slabs, axis, n[axis], g->nx, g->ny, D, per, gf_mpi_size(), halo);
+    if (st != GF_OK) return st;
+    q->owner = GF_NEW(int, q->nblock);
+    if (!q->owner) return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
+    for (size_t b = 0; b < q->nblock; b++) {
+        size_t pos = axis == 0   ? b % (size_t)q->nb[0]
+                     : axis == 1 ? b / (size_t)q->nb[0] % (size_t)q->nb[1]
+                                 : b / ((size_t)q->nb[0] * (size_t)q->nb[1]);
+        q->owner[b] = gf_slabs_owner(&q->slabs, (int)pos * q->bs[axis]);
+    }
+    return GF_OK;
+}
+#endif
 
 static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
 {
@@ -176,7 +217,11 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
     q->secs = GF_NEW(double, q->nblock);
     if (!q->sec || !q->blockof || !q->run || !q->runload || !q->mine || !q->rankload || !q->secs)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
-    return gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
+    gf_status st = gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
+#ifdef GF_MPI
+    if (st == GF_OK && gf_mpi_size() > 1) st = gf_dom_slabs(sim, q, n);
+#endif
+    return st;
 }
 
 // The workers for the current thread count; the decomposition is made once
@@ -224,6 +269,9 @@ static gf_status gf_dom_make(gf_sim *sim)
         q->work[t].defer_exits = true;
         q->work[t].timed = true;
         q->work[t].coltop = q->coltop;
+#ifdef GF_MPI
+        q->work[t].slabs = q->owner && !gf_mpi_test_break("entry") ? &q->slabs : NULL;
+#endif
     }
     return GF_OK;
 }
@@ -479,10 +527,15 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
         for (size_t r = 0; r < nrun; r++) q->sec[q->run[r]].nparticle = gf_dom_particles(sim, q, q->run[r]);
     gf_status st = GF_OK;
 #ifdef GF_MPI
-    // Every rank holds the whole state and runs its share of the phase's
-    // sectors, then the ranks swap what their moves changed (par_mpi.c).
+    // Each rank runs the sectors of its own slab (par_mpi_slabs.c), then
+    // sends its neighbour slabs what its moves changed near them.
     if ((st = gf_mpi_phase_begin(sim, q->work, q->threads)) != GF_OK) return st;
-    gf_mpi_assign(q->runload, nrun, q->rankload, q->mine);
+    if (q->owner) { // slabs: each rank runs its own slab's sectors
+        const int me = gf_mpi_rank();
+        for (size_t r = 0; r < nrun; r++) q->mine[r] = q->owner[q->run[r]] == me;
+    } else {
+        gf_mpi_assign(q->runload, nrun, q->rankload, q->mine);
+    }
 #else
     memset(q->mine, 1, nrun);
 #endif
@@ -498,7 +551,9 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
         if (q->mine[r]) gf_dom_sector(sim, q, t, q->run[r], t_end);
     }
 #ifdef GF_MPI
-    if ((st = gf_mpi_phase_end(sim, q->work, q->threads, q->dead, q->sec, q->nblock, sizeof *q->sec)) != GF_OK) return st;
+    st = q->owner ? gf_mpi_slab_phase_end(sim, q->work, q->threads, q->dead, q->sec, q->nblock, sizeof *q->sec, &q->slabs)
+                  : gf_mpi_phase_end(sim, q->work, q->threads, q->dead, q->sec, q->nblock, sizeof *q->sec);
+    if (st != GF_OK) return st;
 #endif
     (void)st;
     if (q->profiling) gf_dom_record(q, nrun);
@@ -523,7 +578,12 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     if ((st = gf_dom_insert(sim, t_end, window)) != GF_OK) return st;
     if ((st = gf_dom_spots(q, sim->ns)) != GF_OK) return st;
     memset(q->dead, 0, sim->ns);
-    gf_par_column_tops(sim, q->coltop, q->ncol);
+#ifdef GF_MPI
+    if (q->owner) { // the tops from the cells each rank owns
+        if ((st = gf_mpi_column_tops(sim, &q->slabs, q->coltop, q->ncol)) != GF_OK) return st;
+    } else
+#endif
+        gf_par_column_tops(sim, q->coltop, q->ncol);
     for (size_t b = 0; b < q->nblock; b++) {
         q->sec[b].st = (gf_sim_stats){0};
         q->sec[b].status = GF_OK;
@@ -548,12 +608,41 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     // cycle in which it falls due.
     if (c->relax_method == GF_RELAX_GLOBAL) {
         const double every = c->relax_k / c->spot_move_rate;
-        if (floor(t_end / every) > floor((t_end - window) / every)) return gf_sim_global(sim);
+        if (floor(t_end / every) > floor((t_end - window) / every)) {
+#ifdef GF_MPI
+            if ((st = gf_mpi_whole(sim)) != GF_OK) return st; // it moves every particle
+#endif
+            return gf_sim_global(sim);
+        }
     }
     return GF_OK;
 }
 
 uint64_t gf_dom_shared_phases(const gf_sim *sim) { return sim->dom ? sim->dom->shared : 0; }
+
+void gf_dom_region_particles(const gf_sim *sim, uint64_t *region, uint64_t *owned)
+{
+    const gf_grid *g = &sim->grid;
+    const gf_dom *q = sim->dom;
+    *region = *owned = 0;
+#ifdef GF_MPI
+    const int me = gf_mpi_rank();
+#endif
+    for (size_t c = 0; c < g->ncell; c++) {
+        bool in = true, own = true;
+#ifdef GF_MPI
+        if (q && q->owner) {
+            int L = gf_slabs_layer(&q->slabs, (uint32_t)c);
+            in = gf_slabs_holds(&q->slabs, me, L);
+            own = L >= q->slabs.lo[me] && L < q->slabs.hi[me];
+        }
+#else
+        (void)q;
+#endif
+        *region += in ? g->count[c] : 0;
+        *owned += own ? g->count[c] : 0;
+    }
+}
 
 gf_status gf_dom_test_drop_crossing(gf_sim *sim)
 {

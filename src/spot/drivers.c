@@ -69,6 +69,19 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
     return st;
 }
 
+// MPI ranks over slabs (the domain engine) hold their regions only, as of
+// the last phase: before anything reads the rest, every rank's state is made
+// whole again (par_mpi_slabs.c; nothing to do otherwise).
+static gf_status gf_sim_whole(gf_sim *sim)
+{
+#ifdef GF_MPI
+    return gf_mpi_whole(sim);
+#else
+    (void)sim;
+    return GF_OK;
+#endif
+}
+
 // Work done, in the units of run.reorder_interval: events, or spot moves in
 // fixed mode (where one step is thousands of moves).
 static uint64_t gf_sim_work(const gf_sim *sim)
@@ -105,13 +118,14 @@ static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
     if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
+        if ((st = gf_sim_whole(sim)) != GF_OK) return st; // the re-sort moves every particle
         if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
         sim->nl_built_at = gf_sim_work(sim);
     }
     st = gf_sim_action(sim);
     // Recirculation: whatever exited in this event or step goes back on the
     // surface before the next one (one place for every engine).
-    if (st == GF_OK && sim->nreins > 0) st = gf_sim_reinsert(sim);
+    if (st == GF_OK && sim->nreins > 0 && (st = gf_sim_whole(sim)) == GF_OK) st = gf_sim_reinsert(sim);
     return st;
 }
 
@@ -150,7 +164,18 @@ static bool gf_sim_stopping(const gf_sim_hooks *hooks)
 
 gf_sim_hooks gf_sim_hooks_default(void) { return (gf_sim_hooks){.ctx = NULL}; }
 
+static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *hooks);
+
 gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
+{
+    gf_status st = gf_sim_run_loop(sim, until, hooks);
+    // What the caller reads next (a checkpoint after a stop, the summary)
+    // is the whole state. (An error ends the job: mpi_app aborts it.)
+    gf_status sw = st == GF_OK || st == GF_ERR_INTERRUPTED ? gf_sim_whole(sim) : GF_OK;
+    return sw != GF_OK ? sw : st;
+}
+
+static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *hooks)
 {
     static const gf_sim_hooks none = {0};
     if (!hooks) hooks = &none;
@@ -170,14 +195,17 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
         for (double ts; (ts = (double)sim->next_snap * dsnap) <= tn && ts <= last_snap;) {
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
             if (ts > sim->t_reached) sim->t_reached = ts;
-            if (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK)
+            // (whole on every rank, whether it writes or not: a collective)
+            if ((st = gf_sim_whole(sim)) != GF_OK ||
+                (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
                 return st;
             sim->next_snap++;
         }
         while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
-            if (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK) return st;
+            if ((st = gf_sim_whole(sim)) != GF_OK || (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
+                return st;
             // Due times that no longer advance (an interval below the rounding
             // of the time; gf_config_validate refuses those) skip ahead.
             double next = sim->next_ckpt + dck;

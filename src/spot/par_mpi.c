@@ -33,17 +33,17 @@ static struct {
     uint32_t *list; ///< this phase's entries, kind by kind, each once
     size_t list_cap;
     int *counts, *displs, *tcounts, *tdispls;
-    uint64_t bytes, phases; ///< exchanged so far (all ranks' messages), and phases exchanged
+    gf_mpi_tallies t;       ///< what the exchange did so far
     uint64_t exit_bytes;    ///< exits exchanged so far
-    uint64_t applied;       ///< bytes of messages this rank took from the others
-    uint64_t applied_p, applied_c; ///< particle and cell records among them
     int rank, size;
     int threads;            ///< this rank's threads (the last phase's)
     bool stats_on, check;
     bool report;            ///< GF_MPI_STATS is set: gf_mpi_release passes the counters to gf_warn
     int ncounts;            ///< entries of counts, displs, tcounts, tdispls (the ranks)
-    double wait;
 } gf_mpi_st;
+
+gf_mpi_tallies *gf_mpi_tally(void) { return &gf_mpi_st.t; }
+bool gf_mpi_checking(void) { return gf_mpi_st.check; }
 
 int gf_mpi_rank(void)
 {
@@ -90,17 +90,24 @@ bool gf_mpi_stop(volatile sig_atomic_t *stop)
 // quotes them), then counts afresh.
 static void gf_mpi_report_stats(void)
 {
-    if (gf_mpi_st.report && gf_mpi_st.rank == 0 && gf_mpi_st.phases > 0) {
+    if (gf_mpi_st.report && gf_mpi_st.rank == 0 && gf_mpi_st.t.phases > 0) {
         gf_warn("mpi: %d ranks of %d threads, %" PRIu64 " colour phases exchanged, %" PRIu64
                 " bytes of changed records (all ranks), %.0f bytes per phase; %" PRIu64 " bytes of exits; rank 0 took %" PRIu64
                 " words from the others (%" PRIu64 " particle and %" PRIu64 " cell records)",
-                gf_mpi_st.size, gf_mpi_st.threads, gf_mpi_st.phases, gf_mpi_st.bytes, (double)gf_mpi_st.bytes / (double)gf_mpi_st.phases,
-                gf_mpi_st.exit_bytes, gf_mpi_st.applied / 8, gf_mpi_st.applied_p, gf_mpi_st.applied_c);
-        gf_warn("mpi: rank 0 spent %.3f s in the exchange's collectives (waiting included)", gf_mpi_st.wait);
+                gf_mpi_st.size, gf_mpi_st.threads, gf_mpi_st.t.phases, gf_mpi_st.t.bytes, (double)gf_mpi_st.t.bytes / (double)gf_mpi_st.t.phases,
+                gf_mpi_st.exit_bytes, gf_mpi_st.t.applied / 8, gf_mpi_st.t.applied_p, gf_mpi_st.t.applied_c);
+        gf_warn("mpi: rank 0 spent %.3f s in the exchange's collectives (waiting included)", gf_mpi_st.t.wait);
+        if (gf_mpi_st.t.slabs)
+            gf_warn("mpi: rank 0 sent %" PRIu64 " bytes, %.0f per phase (slabs: %.0f per phase to its neighbours, the "
+                    "rest, spots, sectors and removals, to every rank); the state made whole %" PRIu64 " times",
+                    gf_mpi_st.t.sent, (double)gf_mpi_st.t.sent / (double)gf_mpi_st.t.phases,
+                    (double)gf_mpi_st.t.sent_near / (double)gf_mpi_st.t.phases, gf_mpi_st.t.wholes);
+        else
+            gf_warn("mpi: rank 0 sent %" PRIu64 " bytes, %.0f per phase (to every rank)", gf_mpi_st.t.sent,
+                    (double)gf_mpi_st.t.sent / (double)gf_mpi_st.t.phases);
     }
-    gf_mpi_st.bytes = gf_mpi_st.phases = gf_mpi_st.exit_bytes = gf_mpi_st.applied = 0;
-    gf_mpi_st.applied_p = gf_mpi_st.applied_c = 0;
-    gf_mpi_st.wait = 0.0;
+    gf_mpi_st.t = (gf_mpi_tallies){0};
+    gf_mpi_st.exit_bytes = 0;
 }
 
 // The per-rank count arrays, made once (by the first phase or exit merge).
@@ -119,6 +126,7 @@ static bool gf_mpi_counts(int R)
 void gf_mpi_release(void)
 {
     gf_mpi_report_stats();
+    gf_mpi_slabs_release();
     gf_free(gf_mpi_st.out, gf_mpi_st.out_cap);
     gf_free(gf_mpi_st.whole, gf_mpi_st.whole_cap);
     gf_free(gf_mpi_st.in, gf_mpi_st.in_cap);
@@ -137,8 +145,7 @@ void gf_mpi_release(void)
     gf_mpi_st.ncounts = 0;
 }
 
-// Room for `need` bytes (or entries of `size` bytes) in *a; false when out of memory.
-static bool gf_mpi_room(void **a, size_t *cap, size_t need, size_t size)
+bool gf_mpi_room(void **a, size_t *cap, size_t need, size_t size)
 {
     if (need <= *cap) return true;
     size_t c = need + need / 2 + 1024;
@@ -184,8 +191,7 @@ gf_status gf_mpi_phase_begin(gf_sim *sim, gf_work *work, int threads)
     return GF_OK;
 }
 
-// A 64-bit hash of every byte the exchange keeps equal across ranks (GF_MPI_CHECK).
-static uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes)
+uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes)
 {
     const unsigned char *b = p;
     for (size_t o = 0; o < bytes; o += 8) {
@@ -245,7 +251,7 @@ gf_status gf_mpi_agree(const gf_sim *sim)
                         sim->t, first);
 }
 
-static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void *blocks, size_t block_bytes)
+gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void *blocks, size_t block_bytes)
 {
     const size_t n = sim->n;
     const gf_grid *g = &sim->grid;
@@ -258,21 +264,19 @@ static gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void
     h = gf_mpi_hash(h, g->cell_of, g->np * sizeof *g->cell_of);
     h = gf_mpi_hash(h, g->slot_of, g->np * sizeof *g->slot_of);
     h = gf_mpi_hash_spots(h, sim);
-    h = gf_mpi_hash(h, dead, sim->ns);
-    h = gf_mpi_hash(h, blocks, block_bytes);
+    if (dead) h = gf_mpi_hash(h, dead, sim->ns);
+    if (blocks) h = gf_mpi_hash(h, blocks, block_bytes);
     uint64_t mine[2] = {h, ~h}, most[2]; // the largest hash and the complement of the smallest
     MPI_Allreduce(mine, most, 2, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
     if (most[0] != ~most[1])
         return gf_error_set(GF_ERR_STATE, "GF_MPI_CHECK: the ranks hold different states after colour phase %" PRIu64
-                                          " (step %" PRIu64 "): the exchange missed a change",
-                            gf_mpi_st.phases, sim->fstep);
+                                          " (step %" PRIu64 ")%s: the exchange missed a change",
+                            gf_mpi_st.t.phases, sim->fstep, dead ? "" : ", once made whole");
     return GF_OK;
 }
 
-// This rank's message: its length, the number of records of each kind, then
-// the records kind by kind (each entry once, as this rank's blocks left it).
-static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint8_t *dead, const void *blocks,
-                             size_t nblock, size_t block_size, size_t *bytes)
+gf_status gf_mpi_collect(const gf_sim *sim, gf_work *work, int threads, size_t nblock, size_t block_size,
+                         const uint32_t **list, size_t first[GF_TOUCH_KINDS], size_t count[GF_TOUCH_KINDS])
 {
     const gf_grid *g = &sim->grid;
     size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS], logged = 0;
@@ -286,8 +290,7 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
         !gf_mpi_room((void **)&gf_mpi_st.list, &gf_mpi_st.list_cap, logged, sizeof(uint32_t)))
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange");
     // Each kind's entries, each once, one after the other in list[].
-    uint32_t head[1 + GF_TOUCH_KINDS];
-    size_t first[GF_TOUCH_KINDS], n = 0, need = sizeof head;
+    size_t n = 0;
     for (int k = 0; k < GF_TOUCH_KINDS; k++) {
         first[k] = n;
         for (int t = 0; t < threads; t++) {
@@ -304,8 +307,63 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
         if (k != GF_TOUCH_PARTICLE)
             for (size_t e = k == GF_TOUCH_MOVED ? first[GF_TOUCH_PARTICLE] : first[k]; e < n; e++)
                 gf_mpi_st.flag[gf_mpi_st.list[e]] = 0;
-        head[1 + k] = (uint32_t)(n - first[k]);
-        need += head[1 + k] * rec[k];
+        count[k] = n - first[k];
+    }
+    *list = gf_mpi_st.list;
+    return GF_OK;
+}
+
+void gf_mpi_record_write(const gf_sim *sim, int k, uint32_t v, const uint8_t *dead, const void *blocks,
+                         size_t block_size, unsigned char *o)
+{
+    const gf_grid *g = &sim->grid;
+    switch (k) {
+    case GF_TOUCH_PARTICLE: {
+        gf_mpi_part r = {v, g->cell_of[v], g->slot_of[v], sim->alive[v], sim->p[v], sim->p0[v]};
+        memcpy(o, &r, sizeof r);
+        break;
+    }
+    case GF_TOUCH_MOVED: {
+        gf_mpi_pos r = {v, 0, sim->p[v].x, sim->p[v].y, sim->p[v].z};
+        memcpy(o, &r, sizeof r);
+        break;
+    }
+    case GF_TOUCH_ROW:
+        memcpy(o, &v, sizeof v);
+        memcpy(o + sizeof v, sim->nl + ((size_t)v << sim->nl_shift), sizeof(uint32_t) << sim->nl_shift);
+        break;
+    case GF_TOUCH_CELL: {
+        gf_mpi_cell r = {v, g->count[v]};
+        memcpy(o, &r, sizeof r);
+        memcpy(o + sizeof r, g->slot + (size_t)v * GF_CELL_CAP, GF_CELL_CAP * sizeof(uint32_t));
+        break;
+    }
+    case GF_TOUCH_SPOT: {
+        gf_mpi_spot r = {sim->sx[v], sim->sy[v], sim->sz[v], sim->snext[v], v, sim->scount[v], dead[v], 0};
+        memcpy(o, &r, sizeof r);
+        break;
+    }
+    default:
+        memcpy(o, &v, sizeof v);
+        memcpy(o + sizeof v, (const unsigned char *)blocks + v * block_size, block_size);
+    }
+}
+
+// This rank's message: its length, the number of records of each kind, then
+// the records kind by kind (each entry once, as this rank's blocks left it).
+static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint8_t *dead, const void *blocks,
+                             size_t nblock, size_t block_size, size_t *bytes)
+{
+    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS], first[GF_TOUCH_KINDS], count[GF_TOUCH_KINDS];
+    gf_mpi_records_kinds(sim, nblock, block_size, limit, rec);
+    const uint32_t *list;
+    gf_status st = gf_mpi_collect(sim, work, threads, nblock, block_size, &list, first, count);
+    if (st != GF_OK) return st;
+    uint32_t head[1 + GF_TOUCH_KINDS];
+    size_t need = sizeof head;
+    for (int k = 0; k < GF_TOUCH_KINDS; k++) {
+        head[1 + k] = (uint32_t)count[k];
+        need += count[k] * rec[k];
     }
     head[0] = (uint32_t)need;
     if (!gf_mpi_room((void **)&gf_mpi_st.out, &gf_mpi_st.out_cap, need > gf_mpi_st.chunk ? need : gf_mpi_st.chunk, 1))
@@ -313,42 +371,9 @@ static gf_status gf_mpi_pack(gf_sim *sim, gf_work *work, int threads, const uint
     unsigned char *o = gf_mpi_st.out;
     memcpy(o, head, sizeof head);
     o += sizeof head;
-    const size_t row = rec[GF_TOUCH_ROW] - sizeof(uint32_t), cell_row = GF_CELL_CAP * sizeof(uint32_t);
     for (int k = 0; k < GF_TOUCH_KINDS; k++)
-        for (size_t e = first[k]; e < first[k] + head[1 + k]; e++) {
-            uint32_t v = gf_mpi_st.list[e];
-            switch (k) {
-            case GF_TOUCH_PARTICLE: {
-                gf_mpi_part r = {v, g->cell_of[v], g->slot_of[v], sim->alive[v], sim->p[v], sim->p0[v]};
-                memcpy(o, &r, sizeof r);
-                break;
-            }
-            case GF_TOUCH_MOVED: {
-                gf_mpi_pos r = {v, 0, sim->p[v].x, sim->p[v].y, sim->p[v].z};
-                memcpy(o, &r, sizeof r);
-                break;
-            }
-            case GF_TOUCH_ROW:
-                memcpy(o, &v, sizeof v);
-                memcpy(o + sizeof v, sim->nl + ((size_t)v << sim->nl_shift), row);
-                break;
-            case GF_TOUCH_CELL: {
-                gf_mpi_cell r = {v, g->count[v]};
-                memcpy(o, &r, sizeof r);
-                memcpy(o + sizeof r, g->slot + (size_t)v * GF_CELL_CAP, cell_row);
-                break;
-            }
-            case GF_TOUCH_SPOT: {
-                gf_mpi_spot r = {sim->sx[v], sim->sy[v], sim->sz[v], sim->snext[v], v, sim->scount[v], dead[v], 0};
-                memcpy(o, &r, sizeof r);
-                break;
-            }
-            default:
-                memcpy(o, &v, sizeof v);
-                memcpy(o + sizeof v, (const unsigned char *)blocks + v * block_size, block_size);
-            }
-            o += rec[k];
-        }
+        for (size_t e = first[k]; e < first[k] + count[k]; e++, o += rec[k])
+            gf_mpi_record_write(sim, k, list[e], dead, blocks, block_size, o);
     *bytes = need;
     return GF_OK;
 }
@@ -403,7 +428,8 @@ static gf_status gf_mpi_swap(size_t mine)
             if (tc[r] > 0) memmove(gf_mpi_st.in + gf_mpi_st.displs[r] + C, gf_mpi_st.in + td[r], (size_t)tc[r]);
 
     }
-    gf_mpi_st.bytes += total;
+    gf_mpi_st.t.bytes += total;
+    gf_mpi_st.t.sent += mine;
     return GF_OK;
 }
 
@@ -422,8 +448,8 @@ gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dea
     if (st != GF_OK) return st;
     double t0 = MPI_Wtime();
     if ((st = gf_mpi_swap(mine)) != GF_OK) return st;
-    gf_mpi_st.wait += MPI_Wtime() - t0;
-    gf_mpi_st.phases++;
+    gf_mpi_st.t.wait += MPI_Wtime() - t0;
+    gf_mpi_st.t.phases++;
     // Every rank checks every message (its own too) before applying any:
     // all come to the same verdict, and fail together, with no collective more.
     for (int r = 0; r < R; r++)
@@ -434,8 +460,8 @@ gf_status gf_mpi_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dea
         for (int r = 0; r < R; r++) {
             if (r == me) continue;
             gf_mpi_records_apply(sim, gf_mpi_st.in + gf_mpi_st.displs[r], dead, blocks, nblock, block_size, pass == 1,
-                                 &gf_mpi_st.applied_p, &gf_mpi_st.applied_c);
-            if (pass == 0) gf_mpi_st.applied += (uint64_t)gf_mpi_st.counts[r];
+                                 &gf_mpi_st.t.applied_p, &gf_mpi_st.t.applied_c);
+            if (pass == 0) gf_mpi_st.t.applied += (uint64_t)gf_mpi_st.counts[r];
         }
     return gf_mpi_st.check ? gf_mpi_check(sim, dead, blocks, nblock * block_size) : GF_OK;
 }

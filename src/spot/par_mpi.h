@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "spot/sim_internal.h"
+#include "spot/slabs.h"
 
 #ifdef GF_MPI
 /// This process's rank and the number of ranks (0 and 1 before MPI_Init).
@@ -44,6 +45,81 @@ gf_status gf_mpi_merge_exits(gf_sim *sim, gf_work *work, int threads);
 /// regrow on the next run) and, with GF_MPI_STATS=1, passes rank 0's
 /// counters to gf_warn; gf_par_free calls it.
 void gf_mpi_release(void);
+/// What the exchange did since the last gf_mpi_release (this rank's view).
+typedef struct gf_mpi_tallies {
+    uint64_t phases;               ///< colour phases (sector phases) exchanged
+    uint64_t bytes;                ///< replicated: all ranks' messages; slabs: what this rank sent and received
+    uint64_t sent;                 ///< bytes this rank sent: its message (replicated), or its point-to-point
+                                   ///< messages to each neighbour plus its part of the collective (slabs)
+    uint64_t sent_near;            ///< slabs: the part of `sent` that went to its neighbours
+    uint64_t applied;              ///< bytes of messages this rank took from the others
+    uint64_t applied_p, applied_c; ///< particle and cell records among them
+    uint64_t wholes;               ///< times the slabs' state was made whole (gf_mpi_whole)
+    double wait;                   ///< seconds in the exchange's communication, waiting included
+    bool slabs;                    ///< the last phases ran over slabs
+} gf_mpi_tallies;
+/// This rank's tallies (reset by gf_mpi_release).
+gf_mpi_tallies *gf_mpi_tally(void);
+/// Whether GF_MPI_CHECK is set (known from the first phase on).
+bool gf_mpi_checking(void);
+/// A 64-bit hash of `bytes` bytes at p, continuing h (GF_MPI_CHECK).
+uint64_t gf_mpi_hash(uint64_t h, const void *p, size_t bytes);
+/// Room for `need` entries of `size` bytes in *a (regrown by half, zeroed); false when out of memory.
+bool gf_mpi_room(void **a, size_t *cap, size_t need, size_t size);
+/// GF_MPI_CHECK: the hash of the whole state (particles, lists, cells, spots,
+/// and dead[] and the blocks when not NULL) equal on every rank, else
+/// GF_ERR_STATE on every rank. A collective.
+gf_status gf_mpi_check(const gf_sim *sim, const uint8_t *dead, const void *blocks, size_t block_bytes);
+/// The records the workers logged, each once, kind by kind: list[first[k],
+/// first[k] + count[k]) are kind k's (a particle with a whole record has no
+/// position record). The list lives until the next call.
+gf_status gf_mpi_collect(const gf_sim *sim, gf_work *work, int threads, size_t nblock, size_t block_size,
+                         const uint32_t **list, size_t first[GF_TOUCH_KINDS], size_t count[GF_TOUCH_KINDS]);
+/// Writes the record of entry v of kind k at o (its size: gf_mpi_records_kinds).
+void gf_mpi_record_write(const gf_sim *sim, int k, uint32_t v, const uint8_t *dead, const void *blocks,
+                         size_t block_size, unsigned char *o);
+
+/// The domain engine's phase over slabs (par_mpi_slabs.c): each rank ran its
+/// slab's sectors; it sends the particle, list-row and cell records its moves
+/// changed to the ranks whose region holds them (point to point, its
+/// neighbour slabs only), and the spot, sector and removed-particle records to
+/// every rank (one collective); then applies what it received. With
+/// GF_MPI_CHECK every rank's halo is compared with its owners' records
+/// (gf_mpi_halo_check). The state outside a rank's region goes stale until
+/// gf_mpi_whole.
+gf_status gf_mpi_slab_phase_end(gf_sim *sim, gf_work *work, int threads, uint8_t *dead, void *blocks, size_t nblock,
+                                size_t block_size, const gf_slabs *s);
+/// GF_MPI_CHECK after a slab phase: for every pair of neighbour ranks, a hash
+/// of the records in the overlap of their regions (cells, and every particle
+/// in them: position, list reference, alive, cell, slot, list row) is the
+/// same on both, so every ghost equals its owner's particle; and the spots,
+/// dead[] and the blocks are equal on every rank. GF_ERR_STATE on every rank
+/// otherwise, naming the ranks and the layers. A collective.
+gf_status gf_mpi_halo_check(const gf_sim *sim, const gf_slabs *s, const uint8_t *dead, const void *blocks,
+                            size_t block_bytes);
+/// The per-column tops the removal test reads (as gf_par_column_tops), each
+/// rank from the cells it owns, then the maximum over the ranks. A collective.
+gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *coltop, size_t ncol);
+/// After slab phases, before anything reads the state outside a rank's
+/// region (the neighbour-list rebuild and re-sort, re-insertion, the global
+/// relaxation, snapshots, checkpoints, the end of gf_sim_run): every rank
+/// sends the records of the cells it owns and of the particles in them to
+/// every rank, so that all hold the single process's state again. Nothing to
+/// do when no slab phase ran since. A collective (every rank decides alike).
+gf_status gf_mpi_whole(gf_sim *sim);
+/// Tests only: whether GF_MPI_TEST_BREAK names this break of the slabs'
+/// exchange ("moved": moved positions kept from the neighbours; "entry":
+/// particles entering a region not sent whole), which GF_MPI_CHECK must catch.
+bool gf_mpi_test_break(const char *what);
+/// Forgets the slabs (their owner frees them) and whether the state is whole.
+void gf_mpi_slabs_release(void);
+/// Rank 0 gets every rank's figures: rank r's mine[k] (its own, e.g. its
+/// peak resident set) in all[r (GF_MPI_FIGURES + 2) + k], then its bytes sent
+/// per phase and phases exchanged, for the first `cap` ranks (`all` holds
+/// cap (GF_MPI_FIGURES + 2) doubles on every rank); returns the number of
+/// ranks. A collective.
+#define GF_MPI_FIGURES 3
+int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap);
 /// Which of a colour phase's n blocks (heaviest first, load[k] moves each)
 /// this rank runs: each block in turn goes to the rank with the fewest moves
 /// so far (the lowest rank on a tie), as threads taking blocks in turn would

@@ -13,6 +13,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "spot/sim_internal.h"
+#include "spot/slabs.h"
 
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
 {
@@ -124,6 +125,14 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
         gf_work_touch(w, GF_TOUCH_MOVED, i);
         uint32_t c = gf_grid_cell(g, q->x, q->y, q->z);
         if (c != g->cell_of[i]) {
+#ifdef GF_MPI
+            // Into a rank's region from beyond it: the rank holds an old
+            // record of it (list reference, row), so it gets the whole one.
+            if (w->log && w->slabs && gf_slabs_crosses(w->slabs, g->cell_of[i], c)) {
+                gf_work_touch(w, GF_TOUCH_PARTICLE, i);
+                if (sim->use_nlist) gf_work_touch(w, GF_TOUCH_ROW, i);
+            }
+#endif
             gf_work_touch(w, GF_TOUCH_CELL, g->cell_of[i]);
             gf_work_touch(w, GF_TOUCH_CELL, c);
             gf_grid_remove(g, i);

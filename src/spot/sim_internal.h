@@ -76,6 +76,9 @@ typedef struct gf_work {
     bool timed;      ///< exits take the time t below (the domain engine's moves each have their own)
     double t;        ///< time of the move being made, when timed
     bool log;        ///< log what the moves change into touched[] (MPI ranks)
+    /// The domain engine's slabs across MPI ranks (slabs.h), else NULL: a
+    /// particle moved into or out of a rank's region is logged whole, with its row.
+    const struct gf_slabs *slabs;
     bool log_failed; ///< a log could not grow (out of memory)
     gf_touch touched[GF_TOUCH_KINDS];
 } gf_work;
@@ -278,6 +281,10 @@ void gf_dom_free(gf_sim *sim);
 gf_par_profile gf_dom_profile(const gf_sim *sim);
 /// Phases so far that had two or more sectors to run side by side.
 uint64_t gf_dom_shared_phases(const gf_sim *sim);
+/// MPI slabs: the particles in this rank's region (its slab and halo) and in
+/// its slab, what it would hold were the memory divided; one process: every
+/// particle in the grid, twice.
+void gf_dom_region_particles(const gf_sim *sim, uint64_t *region, uint64_t *owned);
 /// Tests only: makes the engine wrong on purpose (a spot whose move leaves
 /// its sector is lost, with all its later moves, as a domain engine that
 /// cannot hand spots over would lose them), to show that the flow test sees it.

@@ -41,6 +41,10 @@ d = json.load(open(sys.argv[1]))
 assert d["engine"] == "domains" and d["particles"] == 2000 and d["large_particles"] == 20000
 assert d["domains"] >= 1 and d["barriers_per_tau"] > 0 and d["peak_rss_bytes"] > 0
 assert "projected_speedup_256" in d and "exchange_bytes_per_phase_per_domain" in d
+# One process: one rank, its peak RSS, nothing exchanged, every particle in its region (issue 23).
+assert d["ranks"] == 1 and len(d["rank_peak_rss_bytes"]) == 1 and 0 < d["rank_peak_rss_bytes"][0] <= d["peak_rss_bytes"]
+assert d["rank_exchange_bytes_per_phase"] == [0]
+assert 0 < d["rank_region_particles"][0] <= 2000 and d["rank_slab_particles"] == d["rank_region_particles"]
 assert d["steps_per_second"] > 0 and d["steps_per_second_1thread"] > 0 and d["step_us"] > 0
 assert 0 < d["parallel_efficiency"] <= 1.5
 assert 50 < d["memory_bytes_per_particle"] < 5000
