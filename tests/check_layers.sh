@@ -32,7 +32,7 @@ declare -A layer=(
 # Owner folder of each public header.
 declare -A owner=(
   [core.h]=core [version.h]=core [exit.h]=core
-  [config.h]=config [draw.h]=draw
+  [config.h]=config [defs.h]=config [draw.h]=draw
   [particles.h]=io
   [packing.h]=packing
   [sim.h]=spot

@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "granflow/config.h"
+#include "granflow/defs.h"
 
 /// Most wall elements a point can be near at once (box: 4 sides + base;
 /// cylinder: wall, funnel or rim, pipe, column side, bottom or edge; wedge:
@@ -136,10 +137,10 @@ typedef struct gf_shape {
     gf_container_shape id;       ///< config's enum value of that name
     const gf_shape_ops *ops;
     const char *const *keys;     ///< e.g. {"container.width", "container.depth", ..., NULL}
-    /// Fills the shape's parameters of c (c->u) from a validated cfg; the
-    /// shared fields are already set (bounding box from width and depth,
-    /// outlet from the orifice keys, exit plane).
-    void (*make)(gf_container *c, const gf_config *cfg);
+    /// Fills the shape's parameters of c (c->u) from the container defs of
+    /// a validated config; the shared fields are already set (bounding box
+    /// from width and depth, outlet from the orifice keys, exit plane).
+    void (*make)(gf_container *c, const gf_container_defs *d);
     /// True when its walls are the bounding box's sides and its floor the
     /// plane z = 0 (the box): code may then use the bounding box directly.
     bool rectangular;
@@ -205,6 +206,8 @@ extern const gf_shape gf_mesh_shape;
 /// container.shape with no row in the table gets the box's walls and a
 /// NULL `type` (validation refuses such a config first).
 gf_container gf_container_make(const gf_config *cfg);
+/// The same from the container defs (gf_config_container_defs): what it calls.
+gf_container gf_container_build(const gf_container_defs *d);
 
 /// True when (x, y) lies over the outlet (the hole in the base).
 static inline bool gf_container_over_hole(const gf_container *c, double x, double y)

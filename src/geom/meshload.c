@@ -178,27 +178,27 @@ static double gf_ms_column_start(const gf_meshshape *ms)
     return zc;
 }
 
-static gf_status gf_ms_build(const gf_config *cfg, gf_meshshape *ms)
+static gf_status gf_ms_build(const gf_container_defs *d, gf_meshshape *ms)
 {
     *ms = (gf_meshshape){
-        .shape = cfg->orifice_shape,
-        .hole = 0.5 * cfg->orifice_diameter,
-        .ox = cfg->orifice_x,
-        .oy = cfg->orifice_y,
-        .exit_z = cfg->exit_z,
+        .shape = d->orifice.shape,
+        .hole = 0.5 * d->orifice.diameter,
+        .ox = d->orifice.x,
+        .oy = d->orifice.y,
+        .exit_z = d->exit_level,
     };
     unsigned char *data = NULL;
     size_t len = 0, cap = 0;
-    gf_status st = gf_fs_read_all(cfg->container_mesh, GF_STL_MAX_BYTES, &data, &len, &cap);
+    gf_status st = gf_fs_read_all(d->mesh, GF_STL_MAX_BYTES, &data, &len, &cap);
     if (st != GF_OK) return st;
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < len; i++) h = (h ^ data[i]) * 1099511628211ull;
     ms->digest = h;
     gf_stl mesh;
-    st = gf_stl_parse(cfg->container_mesh, data, len, cfg->container_mesh_scale, &mesh);
+    st = gf_stl_parse(d->mesh, data, len, d->mesh_scale, &mesh);
     gf_free(data, cap);
     if (st != GF_OK) return st;
-    st = gf_sdf_build(&ms->sdf, &mesh, cfg->exit_z, cfg->container_mesh_resolution);
+    st = gf_sdf_build(&ms->sdf, &mesh, d->exit_level, d->mesh_resolution);
     if (st == GF_OK) st = gf_ms_topology(ms);
     if (st == GF_OK) {
         ms->closed = true;
@@ -206,10 +206,10 @@ static gf_status gf_ms_build(const gf_config *cfg, gf_meshshape *ms)
             for (int k = 0; k < 3; k++)
                 if (ms->sdf.mesh.adj[t][k] < 0) ms->closed = false;
         ms->top = ms->sdf.hi[2] - 1.0;
-        st = gf_ms_check(ms, cfg->container_mesh);
+        st = gf_ms_check(ms, d->mesh);
     }
     if (st == GF_OK) {
-        snprintf(ms->path, sizeof ms->path, "%s", cfg->container_mesh);
+        snprintf(ms->path, sizeof ms->path, "%s", d->mesh);
         ms->z_col = gf_ms_column_start(ms);
     }
     if (st != GF_OK) gf_ms_release(ms);
@@ -229,37 +229,36 @@ typedef struct gf_ms_entry {
 static gf_ms_entry *gf_ms_cache;
 static atomic_flag gf_ms_lock = ATOMIC_FLAG_INIT;
 
-static bool gf_ms_same(const gf_ms_entry *e, const gf_config *cfg)
+static bool gf_ms_same(const gf_ms_entry *e, const gf_container_defs *d)
 {
-    return strcmp(e->path, cfg->container_mesh) == 0 && e->scale == cfg->container_mesh_scale &&
-           e->res == cfg->container_mesh_resolution && e->hole == 0.5 * cfg->orifice_diameter &&
-           e->ox == cfg->orifice_x && e->oy == cfg->orifice_y && e->exit_z == cfg->exit_z &&
-           e->shape == cfg->orifice_shape;
+    return strcmp(e->path, d->mesh) == 0 && e->scale == d->mesh_scale && e->res == d->mesh_resolution &&
+           e->hole == 0.5 * d->orifice.diameter && e->ox == d->orifice.x && e->oy == d->orifice.y &&
+           e->exit_z == d->exit_level && e->shape == d->orifice.shape;
 }
 
-gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out)
+gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out)
 {
     *out = NULL;
-    if (!cfg->container_mesh[0])
+    if (!d->mesh[0])
         return gf_error_set(GF_ERR_PARAM, "container.shape = mesh needs container.mesh = FILE.stl");
     while (atomic_flag_test_and_set(&gf_ms_lock)) {
     }
     gf_status st = GF_OK;
     gf_ms_entry *e = gf_ms_cache;
-    while (e && !gf_ms_same(e, cfg)) e = e->next;
+    while (e && !gf_ms_same(e, d)) e = e->next;
     if (!e) {
         e = gf_alloc(sizeof *e);
         if (!e) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a mesh");
-        if (st == GF_OK) st = gf_ms_build(cfg, &e->ms);
+        if (st == GF_OK) st = gf_ms_build(d, &e->ms);
         if (st == GF_OK) {
-            snprintf(e->path, sizeof e->path, "%s", cfg->container_mesh);
-            e->scale = cfg->container_mesh_scale;
-            e->res = cfg->container_mesh_resolution;
-            e->hole = 0.5 * cfg->orifice_diameter;
-            e->ox = cfg->orifice_x;
-            e->oy = cfg->orifice_y;
-            e->exit_z = cfg->exit_z;
-            e->shape = cfg->orifice_shape;
+            snprintf(e->path, sizeof e->path, "%s", d->mesh);
+            e->scale = d->mesh_scale;
+            e->res = d->mesh_resolution;
+            e->hole = 0.5 * d->orifice.diameter;
+            e->ox = d->orifice.x;
+            e->oy = d->orifice.y;
+            e->exit_z = d->exit_level;
+            e->shape = d->orifice.shape;
             e->next = gf_ms_cache;
             gf_ms_cache = e;
         } else {
@@ -272,10 +271,10 @@ gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out)
     return st;
 }
 
-gf_status gf_meshshape_digest(const gf_config *cfg, uint64_t *digest)
+gf_status gf_meshshape_digest(const gf_container_defs *d, uint64_t *digest)
 {
     const gf_meshshape *ms;
-    gf_status st = gf_meshshape_load(cfg, &ms);
+    gf_status st = gf_meshshape_load(d, &ms);
     if (st == GF_OK) *digest = ms->digest;
     return st;
 }
@@ -301,18 +300,20 @@ void gf_meshshape_cache_clear(void)
 static gf_status gf_ms_config_check(void *arg)
 {
     gf_config *cfg = arg;
-    if (cfg->container_shape != GF_SHAPE_MESH) return GF_OK;
+    gf_container_defs d;
+    gf_config_container_defs(cfg, &d);
+    if (d.shape != GF_SHAPE_MESH) return GF_OK;
     char where[GF_PATH_MAX + 32];
     if (gf_config_where(cfg, "container.mesh", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
     const gf_meshshape *ms;
-    gf_status st = gf_meshshape_load(cfg, &ms);
+    gf_status st = gf_meshshape_load(&d, &ms);
     if (st != GF_OK) {
         char why[1024];
         snprintf(why, sizeof why, "%s", gf_last_error());
         return gf_error_set(st == GF_ERR_NOMEM ? st : GF_ERR_PARAM, "%s: container.mesh: %s", where, why);
     }
-    cfg->container_width = 2.0 * fmax(fabs(ms->sdf.lo[0]), fabs(ms->sdf.hi[0]));
-    cfg->container_depth = 2.0 * fmax(fabs(ms->sdf.lo[1]), fabs(ms->sdf.hi[1]));
+    gf_config_set_extent(cfg, 2.0 * fmax(fabs(ms->sdf.lo[0]), fabs(ms->sdf.hi[0])),
+                         2.0 * fmax(fabs(ms->sdf.lo[1]), fabs(ms->sdf.hi[1])));
     return GF_OK;
 }
 

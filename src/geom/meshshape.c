@@ -510,14 +510,14 @@ static const char *gf_ms_outlet_name(const gf_container *c)
 // The mesh from the cache (validation loaded it; NULL when it cannot be
 // loaded: then the container has no inside), its bounding box, the outlet
 // the orifice keys' on the exit plane.
-static void gf_ms_make(gf_container *c, const gf_config *cfg)
+static void gf_ms_make(gf_container *c, const gf_container_defs *d)
 {
     const gf_meshshape *ms = NULL;
-    if (gf_meshshape_load(cfg, &ms) != GF_OK) gf_error_clear();
+    if (gf_meshshape_load(d, &ms) != GF_OK) gf_error_clear();
     c->u.mesh = ms;
-    c->exit_z = cfg->exit_z;
-    c->z_bottom = fmin(0.0, cfg->exit_z); // the packing is built from the outlet up
-    c->gate_z = fmin(0.0, cfg->exit_z);
+    c->exit_z = d->exit_level;
+    c->z_bottom = fmin(0.0, d->exit_level); // the packing is built from the outlet up
+    c->gate_z = fmin(0.0, d->exit_level);
     c->z_col = ms ? ms->z_col : 0.0;
     if (ms) {
         c->xlo = ms->sdf.lo[0];

@@ -37,7 +37,7 @@ typedef struct gf_meshshape {
 /// file, truncated, degenerate, inverted or inconsistent normals, open away
 /// from the outlet, reaching below the exit plane, an outlet that opens
 /// onto no inside).
-gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out);
+gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out);
 
 /// Area of the mesh's horizontal cross-section at height z, d^2 (0 below the exit plane).
 double gf_meshshape_section(const gf_meshshape *ms, double z);
@@ -48,7 +48,7 @@ bool gf_meshshape_slice_y(const gf_meshshape *ms, double y, size_t t, double seg
 
 /// The FNV-1a digest of the bytes of cfg's container.mesh (a checkpoint
 /// names the mesh by it: a run directory's copy is the same mesh).
-gf_status gf_meshshape_digest(const gf_config *cfg, uint64_t *digest);
+gf_status gf_meshshape_digest(const gf_container_defs *d, uint64_t *digest);
 
 /// Frees every cached mesh (tests that count allocations; no container
 /// made earlier may be used afterwards).

@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "geom/container.h"
 #include "geom/grid.h"
+#include "granflow/defs.h"
 #include "granflow/sim.h"
 
 /// Particle positions and radius packed in one 32-byte record: spot and relax
@@ -99,7 +100,8 @@ static inline void gf_work_touch(gf_work *w, int kind, uint32_t v)
 }
 
 struct gf_sim {
-    gf_config cfg;
+    gf_config cfg;       ///< kept to save and hand to config/ (checkpoints, gf_sim_config); read d
+    gf_engine_defs d;    ///< what the engine reads (gf_config_engine_defs of cfg)
     gf_container box;
 
     // Particles. Entries [0, n) are live or parked (exited, awaiting compaction).
@@ -242,7 +244,7 @@ gf_status gf_sim_reinsert(gf_sim *sim);
 /// Whether a particle ending pass `pass` is to be put back.
 static inline bool gf_sim_recirculates(const gf_sim *sim, int32_t pass)
 {
-    return sim->cfg.run_recirculate && (sim->cfg.run_max_passes == 0 || pass < sim->cfg.run_max_passes);
+    return sim->d.recirculate && (sim->d.max_passes == 0 || pass < sim->d.max_passes);
 }
 
 /// Allocates the particle arrays for n particles.
@@ -284,7 +286,7 @@ void gf_dom_set_profiling(gf_sim *sim, int on);
 double gf_par_reach(const gf_sim *sim);
 /// Threads of the parallel engines: run.threads, or every core (a machine's
 /// cores shared between its MPI ranks).
-int gf_par_threads(const gf_config *c);
+int gf_par_threads(const gf_engine_defs *d);
 /// The removal test's column tops, as gf_grid_column_top would answer now.
 void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol);
 struct gf_celllist;
