@@ -17,6 +17,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "dem/dem_internal.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "granflow/sim.h"
 
@@ -267,20 +268,18 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         double fr = it == 1 && beta_ok ? gf_ref_ratio(res->dem.beta, fs.beta) : 1.0;
         // The widths: step_xy for their growth with height, and r_s for
         // their level when the correlation length left r_s free.
-        double rs = cur.spot_radius, dx = cur.spot_step_xy;
+        gf_spot_params sp;
+        gf_config_spot_params(&cur, &sp);
+        double rs = sp.radius, dx = sp.step_xy;
         gf_dem_refine_width(&res->dem, &fs, vtol, !beta_ok, GF_REF_MAXSTEP, &dx, &rs);
-        if (!beta_ok) fr = rs / cur.spot_radius;
-        next.spot_radius = cur.spot_radius * fr;
-        next.spot_step_xy = dx;
+        if (!beta_ok) fr = rs / sp.radius;
         double fw = gf_ref_ratio(fs.bp, res->dem.bp);
-        next.spot_w = cur.spot_w * fw;
-        next.spot_move_rate = cur.spot_move_rate * gf_ref_ratio(fs.drop, res->dem.drop);
         gf_dem_value qd = res->dem.flow, qs = fs.flow;
         qd.err = qs.err = 0.0; // the flow is the target: always follow it
         double fq = gf_ref_ratio(qd, qs);
-        next.spot_insertion_rate = cur.spot_insertion_rate * fq * fw / (fr * fr * fr);
-        next.spot_insertion_margin = NAN; // auto: follow the radius
-        next.relax_radius = NAN;
+        // The insertion margin and r_e go back to auto: they follow the radius.
+        gf_config_set_spot_fit(&next, sp.radius * fr, sp.w * fw, sp.insertion_rate * fq * fw / (fr * fr * fr),
+                               sp.move_rate * gf_ref_ratio(fs.drop, res->dem.drop), dx);
         if ((st = gf_config_validate(&next)) != GF_OK) return st;
         cur = next;
     }
