@@ -16,7 +16,7 @@
 
 gf_bench_opts gf_bench_opts_default(void)
 {
-    return (gf_bench_opts){.warmup = 40.0, .window = 1.0, .large = true, .lga_iterations = 1000};
+    return (gf_bench_opts){.warmup = 40.0, .window = 1.0, .large = true, .lga_iters = 1000};
 }
 
 // The paper's channel in its density-wave regime, timed over `iterations`
@@ -135,12 +135,12 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
     if (!(o->warmup >= 0 && isfinite(o->warmup)) || !(o->window > 0 && isfinite(o->window)))
         return gf_error_set(GF_ERR_PARAM, "bench: the warm-up (%g tau) must be >= 0 and the window (%g tau) > 0",
                             o->warmup, o->window);
-    if (o->lga_iterations < 1)
-        return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iterations);
+    if (o->lga_iters < 1)
+        return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iters);
     *out = (gf_bench_report){.lga_only = o->lga_only, .large = o->large && !o->lga_only,
                              .engine = o->event ? "event" : o->spatial ? "spatial" : "domains", .warmup = o->warmup, .window = o->window};
     gf_config cfg = *cfg_in;
-    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
+    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iters, o->stop, &out->lga);
     gf_status st = o->particles > 0 ? gf_bench_set(&cfg, "packing.particles", (double)o->particles) : GF_OK;
     if (st == GF_OK) st = gf_config_set_key(&cfg, "run.mode", o->event ? "event" : "fixed");
     if (st == GF_OK && !o->event) st = gf_config_set_key(&cfg, "run.order", o->spatial ? "spatial" : "domains");
@@ -166,5 +166,5 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
         if (st == GF_OK && (st = gf_config_validate(&big)) == GF_OK) st = gf_bench_silo(&big, o, &out->big);
         if (st != GF_OK) return st;
     }
-    return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
+    return gf_bench_lga_run(&cfg, o->lga_iters, o->stop, &out->lga);
 }

@@ -23,7 +23,7 @@ gf_container gf_container_build(const gf_container_defs *d)
         .hole = 0.5 * d->orifice.diameter,
         .ox = d->orifice.x,
         .oy = d->orifice.y,
-        .exit_z = d->exit_plane,
+        .z_exit = d->exit_plane,
     };
     if (t && t->make) t->make(&c, d);
     return c;
@@ -39,7 +39,7 @@ void gf_container_bounds(const gf_container *c, double ztop, double lo[3], doubl
 {
     lo[0] = c->xlo;
     lo[1] = c->ylo;
-    lo[2] = fmin(0.0, c->exit_z) - 1.0;
+    lo[2] = fmin(0.0, c->z_exit) - 1.0;
     hi[0] = c->xhi;
     hi[1] = c->yhi;
     hi[2] = ztop;

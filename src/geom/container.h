@@ -181,7 +181,7 @@ struct gf_container {
     gf_orifice_shape shape;    ///< the outlet: circle or slit (a cylinder's is a circle, a wedge's a slit)
     double hole;               ///< outlet radius (circle) or half-width (slit)
     double ox, oy;             ///< outlet centre (circle) or mid-line x = ox (slit); 0 for a cylinder
-    double exit_z;             ///< exit plane: a centre below this (over the outlet) has left
+    double z_exit;             ///< exit plane: a centre below this (over the outlet) has left
     double z_col;              ///< where the straight column starts: the top of a funnel (0 for a flat base)
     double z_bottom;           ///< the lower end of the walls: -(pipe or chute length), 0 for a flat base
     double gate_z;             ///< where the outlet is closed while a packing is made (DEM fill)
@@ -220,7 +220,7 @@ static inline bool gf_container_over_hole(const gf_container *c, double x, doubl
 /// True when a centre at (x, y, z) has left through the outlet.
 static inline bool gf_container_exited(const gf_container *c, double x, double y, double z)
 {
-    return z < c->exit_z && gf_container_over_hole(c, x, y);
+    return z < c->z_exit && gf_container_over_hole(c, x, y);
 }
 
 static inline int gf_container_walls(const gf_container *c, const double p[3], double reach, gf_wall_hit *hit)

@@ -273,7 +273,7 @@ static void gf_cyl_make(gf_container *c, const gf_container_defs *d)
     c->z_col = (R - ro) * q->sin_a / q->cos_a;
     q->cone_len = (R - ro) / q->cos_a;
     c->z_bottom = -q->pipe;
-    c->gate_z = fmin(c->exit_z, 0.0);
+    c->gate_z = fmin(c->z_exit, 0.0);
 }
 
 const gf_shape_ops gf_cylinder_ops = {

@@ -83,7 +83,7 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
 {
     const gf_sdf *s = &ms->sdf;
     const gf_stl *m = &s->mesh;
-    const double tol = 1e-6 * fmax(1.0, fabs(ms->exit_z));
+    const double tol = 1e-6 * fmax(1.0, fabs(ms->z_exit));
     char outlet[160];
     if (ms->shape == GF_ORIFICE_SLIT)
         snprintf(outlet, sizeof outlet, "the slit |x - %g| < %g (container.orifice_x, orifice_diameter / 2)", ms->ox,
@@ -94,11 +94,11 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
     for (size_t t = 0; t < m->nt; t++)
         for (int k = 0; k < 3; k++) {
             const double *a = m->v[m->t[t][k]];
-            if (a[2] < ms->exit_z - tol)
+            if (a[2] < ms->z_exit - tol)
                 return gf_error_set(GF_ERR_FORMAT,
                                     "%s: triangle %zu: its vertex (%g, %g, %g) is below the exit plane z = %g "
                                     "(container.exit_z): the outlet must be the mesh's lowest part",
-                                    path, t + 1, a[0], a[1], a[2], ms->exit_z);
+                                    path, t + 1, a[0], a[1], a[2], ms->z_exit);
         }
     bool open = false;
     for (size_t t = 0; t < m->nt; t++)
@@ -109,7 +109,7 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
             for (int e = 0; e < 2; e++) {
                 const double *p = e ? b : a;
                 double dx = p[0] - ms->ox, dy = p[1] - ms->oy;
-                bool on = fabs(p[2] - ms->exit_z) <= tol &&
+                bool on = fabs(p[2] - ms->z_exit) <= tol &&
                           (ms->shape == GF_ORIFICE_SLIT ? fabs(dx) <= ms->hole + 0.05
                                                         : sqrt(dx * dx + dy * dy) <= ms->hole + 0.05);
                 if (!on)
@@ -117,12 +117,12 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
                                         "%s: triangle %zu: its edge (%g, %g, %g)-(%g, %g, %g) is open (no triangle "
                                         "on its other side) away from the outlet, %s on the exit plane z = %g: the "
                                         "mesh must be closed (watertight) except for the outlet",
-                                        path, t + 1, a[0], a[1], a[2], b[0], b[1], b[2], outlet, ms->exit_z);
+                                        path, t + 1, a[0], a[1], a[2], b[0], b[1], b[2], outlet, ms->z_exit);
             }
         }
     // The volume enclosed, the outlet closed by a lid on the exit plane: with
     // the apex on that plane, the lid adds nothing.
-    const double o[3] = {ms->ox, ms->oy, ms->exit_z};
+    const double o[3] = {ms->ox, ms->oy, ms->z_exit};
     double vol = 0.0;
     for (size_t t = 0; t < m->nt; t++) {
         double e[3][3];
@@ -138,12 +138,12 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
                             "reverse each triangle's vertex order",
                             path, vol);
     double y = ms->shape == GF_ORIFICE_SLIT ? 0.5 * (s->lo[1] + s->hi[1]) : ms->oy;
-    const double in[3] = {ms->ox, y, ms->exit_z + fmin(0.25, 0.5 * (s->hi[2] - s->lo[2]))};
+    const double in[3] = {ms->ox, y, ms->z_exit + fmin(0.25, 0.5 * (s->hi[2] - s->lo[2]))};
     if (!gf_sdf_inside(s, in))
         return gf_error_set(GF_ERR_FORMAT,
                             "%s: the outlet, %s on the exit plane z = %g, does not open onto the mesh's inside "
                             "(the point (%g, %g, %g) just above it is outside)%s",
-                            path, outlet, ms->exit_z, in[0], in[1], in[2],
+                            path, outlet, ms->z_exit, in[0], in[1], in[2],
                             open ? "" : "; the mesh is closed: its base must lie on the exit plane over the outlet");
     return GF_OK;
 }
@@ -166,7 +166,7 @@ static void gf_ms_release(gf_meshshape *ms)
 // the one under the lid (a funnel's top; the floor for straight walls).
 static double gf_ms_column_start(const gf_meshshape *ms)
 {
-    const double z0 = fmax(0.0, ms->exit_z), z1 = ms->sdf.hi[2] - 0.5;
+    const double z0 = fmax(0.0, ms->z_exit), z1 = ms->sdf.hi[2] - 0.5;
     if (!(z1 > z0)) return z0;
     const double a1 = gf_meshshape_section(ms, z1);
     double zc = z1;
@@ -185,7 +185,7 @@ static gf_status gf_ms_build(const gf_container_defs *d, gf_meshshape *ms)
         .hole = 0.5 * d->orifice.diameter,
         .ox = d->orifice.x,
         .oy = d->orifice.y,
-        .exit_z = d->exit_level,
+        .z_exit = d->exit_level,
     };
     unsigned char *data = NULL;
     size_t len = 0, cap = 0;
@@ -221,7 +221,7 @@ static gf_status gf_ms_build(const gf_container_defs *d, gf_meshshape *ms)
 typedef struct gf_ms_entry {
     struct gf_ms_entry *next;
     char path[GF_PATH_MAX];
-    double scale, res, hole, ox, oy, exit_z;
+    double scale, res, hole, ox, oy, z_exit;
     gf_orifice_shape shape;
     gf_meshshape ms;
 } gf_ms_entry;
@@ -233,7 +233,7 @@ static bool gf_ms_same(const gf_ms_entry *e, const gf_container_defs *d)
 {
     return strcmp(e->path, d->mesh) == 0 && e->scale == d->mesh_scale && e->res == d->mesh_resolution &&
            e->hole == 0.5 * d->orifice.diameter && e->ox == d->orifice.x && e->oy == d->orifice.y &&
-           e->exit_z == d->exit_level && e->shape == d->orifice.shape;
+           e->z_exit == d->exit_level && e->shape == d->orifice.shape;
 }
 
 gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out)
@@ -257,7 +257,7 @@ gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out
             e->hole = 0.5 * d->orifice.diameter;
             e->ox = d->orifice.x;
             e->oy = d->orifice.y;
-            e->exit_z = d->exit_level;
+            e->z_exit = d->exit_level;
             e->shape = d->orifice.shape;
             e->next = gf_ms_cache;
             gf_ms_cache = e;

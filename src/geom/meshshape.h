@@ -18,7 +18,7 @@
 typedef struct gf_meshshape {
     gf_sdf sdf;
     gf_orifice_shape shape; ///< the outlet: container.orifice_shape, _diameter, _x, _y on the plane exit_z
-    double hole, ox, oy, exit_z;
+    double hole, ox, oy, z_exit;
     double top;             ///< height of the cross-section re-insertion asks about (just under the lid)
     uint64_t digest;        ///< FNV-1a of the file's bytes (a checkpoint names the mesh by it)
     uint8_t *tconvex;       ///< per triangle, bit k: edge k is convex seen from inside (or open)

@@ -273,7 +273,7 @@ static void gf_wedge_make(gf_container *c, const gf_container_defs *d)
     }
     c->z_col = fmax(w->top[0], w->top[1]);
     c->z_bottom = -w->chute;
-    c->gate_z = fmin(c->exit_z, 0.0);
+    c->gate_z = fmin(c->z_exit, 0.0);
 }
 
 const gf_shape_ops gf_wedge_ops = {

@@ -706,7 +706,7 @@ gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts,
     // is no wall: the outlet is closed while the packing is built, as the box's
     // orifice is, and what falls through it when the run starts falls freely
     // to an exit plane lower down.
-    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, g.box.z_bottom)) : 0.0;
+    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.z_exit, g.box.z_bottom)) : 0.0;
     if (st == GF_OK) st = gf_gen_init(&g, count);
     if (st == GF_OK) st = gf_gen_run(&g, pd.seed);
     if (st == GF_OK && gf_gen_halted(&g)) // before the sort and the checks, long for many spheres

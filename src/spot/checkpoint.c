@@ -243,7 +243,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
 static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
 {
     const gf_container *b = &sim->box;
-    const double zlo = fmin(0.0, b->exit_z) - 2.0, zhi = 1e7;
+    const double zlo = fmin(0.0, b->z_exit) - 2.0, zhi = 1e7;
     if (!(isfinite(sim->t) && sim->t >= 0 && isfinite(sim->t_reached) && isfinite(sim->t_pending) &&
           sim->grid_ztop > 0 && sim->grid_ztop <= zhi && sim->rmax > 0 && sim->rmax <= 1.0))
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint holds impossible times or sizes", path);

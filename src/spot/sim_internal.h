@@ -229,7 +229,7 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i);
 /// Removes particle i if it fell out of the orifice; true when it did.
 static inline bool gf_sim_exit_check(gf_sim *sim, gf_work *w, uint32_t i)
 {
-    return sim->p[i].z < sim->box.exit_z && gf_sim_exit_slow(sim, w, i);
+    return sim->p[i].z < sim->box.z_exit && gf_sim_exit_slow(sim, w, i);
 }
 
 /// Bookkeeping after the moves of one step, for the entries k < m of
