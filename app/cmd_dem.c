@@ -8,7 +8,6 @@
 #include "cli.h"
 #include "granflow/defs.h"
 #include "granflow/dem.h"
-#include "granflow/defs.h"
 
 typedef struct gf_dem_show {
     bool tty;
