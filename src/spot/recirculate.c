@@ -37,12 +37,12 @@ bool gf_sim_reinsert_queue(gf_sim *sim, uint32_t i)
 }
 
 // Whether a sphere of radius r may be put back at (x, y) of container `box`.
-static bool gf_zone_allowed(const gf_container *box, const gf_engine_defs *cfg, double x, double y, double r)
+static bool gf_zone_allowed(const gf_container *box, const gf_engine_defs *ed, double x, double y, double r)
 {
     if (!gf_container_inside_xy(box, x, y, r)) return false;
-    if (cfg->reinsert != GF_REINSERT_ZONE) return true;
-    double rho = hypot(x, y), rmax = cfg->reinsert_rmax;
-    return rho >= cfg->reinsert_rmin && (isnan(rmax) || rho < rmax);
+    if (ed->reinsert != GF_REINSERT_ZONE) return true;
+    double rho = hypot(x, y), rmax = ed->reinsert_rmax;
+    return rho >= ed->reinsert_rmin && (isnan(rmax) || rho < rmax);
 }
 
 static bool gf_reinsert_allowed(const gf_sim *sim, double x, double y, double r)

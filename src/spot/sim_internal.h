@@ -318,7 +318,7 @@ gf_status gf_spot_insert(gf_sim *sim);
 /// Moves spot k once with the serial worker (event mode, fixed random or
 /// newest order), removing it when the step says so (walk.c).
 gf_status gf_spot_move(gf_sim *sim, size_t k);
-/// Derived parameters and container from sim->cfg.
+/// The engine's defs (sim->d, gf_config_engine_defs), derived parameters and container from sim->cfg.
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
 gf_status gf_sim_make_grid(gf_sim *sim);
