@@ -13,6 +13,7 @@
 
 #include "cli.h"
 #include "granflow/dem.h"
+#include "granflow/defs.h"
 
 
 static bool gf_demargs_is_config_key(const char *kv)
@@ -102,6 +103,8 @@ static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_co
                                   const gf_dem_flowstats *spot, bool match)
 {
     (void)ctx;
+    gf_spot_params sp;
+    gf_config_spot_params(c, &sp);
     double worst = 0.0;
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++)
         if (gf_dem_flowstats_measured(dem->var[z], GF_DEM_VAR_TOL))
@@ -109,7 +112,7 @@ static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_co
     fprintf(stderr,
             "[refine] run %d/%d: r_s %.3g, step_xy %.3g, w %.4g, lambda %.4g, mu %.4g -> Q %.4g (DEM %.4g, %+.1f%%), "
             "worst measured Var %.1f%% off%s\n",
-            iter, max_iter, c->spot_radius, c->spot_step_xy, c->spot_w, c->spot_insertion_rate, c->spot_move_rate,
+            iter, max_iter, sp.radius, sp.step_xy, sp.w, sp.insertion_rate, sp.move_rate,
             spot->flow.value, dem->flow.value, 100.0 * (spot->flow.value / dem->flow.value - 1.0), 100.0 * worst,
             match ? ": matched" : "");
 }
@@ -152,8 +155,12 @@ int gf_cmd_calibrate(int argc, char **argv)
     gf_config cfg = s.cfg;
     // The spot runs start from the DEM's first snapshot, snapshots as often.
     double span = s.frames[s.nframes - 1].time - s.frames[0].time;
-    if (span > 0) cfg.run_duration = span;
-    if (s.nframes > 1) cfg.output_snapshot_interval = s.frames[1].time - s.frames[0].time;
+    char num[64];
+    gf_status set = GF_OK;
+    if (span > 0 && snprintf(num, sizeof num, "%.17g", span) > 0) set = gf_config_set_key(&cfg, "run.duration", num);
+    if (set == GF_OK && s.nframes > 1 && snprintf(num, sizeof num, "%.17g", s.frames[1].time - s.frames[0].time) > 0)
+        set = gf_config_set_key(&cfg, "output.snapshot_interval", num);
+    if (st == GF_OK) st = set;
     if (st == GF_OK) st = gf_dem_calibration_apply(&c, &cfg);
     // params.ini starts from the DEM's first snapshot, written beside it; the
     // refinement starts from that file read back as `granflow run` reads it,
@@ -187,9 +194,11 @@ int gf_cmd_calibrate(int argc, char **argv)
             printf("DEM vs spot, refined (%d spot run%s, %s):\n", res.runs, res.runs == 1 ? "" : "s",
                    res.matched ? "both tolerances met" : "tolerances NOT met: the closest run kept");
             gf_dem_flowstats_table(&res.dem, &res.last, GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL, stdout);
+            gf_spot_params sp;
+            gf_config_spot_params(&cfg, &sp);
             printf("refined parameters: spot.radius = %.4g, spot.step_xy = %.4g, spot.w = %.4g, "
                    "spot.insertion_rate = %.4g, spot.move_rate = %.4g\n",
-                   cfg.spot_radius, cfg.spot_step_xy, cfg.spot_w, cfg.spot_insertion_rate, cfg.spot_move_rate);
+                   sp.radius, sp.step_xy, sp.w, sp.insertion_rate, sp.move_rate);
             gf_dem_refine_print(&res, stdout);
         }
     }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 
 typedef struct gf_dem_show {
@@ -58,6 +59,8 @@ int gf_cmd_dem(int argc, char **argv)
     }
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
+    gf_dem_defs dd;
+    gf_config_dem_defs(&cfg, &dd);
     volatile sig_atomic_t *stop = gf_cli_catch_stop(); // the packing (fill_method generate), LAMMPS
     if (!drain_only) {
         char snap[4096];
@@ -77,9 +80,9 @@ int gf_cmd_dem(int argc, char **argv)
             fprintf(stderr,
                     "granflow dem: %s/in.fill (%s %lld particles to z ~ %.1f d, settle at most %g tau) and "
                     "%s/in.drain (%g tau, %lld steps of %g tau, a snapshot every %g tau)\n",
-                    cli.out, cfg.dem_fill_method == GF_DEM_POUR ? "pour" : "settle granflow's packing of",
-                    (long long)plan.particles, plan.fill_height, cfg.dem_settle_time, cli.out, cfg.run_duration,
-                    (long long)plan.drain_steps, cfg.dem_timestep, cfg.output_snapshot_interval);
+                    cli.out, dd.fill == GF_DEM_POUR ? "pour" : "settle granflow's packing of",
+                    (long long)plan.particles, plan.fill_height, dd.settle_time, cli.out, dd.duration,
+                    (long long)plan.drain_steps, dd.timestep, dd.snapshot_interval);
     }
     if (!run) {
         if (!cli.quiet)
@@ -89,7 +92,7 @@ int gf_cmd_dem(int argc, char **argv)
         return GF_EXIT_OK;
     }
     gf_dem_show show = {.tty = !cli.quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
-    int ranks = (int)cfg.dem_mpi_ranks;
+    int ranks = (int)dd.mpi_ranks;
     gf_dem_run_opts o = {.ranks = ranks, .drain_only = drain_only,
                          .progress = cli.quiet ? NULL : gf_dem_show_progress, .ctx = &show, .stop = stop};
     if (!cli.quiet)

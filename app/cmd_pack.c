@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include "cli.h"
+#include "granflow/defs.h"
 
 int gf_cmd_pack(int argc, char **argv)
 {
@@ -19,10 +20,12 @@ int gf_cmd_pack(int argc, char **argv)
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     gf_packing pk = {0};
-    if (!cli.quiet && !cfg.packing_file[0] && cfg.packing_fill_height > 0.0)
-        fprintf(stderr, "granflow pack: filling to z = %g...\n", cfg.packing_fill_height);
-    else if (!cli.quiet && !cfg.packing_file[0])
-        fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)cfg.packing_particles);
+    gf_packing_defs pd;
+    gf_config_packing_defs(&cfg, &pd);
+    if (!cli.quiet && !pd.file[0] && pd.fill_height > 0.0)
+        fprintf(stderr, "granflow pack: filling to z = %g...\n", pd.fill_height);
+    else if (!cli.quiet && !pd.file[0])
+        fprintf(stderr, "granflow pack: building %lld particles...\n", (long long)pd.particles);
     gf_packing_import_report rep;
     gf_status st = gf_packing_for_config(&cfg, &(gf_packing_opts){.stop = gf_cli_catch_stop()}, &pk, &rep);
     if (st == GF_OK && !cli.quiet && (rep.below_base || rep.other_types))

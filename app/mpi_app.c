@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "granflow/core.h"
+#include "granflow/defs.h"
 
 /// Every rank refused at the same point: MPI_Finalize, not MPI_Abort.
 static bool gf_mpi_app_together;
@@ -46,9 +47,9 @@ int gf_mpi_app_end(int rc)
 
 int gf_mpi_app_check(const gf_config *cfg)
 {
-    if (gf_mpi_app_size() < 2 ||
-        (cfg->run_mode == GF_MODE_FIXED && (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS)))
-        return 0;
+    gf_engine_defs ed;
+    gf_config_engine_defs(cfg, &ed);
+    if (gf_mpi_app_size() < 2 || ed.spatial) return 0;
     if (gf_mpi_app_rank() == 0)
         fprintf(stderr, "granflow run: error: %d MPI ranks need run.mode = fixed and run.order = spatial or "
                         "domains (the engines split between ranks); run the others as one process\n",
@@ -119,8 +120,10 @@ static char *gf_mpi_app_settings(const gf_config *cfg, const char *resume_dir, s
         gf_mpi_app_file(path, what, sizeof what);
         fprintf(t, "checkpoint.bin = %s\n", what); // its path may differ (a directory per node)
     }
-    if (cfg->packing_file[0]) {
-        gf_mpi_app_file(cfg->packing_file, what, sizeof what);
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
+    if (pd.file[0]) {
+        gf_mpi_app_file(pd.file, what, sizeof what);
         fprintf(t, "packing.file contents = %s\n", what);
     }
     if (fclose(t) != 0) {

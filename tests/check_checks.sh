@@ -72,6 +72,20 @@ printf 'static int gf_planted(int s) { return s == GF_SHAPE_WEDGE; }\n' >> "$tmp
 printf 'static int gf_planted(int s) { return s == GF_SHAPE_WEDGE; }\n' >> "$tmp/tree/src/config/keys.c"
 bash "$here/check_layers.sh" "$tmp/tree" > /dev/null || fail "check_layers.sh fails on a shape named in geom/ or config/"
 
+# Config fields (issue 24): a module reading gf_config's fields instead of its defs ...
+fresh
+printf 'static double gf_planted(const gf_config *c) { return c->spot_radius; }\n' >> "$tmp/tree/src/spot/walk.c"
+expect_fail check_layers.sh src/spot/walk.c:"$(wc -l < "$tmp/tree/src/spot/walk.c")" "uses gf_config field spot_radius outside src/config/"
+# ... or the CLI writing one (a config is edited through config/).
+fresh
+printf 'static void gf_planted(gf_config *c) { c -> run_threads = 2; }\n' >> "$tmp/tree/app/cmd_run.c"
+expect_fail check_layers.sh app/cmd_run.c "uses gf_config field run_threads"
+# ... but config/ may, and a key's name in a string or a comment is no read.
+fresh
+printf 'static double gf_planted(const gf_config *c) { return c->spot_radius; }\n' >> "$tmp/tree/src/config/keys.c"
+printf 'static const char *gf_planted = "spot.radius, c->spot_radius"; // c->run_seed\n/* s.exit_z\n */\n' >> "$tmp/tree/src/geom/box.c"
+bash "$here/check_layers.sh" "$tmp/tree" > /dev/null || fail "check_layers.sh fails on a field read in config/ or a key named in a string or comment"
+
 # Allocation: the C library's allocator outside core/alloc.c.
 fresh
 printf 'static void *gf_planted(void) { return malloc(8); }\n' >> "$tmp/tree/src/geom/box.c"

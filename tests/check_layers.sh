@@ -9,7 +9,9 @@
 # A private header of a sibling, or any header of a higher layer, fails the
 # check unless listed in ALLOWED below with the issue that removes it. A
 # file outside src/geom/ and src/config/ that names a shape constant
-# (GF_SHAPE_*) fails it too.
+# (GF_SHAPE_*) fails it too, and so does a file of src/ or app/ outside
+# src/config/ that reads or writes a field of gf_config (modules read their
+# defs, granflow/defs.h, built by config/; issue 24).
 # Usage: check_layers.sh SOURCE_DIR
 set -euo pipefail
 root=${1:-.}
@@ -32,7 +34,7 @@ declare -A layer=(
 # Owner folder of each public header.
 declare -A owner=(
   [core.h]=core [version.h]=core [exit.h]=core
-  [config.h]=config [draw.h]=draw
+  [config.h]=config [defs.h]=config [draw.h]=draw
   [particles.h]=io
   [packing.h]=packing
   [sim.h]=spot
@@ -98,6 +100,30 @@ done
 while IFS= read -r hit; do
   echo "shapes: $hit: names a shape outside src/geom/ and src/config/; ask the container instead"; bad=1
 done < <(grep -rn --include='*.c' --include='*.h' --include='*.cc' 'GF_SHAPE_[A-Z]' src app | grep -v '^src/geom/\|^src/config/' || true)
+# Modules read their own small defs (granflow/defs.h, issue 24): only
+# config/ reads or writes gf_config's fields; everything else calls config/
+# (a defs builder, gf_config_set_key, a typed setter). Every member name of
+# struct gf_config is looked for after `.` or `->` in code, string literals
+# and comments blanked first (line numbers kept); no other struct of src/
+# or app/ may reuse such a name (the check could not tell them apart).
+cfg_fields=$(awk '/^typedef struct gf_config \{/{f=1;next} /^\} gf_config;/{f=0} f' include/granflow/config.h |
+  sed 's|//.*||' | grep -oE '[A-Za-z_][A-Za-z0-9_]*(\[[^]]*\])*;' | sed 's/\[.*//; s/;//' | sort -u | paste -sd'|')
+[ -n "$cfg_fields" ] || { echo "config fields: found no member of struct gf_config in include/granflow/config.h"; bad=1; }
+command -v perl > /dev/null || { echo "config fields: the check needs perl"; bad=1; }
+while IFS= read -r hit; do
+  echo "config fields: $hit outside src/config/: read the module's defs (granflow/defs.h); edit a config through config/ (gf_config_set_key, a setter)"
+  bad=1
+done < <(find src app \( -name '*.[ch]' -o -name '*.cc' \) ! -path 'src/config/*' | sort |
+  GF_FIELDS=$cfg_fields perl -ne '
+    BEGIN { $/ = undef; $re = qr/(?:->|\.)\s*($ENV{GF_FIELDS})\b/ }
+    chomp(my $file = $_);
+    for my $f (split /\n/, $file) {
+      open(my $h, "<", $f) or die "$f: $!"; my $t = <$h>; close $h;
+      # string and character literals and comments blanked, their line breaks kept
+      $t =~ s{("(?:[^"\\\n]|\\.)*")|(\x27(?:[^\x27\\\n]|\\.)*\x27)|(//[^\n]*)|(/\*.*?\*/)}{defined $1 ? q("") : defined $2 ? q(\x27\x27) : defined $3 ? "" : "\n" x ($4 =~ tr/\n//)}gse;
+      my $n = 0;
+      for my $line (split /\n/, $t, -1) { $n++; print "$f:$n: uses gf_config field $1\n" while $line =~ /$re/g }
+    }')
 # An allow-list entry that no longer matches is stale: the fix landed, drop it.
 for a in "${ALLOWED[@]}"; do
   [ -n "${used[$a]:-}" ] || { echo "layering: allowed violation no longer present, remove it from $0: $a"; bad=1; }

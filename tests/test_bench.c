@@ -85,7 +85,7 @@ static gf_bench_opts small_opts(seen *s)
     o.warmup = 0.2;
     o.window = 0.05;
     o.large = false;
-    o.lga_iterations = 1;
+    o.lga_iters = 1;
     o.packed = on_packed;
     o.ctx = s;
     return o;
@@ -170,7 +170,7 @@ static void bad_options(void **state)
     o.warmup = NAN;
     assert_int_equal(gf_bench(&c, &o, &r), GF_ERR_PARAM);
     o = gf_bench_opts_default();
-    o.lga_iterations = 0;
+    o.lga_iters = 0;
     assert_int_equal(gf_bench(&c, &o, &r), GF_ERR_PARAM);
     assert_int_equal(gf_bench(NULL, &o, &r), GF_ERR_PARAM);
 }

@@ -84,7 +84,7 @@ static void recovers_chosen_parameters(void **state)
         const char *name;
         double got, err, want, tol;
     } v[] = {
-        {"spot.radius", cal.spot_radius.value, cal.spot_radius.err, c.spot_radius, 0.10},
+        {"spot.radius", cal.radius.value, cal.radius.err, c.spot_radius, 0.10},
         {"spot.step_xy", cal.step_xy.value, cal.step_xy.err, c.spot_step_xy, 0.10},
         {"spot.w", cal.w.value, cal.w.err, c.spot_w, 0.20},
         {"spot.insertion_rate", cal.insertion_rate.value, cal.insertion_rate.err, c.spot_insertion_rate, 0.25},
@@ -101,7 +101,7 @@ static void recovers_chosen_parameters(void **state)
     // The calibrated config runs as it is.
     gf_config out = s.cfg;
     assert_int_equal(gf_dem_calibration_apply(&cal, &out), GF_OK);
-    assert_true(out.spot_radius == cal.spot_radius.value && out.spot_move_rate == cal.move_rate.value);
+    assert_true(out.spot_radius == cal.radius.value && out.spot_move_rate == cal.move_rate.value);
     gf_series_free(&s);
 }
 
@@ -131,7 +131,7 @@ static void calibration_measures_a_cylinder(void **state)
     assert_true(cal.var_heights >= 5);
     gf_assert_near(cal.step_xy.value, c.spot_step_xy, 0.10 * c.spot_step_xy);
     gf_assert_near(cal.ball_count.value, cal.ball_count_bulk, 0.03 * cal.ball_count_bulk);
-    double rs = cal.spot_radius.value, phi = cal.ball_count_bulk / (8.0 * rs * rs * rs); // p = phi (2 r_s / d)^3
+    double rs = cal.radius.value, phi = cal.ball_count_bulk / (8.0 * rs * rs * rs); // p = phi (2 r_s / d)^3
     assert_true(phi > 0.55 && phi < 0.64);
     // The correlation and diffusion lengths with the axisymmetric mean flow
     // taken out (fluctuations about v(r, z); tangential displacements). r_s
@@ -141,9 +141,9 @@ static void calibration_measures_a_cylinder(void **state)
     // Not asserted within 20%: this spot run's tracked particles diffuse at
     // ~0.6 b_s / w even at small dz (docs/dem.md), so w reads ~580.
     print_message("cylinder: spot.radius %.4g (chosen 2.2, beta %.4g), spot.w %.4g (chosen 300, b_p %.4g, b_s / w %.4g)\n",
-                  cal.spot_radius.value, cal.corr_length.value, cal.w.value, cal.diff_length.value,
+                  cal.radius.value, cal.corr_length.value, cal.w.value, cal.diff_length.value,
                   cal.b_s.value / c.spot_w);
-    gf_assert_near(cal.spot_radius.value, c.spot_radius, 0.10 * c.spot_radius);
+    gf_assert_near(cal.radius.value, c.spot_radius, 0.10 * c.spot_radius);
     assert_true(cal.diff_length.value < 1.2 * cal.b_s.value / c.spot_w);
     assert_true(cal.w.value > 0.8 * c.spot_w);
     gf_series_free(&s);

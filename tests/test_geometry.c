@@ -93,7 +93,7 @@ static void cylinder_funnel_pipe_column_by_hand(void **state)
     gf_config cfg = cylinder(10, 45, 6, 4, 2);
     gf_container c = gf_container_make(&cfg);
     gf_assert_near(c.z_col, 7, 1e-12);
-    gf_assert_near(c.exit_z, -4, 0);
+    gf_assert_near(c.z_exit, -4, 0);
     const double s = sqrt(0.5);
     // (rho, z) = (5, 2.5) is 0.5 / sqrt(2) off the funnel line z = rho - 3.
     gf_test_assert_hit(gf_test_one_hit(&c, 5, 0, 2.5, 0.5), 0.5 * s, -s, 0, s, true);
@@ -204,8 +204,8 @@ static void cylinder_packings_keep_the_promises(void **state)
                 fail_msg("case %zu: sphere at (%g, %g, %g) crosses a wall", k, pk.x[i], pk.y[i], pk.z[i]);
             zmin = fmin(zmin, pk.z[i]);
         }
-        assert_true(zmin >= box.exit_z + 0.5 - 1e-9); // the pipe is filled from its end
-        assert_true(zmin < box.exit_z + 0.6);
+        assert_true(zmin >= box.z_exit + 0.5 - 1e-9); // the pipe is filled from its end
+        assert_true(zmin < box.z_exit + 0.6);
         double dmin = gf_packing_min_distance(&pk), phi = gf_packing_bulk_fraction(&pk, &c);
         print_message("case %zu: %zu spheres, min distance %.4f, bulk phi %.4f\n", k, pk.n, dmin, phi);
         assert_true(dmin >= 0.99);
@@ -233,7 +233,7 @@ static void cylinder_packing_ignores_a_deep_exit_plane(void **state)
             assert_int_equal(gf_packing_generate(&c, NULL, &pk), GF_OK);
             assert_int_equal(pk.n, 1500);
             gf_container box = gf_container_make(&c);
-            double zmin = INFINITY, floor = fmax(box.exit_z, -pipes[k]) + 0.5;
+            double zmin = INFINITY, floor = fmax(box.z_exit, -pipes[k]) + 0.5;
             for (size_t i = 0; i < pk.n; i++) {
                 if (!gf_container_contains(&box, pk.x[i], pk.y[i], pk.z[i], 0.5, 1e-9))
                     fail_msg("exit_z %g, pipe %g: sphere at (%g, %g, %g) crosses a wall", exits[e], pipes[k],

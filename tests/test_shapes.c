@@ -171,9 +171,9 @@ static const char *fk_outlet(const gf_container *c)
     asked[OP_OUTLET]++;
     return "fake outlet";
 }
-static void fk_make(gf_container *c, const gf_config *cfg)
+static void fk_make(gf_container *c, const gf_container_defs *d)
 {
-    (void)cfg;
+    (void)d;
     asked[OP_MAKE]++;
     c->xlo = 0;
     c->xhi = 3;

@@ -42,7 +42,7 @@ static void wedge_walls_by_hand(void **state)
     const double s = sqrt(0.5);
     assert_true(c.type == &gf_wedge_shape && !gf_container_rectangular(&c));
     gf_assert_near(c.z_col, 8, 1e-12);
-    gf_assert_near(c.exit_z, -3, 0);
+    gf_assert_near(c.z_exit, -3, 0);
     gf_assert_near(c.z_bottom, -3, 0);
     // The right inclined wall z = x - 2: (5, 0, 5) is (5 - 3) / sqrt(2) above it.
     gf_test_assert_hit(gf_test_one_hit(&c, 5, 0, 5, 2), sqrt(2.0), -s, 0, s, true);
@@ -211,7 +211,7 @@ static void wedge_packing_keeps_the_promises(void **state)
             fail_msg("sphere at (%g, %g, %g) crosses a wall", pk.x[i], pk.y[i], pk.z[i]);
         zmin = fmin(zmin, pk.z[i]);
     }
-    assert_true(zmin >= box.exit_z + 0.5 - 1e-9 && zmin < box.exit_z + 0.6);
+    assert_true(zmin >= box.z_exit + 0.5 - 1e-9 && zmin < box.z_exit + 0.6);
     double dmin = gf_packing_min_distance(&pk), phi = gf_packing_bulk_fraction(&pk, &c);
     print_message("%zu spheres, min distance %.4f, bulk phi %.4f\n", pk.n, dmin, phi);
     assert_true(dmin >= 0.99);

@@ -69,7 +69,7 @@ typedef struct gf_bench_opts {
     bool spatial;       ///< the spatial fixed step instead of the domain engine (default false)
     bool large;         ///< also the silo ten times larger (default true)
     bool lga_only;      ///< only the lattice-gas automaton (default false)
-    int64_t lga_iterations; ///< timed LGA iterations (default 1000)
+    int64_t lga_iters;      ///< timed LGA iterations (default 1000)
     /// Called once a silo is packed, before its warm-up (may be NULL): b->particles,
     /// b->pack_s and b->threads are set; `sim` holds the packing.
     void (*packed)(void *ctx, const gf_bench_spot *b, const gf_sim *sim, double warmup);

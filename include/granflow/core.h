@@ -44,7 +44,7 @@ GF_API size_t gf_bytes_allocated(void);
 /// directory) when one cannot be created or exists as something else.
 GF_API gf_status gf_fs_mkdirs(const char *path);
 
-/// Processor cores online (at least 1).
+/// Processor cores this process may run on (its affinity mask on Linux; else online; at least 1).
 GF_API int gf_cpu_count(void);
 
 /// Library version string, e.g. "0.1.0" (GF_VERSION_STRING of the build).

@@ -197,7 +197,7 @@ typedef struct gf_dem_calibration {
     gf_dem_value slice_steady;  ///< ... averaged over the window
     double slice_z0, slice_z1;  ///< the slice, d
     // the five spot parameters
-    gf_dem_value spot_radius;   ///< r_s = beta / 0.72, d
+    gf_dem_value radius;        ///< r_s = beta / 0.72, d (spot.radius)
     gf_dem_value b_s;           ///< spot diffusion length = slope / 2, d
     gf_dem_value step_xy;       ///< dx = sqrt(4 b_s dz) for the config's spot.step_z, d
     gf_dem_value w;             ///< b_s / b_p

@@ -5,6 +5,7 @@
 #include "granflow/bench.h"
 #include "granflow/config.h"
 #include "granflow/core.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "granflow/draw.h"
 #include "granflow/exit.h"

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "geom/container.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 #define GF_CORR_DR 0.1    // bin of r, d: resolves the shell structure of Fig. 3-3
 #define GF_CORR_RMAX 8.0  // largest r, d (half the 16 d region)
@@ -97,7 +98,9 @@ static gf_status gf_corr_collect(const gf_series *s, size_t k0, size_t k1, const
     if (!c->off) return gf_error_set(GF_ERR_NOMEM, "correlation: out of memory");
     gf_steps st = {0};
     gf_status rc = GF_OK;
-    double half = 0.5 * o->corr_size, ox = s->cfg.orifice_x; // the region: above the orifice
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    double half = 0.5 * o->corr_size, ox = cd.orifice.x; // the region: above the orifice
     for (size_t k = 0; rc == GF_OK && k < c->npair; k++) {
         c->off[k] = c->n;
         rc = gf_steps_between(&s->frames[k0 + k], &s->frames[k0 + k + 1], &st);
@@ -268,8 +271,10 @@ gf_status gf_measure_correlation(const gf_series *s, const gf_analysis_opts *o, 
     gf_corr_set set = {0};
     if (st == GF_OK) st = gf_corr_collect(s, k0, k1, &f, o, &set);
     gf_vfield_free(&f);
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
     if (st == GF_OK && radial) gf_corr_about_mean(&set);
-    else if (st == GF_OK) st = gf_corr_fluctuations(&set, s->cfg.container_depth);
+    else if (st == GF_OK) st = gf_corr_fluctuations(&set, cd.depth);
     double unsteady = st == GF_OK ? gf_corr_unsteadiness(&set) : NAN;
     if (st == GF_OK && unsteady > GF_CORR_BURSTY) gf_corr_bursts(&set);
     for (size_t k = 0; st == GF_OK && k < set.npair; k++)

@@ -12,6 +12,7 @@
 #include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 #define GF_DIFF_DEM 2.86e-3 // thesis Sec. 3.3, d
 
@@ -187,7 +188,9 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     const gf_container ctr = gf_container_make(&s->cfg);
     bool radial = gf_container_profile_radial(&ctr);
     gf_diff_work w = {0};
-    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], s->exits, s->nexits, o, radial, s->cfg.orifice_x, &w) : GF_OK;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    gf_status st = k1 > k0 ? gf_diff_select(&s->frames[k0], s->exits, s->nexits, o, radial, cd.orifice.x, &w) : GF_OK;
     gf_table *t = &out->tables[out->ntables];
     if (st == GF_OK && (st = gf_table_init(t, "diffusion", "time_tau,mean_dz_d,var_dx_d2,particles,var_dx_raw_d2")) == GF_OK)
         out->ntables++;
@@ -197,7 +200,7 @@ gf_status gf_measure_diffusion(const gf_series *s, const gf_analysis_opts *o, gf
     for (size_t k = k0 + 1; st == GF_OK && w.start.n && k < k1; k++) {
         if ((st = gf_stop_check(o->stop, "diffusion")) != GF_OK) break;
         double row[5];
-        if (!gf_diff_frame(&s->frames[k], &w, radial, s->cfg.orifice_x, row)) continue;
+        if (!gf_diff_frame(&s->frames[k], &w, radial, cd.orifice.x, row)) continue;
         st = gf_table_add(t, row);
         smv += row[1] * row[2];
         smm += row[1] * row[1];

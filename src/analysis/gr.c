@@ -10,6 +10,7 @@
 #include "core/stop.h"
 #include "geom/celllist.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 #define GF_PI 3.14159265358979323846
 #define GF_G3_BINS 180 // 1 degree bins on 0..180
@@ -282,7 +283,9 @@ gf_status gf_measure_gr(const gf_series *s, const gf_analysis_opts *o, gf_measur
     if (!(o->gr_dr > 0.0) || !(o->gr_rmax > o->gr_dr) || !(o->g3_rcut > 0.0))
         return gf_error_set(GF_ERR_PARAM, "gr: need 0 < gr.dr < gr.rmax and g3.rcut > 0 (got %g, %g, %g)",
                             o->gr_dr, o->gr_rmax, o->g3_rcut);
-    const double W = s->cfg.container_width, D = s->cfg.container_depth;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    const double W = cd.width, D = cd.depth;
     const gf_walls w = {-0.5 * W, 0.5 * W, -0.5 * D, 0.5 * D, 0.0};
     double vregion = (fmin(o->gr_x1, w.x1) - fmax(o->gr_x0, w.x0)) * D * (o->gr_z1 - fmax(o->gr_z0, 0.0));
     if (!(vregion > 0.0))

@@ -33,6 +33,7 @@
 #include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 #include "io/exits_read.h"
 #include "io/packing_frames.h"
 #include "core/textscan.h"
@@ -208,7 +209,9 @@ static int gf_id_layer_cmp(const void *pa, const void *pb)
 /// Frames without a `type` column: tag the first frame by height, later ones by id.
 static gf_status gf_series_fill_layers(gf_series *s, const gf_load_frame *src)
 {
-    double thick = s->cfg.packing_layer_thickness > 0 ? s->cfg.packing_layer_thickness : 10.0;
+    gf_packing_defs pd;
+    gf_config_packing_defs(&s->cfg, &pd);
+    double thick = pd.layer_thickness > 0 ? pd.layer_thickness : 10.0;
     gf_packing *p0 = &s->frames[0].pk;
     if (!src[0].hdr.have_type) gf_packing_tag_layers(p0, thick);
     int need = 0;
@@ -327,7 +330,9 @@ static int gf_series_id_cmp(const void *a, const void *b)
 // lost from the last frame, rc 0): warn, naming the frame and a particle.
 static gf_status gf_series_check_exits(const gf_series *s, const char *last_file, const char *exits_path)
 {
-    if (!s->has_exits || s->cfg.run_recirculate || s->nframes < 2) return GF_OK;
+    gf_rundir_defs rd;
+    gf_config_rundir_defs(&s->cfg, &rd);
+    if (!s->has_exits || rd.recirculate || s->nframes < 2) return GF_OK;
     const gf_packing *first = &s->frames[0].pk, *last = &s->frames[s->nframes - 1].pk;
     const double t = s->frames[s->nframes - 1].time, slack = 1e-9 * fmax(1.0, fabs(t));
     size_t nl = last->n, ne = 0;

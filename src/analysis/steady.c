@@ -12,6 +12,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 enum {
     GF_STEADY_MIN_FRAMES = 4,   // fewer snapshots cannot show a transient
@@ -217,10 +218,12 @@ gf_status gf_steady_window(const gf_series *s, gf_steady *w)
         if (c) GF_DELETE(c, n + 1);
         return gf_error_set(GF_ERR_NOMEM, "steady window: out of memory");
     }
+    gf_rundir_defs rd;
+    gf_config_rundir_defs(&s->cfg, &rd);
     // The outflow curve: particles gone since the first frame, or, when exited
     // particles are put back (run.recirculate: the count stays constant), the
     // exits recorded by each frame's time (exits.csv is sorted by time).
-    const bool by_exits = s->cfg.run_recirculate && s->has_exits;
+    const bool by_exits = rd.recirculate && s->has_exits;
     size_t e = 0;
     for (size_t f = 0; f < n; f++) {
         t[f] = s->frames[f].time;

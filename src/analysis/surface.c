@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/stop.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 static const double gf_deg_per_rad = 57.295779513082320876798154814105;
 
@@ -60,9 +61,11 @@ gf_status gf_measure_surface(const gf_series *s, const gf_analysis_opts *o, gf_m
     if (st == GF_OK && (st = gf_table_init(tb, "surface", "time_tau,slope,angle_deg")) == GF_OK) out->ntables++;
     double sum = 0.0;
     size_t nwin = 0;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
     for (size_t k = 0; st == GF_OK && k < s->nframes; k++) {
         if ((st = gf_stop_check(o->stop, "surface")) != GF_OK) break;
-        double slope = gf_surface_slope(&s->frames[k].pk, s->cfg.orifice_x, o->surf_dx, o->surf_ncols, zmax, xj);
+        double slope = gf_surface_slope(&s->frames[k].pk, cd.orifice.x, o->surf_dx, o->surf_ncols, zmax, xj);
         double row[3] = {s->frames[k].time, slope, atan(slope) * gf_deg_per_rad};
         st = gf_table_add(tb, row);
         if (row[0] >= t0 && row[0] <= t1 && !isnan(row[2])) {

@@ -15,6 +15,7 @@
 #include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 /// Bin of the depth profile, d. Centres lie within |y| <= D/2 - 0.5 = 3.5 of an
 /// 8 d deep silo and the wall-ordered layer sits 0.5 d from each wall, so bins
@@ -262,7 +263,9 @@ static gf_status gf_vel_plot(const gf_measure_out *tabs, const gf_analysis_opts 
     }
     // v_z(y) across the depth, above the orifice (|x - orifice_x| < y_xhalf).
     char xs[48] = "|x|";
-    if (cfg->orifice_x != 0.0) snprintf(xs, sizeof xs, "|x - %g|", cfg->orifice_x);
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    if (cd.orifice.x != 0.0) snprintf(xs, sizeof xs, "|x - %g|", cd.orifice.x);
     if (st == GF_OK && td->nrow == 0) st = gf_vel_nodata(out, "v_z(y)");
     else if (st == GF_OK)
         st = gf_measure_gnuplot(out,
@@ -304,14 +307,16 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
     st = gf_vfield_init(&a.field, s, k0, k1, o->vel_bin, false);
     a.nh = o->vel_nheights;
     a.np = a.field.nx;
-    a.ox = s->cfg.orifice_x;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    a.ox = cd.orifice.x;
     if (gf_velocity_radial(&s->cfg)) {
         a.radial = true; // bins of r out to the wall
         const gf_container c = gf_container_make(&s->cfg);
         a.mirror = !(gf_container_inner_radius(&c) > 0.0);
         a.np = (size_t)ceil(gf_container_outer_radius(&c) / o->vel_bin);
     }
-    double depth = s->cfg.container_depth;
+    double depth = cd.depth;
     a.frames = k1 > k0 ? s->frames + k0 : NULL; // NULL: no frame in the window
     a.npairs = k1 > k0 + 1 ? k1 - k0 - 1 : 0;
     if (st == GF_OK && a.nh) {

@@ -10,6 +10,7 @@
 #include "core/stop.h"
 #include "geom/celllist.h"
 #include "granflow/analysis.h"
+#include "granflow/defs.h"
 
 #define GF_PI 3.14159265358979323846
 /// Particles whose centre is within this of the local top are the free surface, d.
@@ -284,7 +285,9 @@ static gf_status gf_vor_tables(const gf_packing *pk, const gf_vor_frame *f, cons
 
 gf_status gf_measure_voronoi(const gf_series *s, const gf_analysis_opts *o, gf_measure_out *out)
 {
-    const double W = s->cfg.container_width, D = s->cfg.container_depth;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    const double W = cd.width, D = cd.depth;
     if (!(W > 0.0) || !(D > 0.0))
         return gf_error_set(GF_ERR_PARAM, "voronoi: container %g x %g has no volume", W, D);
     size_t k0, k1;

@@ -11,6 +11,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "granflow/defs.h"
 #include "granflow/lga.h"
 #include "spot/sim_internal.h"
 #ifdef GF_MPI
@@ -19,7 +20,7 @@
 
 gf_bench_opts gf_bench_opts_default(void)
 {
-    return (gf_bench_opts){.warmup = 40.0, .window = 1.0, .large = true, .lga_iterations = 1000};
+    return (gf_bench_opts){.warmup = 40.0, .window = 1.0, .large = true, .lga_iters = 1000};
 }
 
 // The paper's channel in its density-wave regime, timed over `iterations`
@@ -28,9 +29,9 @@ static gf_status gf_bench_lga_run(const gf_config *cfg_in, int64_t iterations, v
                                   gf_bench_lga *out)
 {
     gf_config cfg = *cfg_in;
-    cfg.lga_scenario = GF_LGA_CHANNEL;
     gf_lga *l = NULL;
-    gf_status st = gf_lga_create(&cfg, &l);
+    gf_status st = gf_config_set_key(&cfg, "lga.scenario", "channel");
+    if (st == GF_OK) st = gf_lga_create(&cfg, &l);
     if (st != GF_OK) return st;
     gf_lga_run(l, 200, stop);
     double t0 = gf_clock_now();
@@ -115,8 +116,9 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
     out->pack_s = gf_clock_now() - t0;
-    bool spatial = cfg->run_mode == GF_MODE_FIXED && (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS);
-    out->threads = spatial ? (cfg->run_threads > 0 ? (int)cfg->run_threads : gf_cpu_count()) : 1;
+    gf_engine_defs ed;
+    gf_config_engine_defs(cfg, &ed);
+    out->threads = ed.spatial ? ed.threads : 1;
     if (o->packed) o->packed(o->ctx, out, sim, o->warmup);
     t0 = gf_clock_now();
     double until = o->warmup;
@@ -132,7 +134,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     if (st == GF_OK && out->threads > 1) st = gf_bench_window(sim, &until, o->window, &hooks, &sps_one, &c, &d);
     out->sps_one = sps_one;
     gf_sim_set_timing(sim, 1);
-    if (spatial) gf_sim_set_par_profiling(sim, 1);
+    if (ed.spatial) gf_sim_set_par_profiling(sim, 1);
     double dummy;
     if (st == GF_OK) st = gf_bench_window(sim, &until, o->window, &hooks, &dummy, &c, &d);
     out->prof = gf_sim_par_profile(sim);
@@ -151,27 +153,31 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     return GF_OK;
 }
 
+// A key of the timed configuration, through config/ (the bench edits a copy).
+static gf_status gf_bench_set(gf_config *cfg, const char *key, double value)
+{
+    char text[64];
+    snprintf(text, sizeof text, "%.17g", value);
+    return gf_config_set_key(cfg, key, text);
+}
+
 gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_report *out)
 {
     if (!cfg_in || !o || !out) return gf_error_set(GF_ERR_PARAM, "gf_bench: NULL argument");
     if (!(o->warmup >= 0 && isfinite(o->warmup)) || !(o->window > 0 && isfinite(o->window)))
         return gf_error_set(GF_ERR_PARAM, "bench: the warm-up (%g tau) must be >= 0 and the window (%g tau) > 0",
                             o->warmup, o->window);
-    if (o->lga_iterations < 1)
-        return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iterations);
+    if (o->lga_iters < 1)
+        return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iters);
     *out = (gf_bench_report){.lga_only = o->lga_only, .large = o->large && !o->lga_only,
                              .engine = o->event ? "event" : o->spatial ? "spatial" : "domains", .warmup = o->warmup, .window = o->window};
     gf_config cfg = *cfg_in;
-    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
-    if (o->particles > 0) cfg.packing_particles = (int64_t)o->particles;
-    if (o->event) {
-        cfg.run_mode = GF_MODE_EVENT;
-    } else {
-        cfg.run_mode = GF_MODE_FIXED;
-        cfg.run_order = o->spatial ? GF_ORDER_SPATIAL : GF_ORDER_DOMAINS;
-    }
-    cfg.run_checkpoint_interval = 0;
-    gf_status st = gf_bench_silo(&cfg, o, &out->silo);
+    if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iters, o->stop, &out->lga);
+    gf_status st = o->particles > 0 ? gf_bench_set(&cfg, "packing.particles", (double)o->particles) : GF_OK;
+    if (st == GF_OK) st = gf_config_set_key(&cfg, "run.mode", o->event ? "event" : "fixed");
+    if (st == GF_OK && !o->event) st = gf_config_set_key(&cfg, "run.order", o->spatial ? "spatial" : "domains");
+    if (st == GF_OK) st = gf_config_set_key(&cfg, "run.checkpoint_interval", "0");
+    if (st == GF_OK) st = gf_bench_silo(&cfg, o, &out->silo);
     if (st != GF_OK) return st;
     out->peak_rss_bytes = gf_bench_peak_rss();
     const gf_bench_spot *sb = &out->silo;
@@ -182,11 +188,15 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
     if (out->large) {
         gf_config big = cfg;
         double f = sqrt(10.0);
-        big.container_width *= f;
-        big.container_depth *= f;
-        big.packing_particles *= 10;
-        if ((st = gf_config_validate(&big)) == GF_OK) st = gf_bench_silo(&big, o, &out->big);
+        gf_container_defs cd;
+        gf_packing_defs pd;
+        gf_config_container_defs(&cfg, &cd);
+        gf_config_packing_defs(&cfg, &pd);
+        st = gf_bench_set(&big, "container.width", cd.width * f);
+        if (st == GF_OK) st = gf_bench_set(&big, "container.depth", cd.depth * f);
+        if (st == GF_OK) st = gf_bench_set(&big, "packing.particles", (double)(pd.particles * 10));
+        if (st == GF_OK && (st = gf_config_validate(&big)) == GF_OK) st = gf_bench_silo(&big, o, &out->big);
         if (st != GF_OK) return st;
     }
-    return gf_bench_lga_run(&cfg, o->lga_iterations, o->stop, &out->lga);
+    return gf_bench_lga_run(&cfg, o->lga_iters, o->stop, &out->lga);
 }

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "config/derive.h"
 #include "config/keys.h"
 #include "config/orifice.h"
 #include "config/where.h"
@@ -397,10 +398,10 @@ gf_status gf_config_validate(gf_config *cfg)
             return gf_error_set(GF_ERR_PARAM, "%s%s: %s", m.lead, m.key[0], why);
         }
     }
-    if (isnan(cfg->spot_insertion_margin)) cfg->spot_insertion_margin = cfg->spot_radius;
-    if (isnan(cfg->relax_radius)) cfg->relax_radius = cfg->spot_radius + 1.0;
-    if (isnan(cfg->dem_kt)) cfg->dem_kt = 2.0 / 7.0 * cfg->dem_kn;
-    if (isnan(cfg->dem_gammat)) cfg->dem_gammat = 0.5 * cfg->dem_gamman;
+    cfg->spot_insertion_margin = gf_config_insertion_margin(cfg);
+    cfg->relax_radius = gf_config_r_e(cfg);
+    cfg->dem_kt = gf_config_dem_kt(cfg);
+    cfg->dem_gammat = gf_config_dem_gammat(cfg);
 
     if (cfg->container_shape == GF_SHAPE_CYLINDER && (st = gf_config_validate_cylinder(cfg)) != GF_OK) return st;
     if (cfg->container_shape == GF_SHAPE_MESH && (st = gf_config_validate_mesh(cfg)) != GF_OK) return st;
@@ -578,8 +579,3 @@ gf_status gf_config_save(const gf_config *cfg, const char *path)
     return gf_atomic_commit(f, tmp, path);
 }
 
-double gf_config_exit_plane(const gf_config *cfg)
-{
-    // A cylinder's pipe and a wedge's chute: particles leave at their end.
-    return cfg->container_shape == GF_SHAPE_BOX ? cfg->exit_z : cfg->exit_z - cfg->outlet_length;
-}

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The machine's cores, for thread and rank counts; its memory, to refuse up
 // front what could never fit.
+#ifdef __linux__
+#define _GNU_SOURCE // sched_getaffinity
+#include <sched.h>
+#endif
 #include "core/cpu.h"
 
 #include <sys/resource.h>
@@ -10,6 +14,12 @@
 
 int gf_cpu_count(void)
 {
+#ifdef __linux__
+    // The cores this process may run on (taskset, a container's cpuset), as
+    // OpenMP's omp_get_num_procs counts them: more threads would share them.
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+#endif
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : (int)n;
 }

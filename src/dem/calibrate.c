@@ -17,6 +17,7 @@
 #include "core/rng.h"
 #include "core/stop.h"
 #include "geom/container.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 
 #define GF_CAL_PI 3.14159265358979323846
@@ -74,15 +75,17 @@ void gf_dem_calibration_opts(const gf_series *s, const gf_analysis_opts *keep, g
     size_t k0, k1;
     gf_window_frames(s, t0, t1, &k0, &k1);
     double W = gf_cal_width(&s->cfg);
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
     // h1: the lowest the surface gets in the window, above the orifice (a
     // crater forms there), so that no region leaves the packing.
-    double h0 = gf_cal_top(&s->frames[0].pk, 0.0, INFINITY), xo = s->cfg.orifice_x;
+    double h0 = gf_cal_top(&s->frames[0].pk, 0.0, INFINITY), xo = cd.orifice.x;
     const gf_packing *last = &s->frames[k1 > 0 ? k1 - 1 : 0].pk;
     double h1 = fmin(gf_cal_top(last, 0.0, INFINITY), gf_cal_top(last, xo, fmax(2.0, 0.25 * W)));
     // The papers' regions belong to a fill of 110 d: scaled to this one, and
     // kept below the surface at the end of the window.
     if (k.vel_nheights == d.vel_nheights && !memcmp(k.vel_heights, d.vel_heights, sizeof d.vel_heights)) {
-        double lo = fmax(5.0, s->cfg.orifice_diameter), hi = fmin(0.6 * h1, h1 - 8.0);
+        double lo = fmax(5.0, cd.orifice.diameter), hi = fmin(0.6 * h1, h1 - 8.0);
         size_t n = 8;
         if (hi < lo + 2.0) hi = lo + 2.0;
         for (size_t j = 0; j < n; j++) o->vel_heights[j] = lo + (hi - lo) * (double)j / (double)(n - 1);
@@ -204,7 +207,9 @@ static double gf_cal_balls(const gf_series *s, const gf_analysis_opts *o, const 
 {
     gf_rng rng;
     gf_rng_seed(&rng, 20090701u, 3);
-    double hw = 0.5 * s->cfg.container_width - dw, hd = 0.5 * s->cfg.container_depth - dw;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    double hw = 0.5 * cd.width - dw, hd = 0.5 * cd.depth - dw;
     gf_container ctr = gf_container_make(&s->cfg);
     const bool cyl = gf_container_profile_radial(&ctr); // radial profiles: x and y both Gaussian
     double sum = 0.0, n = 0.0, r2 = rs * rs;
@@ -310,7 +315,9 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
                             t1, nf);
     c->t0 = t0;
     c->t1 = t1;
-    double dw = cfg->spot_wall_distance, dz = cfg->spot_step_z;
+    gf_spot_params sp;
+    gf_config_spot_params(cfg, &sp);
+    double dw = sp.wall_distance, dz = sp.step_z;
     gf_cal_est full;
     gf_status st = gf_cal_measure(s, o, t0, t1, 0.0, dw, &full);
     if (st != GF_OK) return st;
@@ -361,17 +368,17 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
         gf_cal_note(c, "velocity correlation length not measurable (beta = %.3g d in a %.3g d region): spot.radius = "
                        "%.3g d (the thesis' value)", full.beta, o->corr_size, GF_CAL_RS_FALLBACK);
         rs = GF_CAL_RS_FALLBACK;
-        c->spot_radius = (gf_dem_value){rs, NAN};
+        c->radius = (gf_dem_value){rs, NAN};
     } else {
-        c->spot_radius = (gf_dem_value){rs, c->corr_length.err / GF_DEM_BETA_PER_RS};
+        c->radius = (gf_dem_value){rs, c->corr_length.err / GF_DEM_BETA_PER_RS};
     }
     // Var(x_s) grows by Var(dx_s) per step of dz: d Var / dz = 2 b_s (thesis Sec. 3.3).
     c->b_s = (gf_dem_value){0.5 * c->var_slope.value, 0.5 * c->var_slope.err};
     if (!isfinite(c->b_s.value) || !(c->b_s.value > 0)) {
-        double bs = cfg->spot_step_xy * cfg->spot_step_xy / (4.0 * dz);
+        double bs = sp.step_xy * sp.step_xy / (4.0 * dz);
         gf_cal_note(c, "the %s profile variance does not grow with height (slope %.3g over %zu heights): b_s = %.3g "
                        "from the configured spot.step_xy = %.3g", gf_velocity_profile_name(&s->cfg), c->var_slope.value,
-                    c->var_heights, bs, cfg->spot_step_xy);
+                    c->var_heights, bs, sp.step_xy);
         c->b_s = (gf_dem_value){bs, NAN};
     }
     // BCC walk: dx_s = +-dx with probability 1/2, so Var(dx_s) = dx^2 / 2 = 2 b_s dz.
@@ -381,8 +388,8 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     double w = c->b_s.value / c->diff_length.value;
     if (!isfinite(w) || !(w > 1.0)) {
         gf_cal_note(c, "particle diffusion not measurable (b_p = %.3g d): spot.w = %.4g (configured)",
-                    c->diff_length.value, cfg->spot_w);
-        c->w = (gf_dem_value){cfg->spot_w, NAN};
+                    c->diff_length.value, sp.w);
+        c->w = (gf_dem_value){sp.w, NAN};
     } else {
         c->w = (gf_dem_value){w, w * hypot(gf_cal_rel(c->b_s), gf_cal_rel(c->diff_length))};
     }
@@ -410,8 +417,8 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     if (!isfinite(mu) || !(dn > 2.0 * dn_err) || !(mu > 0)) {
         gf_cal_note(c, "no measurable density drop in the slice %.3g < z < %.3g (%.4g particles at rest, %.4g +- %.2g in "
                        "flow): spot.move_rate = %.4g (configured)", o->dens_z0, o->dens_z1, c->slice_initial.value,
-                    c->slice_steady.value, c->slice_steady.err, cfg->spot_move_rate);
-        c->move_rate = (gf_dem_value){cfg->spot_move_rate, NAN};
+                    c->slice_steady.value, c->slice_steady.err, sp.move_rate);
+        c->move_rate = (gf_dem_value){sp.move_rate, NAN};
     } else {
         c->move_rate = (gf_dem_value){mu, mu * hypot(gf_cal_rel(c->flow_rate), rel_dn)};
     }
@@ -423,13 +430,9 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
 
 gf_status gf_dem_calibration_apply(const gf_dem_calibration *c, gf_config *cfg)
 {
-    cfg->spot_radius = c->spot_radius.value;
-    cfg->spot_step_xy = c->step_xy.value;
-    cfg->spot_w = c->w.value;
-    cfg->spot_insertion_rate = c->insertion_rate.value;
-    cfg->spot_move_rate = c->move_rate.value;
-    cfg->spot_insertion_margin = NAN; // auto: follow the new radius
-    cfg->relax_radius = NAN;
+    // The insertion margin and r_e go back to auto: they follow the new radius.
+    gf_config_set_spot_fit(cfg, c->radius.value, c->w.value, c->insertion_rate.value, c->move_rate.value,
+                           c->step_xy.value);
     return gf_config_validate(cfg);
 }
 
@@ -457,7 +460,7 @@ void gf_dem_calibration_print(const gf_dem_calibration *c, FILE *f)
     gf_cal_line(f, "particles in the slice at rest", c->slice_initial, "", sl);
     gf_cal_line(f, "particles in the slice in flow", c->slice_steady, "", "(thesis: 9400 -> 8850)");
     fprintf(f, "the five spot parameters:\n");
-    gf_cal_line(f, "spot.radius r_s = beta / 0.72", c->spot_radius, "d", "(thesis: 2.60)");
+    gf_cal_line(f, "spot.radius r_s = beta / 0.72", c->radius, "d", "(thesis: 2.60)");
     gf_cal_line(f, "b_s = slope / 2", c->b_s, "d", "(thesis: 1.14)");
     gf_cal_line(f, "spot.step_xy = sqrt(4 b_s dz)", c->step_xy, "d", "(thesis: 0.68)");
     gf_cal_line(f, "spot.w = b_s / b_p", c->w, "", "(thesis: 1 / 2.50e-3 = 400)");

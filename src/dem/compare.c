@@ -14,6 +14,7 @@
 #include "core/fs.h"
 #include "core/gnuplot.h"
 #include "core/stop.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "granflow/render.h"
 
@@ -161,7 +162,9 @@ static gf_status gf_cmp_slices(const gf_series *dem, const gf_series *spot, cons
     for (size_t i = 0; i < spot->frames[0].pk.n; i++) zmax = fmax(zmax, spot->frames[0].pk.z[i] + 0.5);
     gf_render_opts ro = gf_render_opts_default();
     ro.zmax = zmax;
-    ro.px_per_d = fmax(2.0, fmin(10.0, 1200.0 / (4.0 * (dem->cfg.container_width + 4.0))));
+    gf_container_defs cd;
+    gf_config_container_defs(&dem->cfg, &cd);
+    ro.px_per_d = fmax(2.0, fmin(10.0, 1200.0 / (4.0 * (cd.width + 4.0))));
     char path[GF_PATH_MAX + 32];
     ro.title = "DEM";
     snprintf(path, sizeof path, "%s/slices_dem.png", outdir);
@@ -210,6 +213,8 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
     double t0d, t1d, t0s, t1s;
     gf_analysis_window(o, dem, &t0d, &t1d);
     gf_analysis_window(o, spot, &t0s, &t1s);
+    gf_container_defs cd;
+    gf_config_container_defs(&dem->cfg, &cd);
     fprintf(f,
             "# DEM and spot model side by side\n\n"
             "DEM: %zu snapshots, t = %g..%g tau, %zu particles, window %g..%g tau.  \n"
@@ -220,8 +225,8 @@ static gf_status gf_cmp_summary(const char *outdir, const gf_series *dem, const 
             "| quantity | unit | DEM | spot | spot - DEM | relative | papers' DEM |\n|---|---|---|---|---|---|---|\n",
             dem->nframes, dem->frames[0].time, dem->frames[dem->nframes - 1].time, dem->n_initial, t0d, t1d,
             spot->nframes, spot->frames[0].time, spot->frames[spot->nframes - 1].time, spot->n_initial, t0s, t1s,
-            dem->cfg.container_width, dem->cfg.container_depth,
-            dem->cfg.orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", dem->cfg.orifice_diameter,
+            cd.width, cd.depth,
+            cd.orifice.shape == GF_ORIFICE_SLIT ? "slit" : "circular", cd.orifice.diameter,
             o->vel_heights[0], o->vel_heights[o->vel_nheights ? o->vel_nheights - 1 : 0], o->corr_size, o->corr_size,
             o->corr_zc, o->gr_x0, o->gr_x1, o->gr_z0, o->gr_z1, o->dens_z0, o->dens_z1);
     for (size_t k = 0; k < GF_CMP_K; k++) {

@@ -18,6 +18,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "geom/container.h"
 #include "granflow/packing.h"
@@ -33,22 +34,22 @@
 #define GF_DEM_CHUNK 1.0        // LAMMPS runs in chunks of this many tau between checks
 
 /// The contact law's arguments, as pair_style and fix wall/gran take them.
-static void gf_dem_contact(const gf_config *c, char *buf, size_t n)
+static void gf_dem_contact(const gf_dem_defs *dd, char *buf, size_t n)
 {
-    snprintf(buf, n, "%.10g %.10g %.10g %.10g %.10g 1", c->dem_kn, c->dem_kt, c->dem_gamman, c->dem_gammat,
-             c->dem_friction);
+    snprintf(buf, n, "%.10g %.10g %.10g %.10g %.10g 1", dd->kn, dd->kt, dd->gamman, dd->gammat,
+             dd->friction);
 }
 
 /// LAMMPS seeds are positive 31-bit integers.
-static long gf_dem_seed(const gf_config *c, unsigned salt)
+static long gf_dem_seed(const gf_dem_defs *dd, unsigned salt)
 {
-    return 1 + (long)((c->run_seed * 2654435761u + salt * 40503u) % 2000000000u);
+    return 1 + (long)((dd->seed * 2654435761u + salt * 40503u) % 2000000000u);
 }
 
 /// Steps of `t` tau, at least 1.
-static int64_t gf_dem_steps(const gf_config *c, double t)
+static int64_t gf_dem_steps(const gf_dem_defs *dd, double t)
 {
-    double s = floor(t / c->dem_timestep + 0.5);
+    double s = floor(t / dd->timestep + 0.5);
     return s < 1 ? 1 : (int64_t)s;
 }
 
@@ -59,22 +60,26 @@ static void gf_dem_head(FILE *f, const gf_config *c, const char *what)
     char shape[64] = "";
     if (!gf_container_rectangular(&box)) snprintf(shape, sizeof shape, "%s (bounding box) ", gf_container_name(&box));
     char at[96] = "the centre of";
-    if (c->orifice_x != 0.0 || c->orifice_y != 0.0) // container.orifice_x, orifice_y
-        snprintf(at, sizeof at, "x = %g, y = %g on", c->orifice_x, c->orifice_y);
+    gf_container_defs cd;
+    gf_config_container_defs(c, &cd);
+    if (cd.orifice.x != 0.0 || cd.orifice.y != 0.0) // container.orifice_x, orifice_y
+        snprintf(at, sizeof at, "x = %g, y = %g on", cd.orifice.x, cd.orifice.y);
     fprintf(f,
             "# granflow %s: %s\n"
             "# container %s%g x %g d, %s orifice of %g d at %s the base z = 0.\n"
             "# Units lj: d = 1, particle mass 1, g = 1, so times are in tau = sqrt(d/g).\n"
             "# Written by `granflow dem`; see docs/dem.md.\n\n",
             gf_version(), what, shape,
-            c->container_width, c->container_depth,
-            c->orifice_shape == GF_ORIFICE_SLIT ? "slit" : "circular", c->orifice_diameter, at);
+            cd.width, cd.depth,
+            cd.orifice.shape == GF_ORIFICE_SLIT ? "slit" : "circular", cd.orifice.diameter, at);
 }
 
 static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double zlo, double zhi)
 {
+    gf_dem_defs dd;
+    gf_config_dem_defs(c, &dd);
     char law[256];
-    gf_dem_contact(c, law, sizeof law);
+    gf_dem_contact(&dd, law, sizeof law);
     fprintf(f,
             "comm_modify vel yes\n"
             "neighbor 0.2 bin\n"
@@ -90,7 +95,7 @@ static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double 
             "fix freeze_rim rim freeze\n"
             "fix integrate flow nve/sphere\n"
             "fix gravity flow gravity 1.0 vector 0 0 -1\n",
-            law, c->dem_timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM);
+            law, dd.timestep, GF_DEM_TYPE_FLOW, GF_DEM_TYPE_RIM);
     const gf_container box = gf_container_make(c);
     (void)gf_container_lammps_walls(&box, f, pre, law, zlo, zhi); // the container's walls (src/geom/; asked before)
     fprintf(f,
@@ -100,18 +105,20 @@ static void gf_dem_physics(FILE *f, const gf_config *c, const char *pre, double 
             "thermo_style custom step time v_nflow v_kea\n"
             "thermo_modify norm no\n"
             "thermo %lld\n",
-            (long long)gf_dem_steps(c, 0.1));
+            (long long)gf_dem_steps(&dd, 0.1));
 }
 
 /// The frozen beads along the orifice edge at z = 0 (only inside the walls),
 /// around the orifice centre (container.orifice_x, orifice_y).
 static size_t gf_dem_beads(FILE *f, const gf_config *c)
 {
-    double R = 0.5 * c->orifice_diameter, hw = 0.5 * c->container_width, hd = 0.5 * c->container_depth;
-    const double ox = c->orifice_x, oy = c->orifice_y;
+    gf_container_defs cd;
+    gf_config_container_defs(c, &cd);
+    double R = 0.5 * cd.orifice.diameter, hw = 0.5 * cd.width, hd = 0.5 * cd.depth;
+    const double ox = cd.orifice.x, oy = cd.orifice.y;
     size_t n = 0;
-    if (c->orifice_shape == GF_ORIFICE_SLIT) {
-        long m = (long)floor(c->container_depth / GF_DEM_BEAD_STEP);
+    if (cd.orifice.shape == GF_ORIFICE_SLIT) {
+        long m = (long)floor(cd.depth / GF_DEM_BEAD_STEP);
         for (int side = -1; side <= 1; side += 2)
             for (long k = 0; k <= m; k++) {
                 double y = -hd + GF_DEM_BEAD_STEP * (double)k;
@@ -146,7 +153,9 @@ static gf_status gf_dem_write_data(const gf_config *c, const char *dir, const gf
     FILE *f;
     gf_status st = gf_dem_open(dir, "fill.data", path, sizeof path, tmp, sizeof tmp, &f);
     if (st != GF_OK) return st;
-    double hw = 0.5 * c->container_width, hd = 0.5 * c->container_depth;
+    gf_container_defs cd;
+    gf_config_container_defs(c, &cd);
+    double hw = 0.5 * cd.width, hd = 0.5 * cd.depth;
     fprintf(f, "LAMMPS data file: granflow packing of %zu spheres\n\n%zu atoms\n2 atom types\n\n", pk->n, pk->n);
     fprintf(f, "%.10g %.10g xlo xhi\n%.10g %.10g ylo yhi\n%.10g %.10g zlo zhi\n\nAtoms # sphere\n\n", -hw, hw, -hd,
             hd, zlo, zhi);
@@ -173,32 +182,34 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
         if (gf_config_where(c, "container.shape", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
         return gf_error_set(st, "%s: %s", where, why);
     }
-    if (c->dem_fill_method == GF_DEM_POUR && (st = gf_container_lammps_pour(&box, NULL, 0.0, 0.0, 0.0)) != GF_OK)
+    gf_dem_defs dd;
+    gf_config_dem_defs(c, &dd);
+    if (dd.fill == GF_DEM_POUR && (st = gf_container_lammps_pour(&box, NULL, 0.0, 0.0, 0.0)) != GF_OK)
         return st;
     // The column's cross-section, above any funnel.
     double area = box.ops->section_area(&box, box.z_col), vp = GF_DEM_PI / 6.0;
     gf_packing pk = {0};
-    if (c->dem_fill_method == GF_DEM_GENERATE) {
+    if (dd.fill == GF_DEM_GENERATE) {
         if ((st = gf_packing_for_config(c, opts, &pk, NULL)) != GF_OK) return st;
         plan.particles = (int64_t)pk.n;
-    } else if (c->packing_fill_height > 0) {
-        plan.particles = (int64_t)floor(GF_DEM_PHI_FILL * area * c->packing_fill_height / vp + 0.5);
+    } else if (dd.fill_height > 0) {
+        plan.particles = (int64_t)floor(GF_DEM_PHI_FILL * area * dd.fill_height / vp + 0.5);
     } else {
-        plan.particles = c->packing_particles;
+        plan.particles = dd.particles;
     }
     plan.fill_height = (double)plan.particles * vp / (GF_DEM_PHI_FILL * area);
     // A funnel holds less than the column over it: the fill ends at most its height higher.
     plan.fill_height += box.z_col;
     plan.delete_z = fmin(gf_config_exit_plane(c), 0.0) - GF_DEM_DELETE_DEPTH;
     plan.box_zlo = plan.delete_z - 2.0;
-    plan.snapshot_steps = gf_dem_steps(c, c->output_snapshot_interval);
-    plan.drain_steps = gf_dem_steps(c, c->run_duration);
+    plan.snapshot_steps = gf_dem_steps(&dd, dd.snapshot_interval);
+    plan.drain_steps = gf_dem_steps(&dd, dd.duration);
     plan.rim_beads = gf_dem_beads(NULL, c);
 
     // Pour: batches of GF_DEM_POUR_FRACTION filling a region of height hp
     // above the fill; each batch falls hp before the next (fix pour's rule).
     double hp = 0.0, z_ins = 0.0;
-    if (c->dem_fill_method == GF_DEM_POUR) {
+    if (dd.fill == GF_DEM_POUR) {
         double need = (double)plan.particles * vp / (GF_DEM_POUR_FRACTION * area); // height holding them all
         hp = fmin(fmax(need / 4.0, 5.0), 40.0);
         z_ins = plan.fill_height + GF_DEM_POUR_GAP;
@@ -216,19 +227,21 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     char sub[GF_PATH_MAX + 32];
     snprintf(sub, sizeof sub, "%s/snapshots", dir);
     if ((st = gf_fs_mkdirs(sub)) != GF_OK) goto done;
-    if (c->dem_fill_method == GF_DEM_GENERATE &&
+    if (dd.fill == GF_DEM_GENERATE &&
         (st = gf_dem_write_data(c, dir, &pk, plan.box_zlo, plan.box_zhi)) != GF_OK)
         goto done;
 
     // ---- in.fill ----
     char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 48], law[256];
-    gf_dem_contact(c, law, sizeof law);
+    gf_dem_contact(&dd, law, sizeof law);
     FILE *f;
     if ((st = gf_dem_open(dir, "in.fill", path, sizeof path, tmp, sizeof tmp, &f)) != GF_OK) goto done;
-    double hw = 0.5 * c->container_width, hd = 0.5 * c->container_depth;
+    gf_container_defs cd;
+    gf_config_container_defs(c, &cd);
+    double hw = 0.5 * cd.width, hd = 0.5 * cd.depth;
     gf_dem_head(f, c, "DEM fill and settle (run first; then in.drain)");
     fprintf(f, "units lj\natom_style sphere\ndimension 3\nboundary f f f\nnewton off\n");
-    if (c->dem_fill_method == GF_DEM_GENERATE) {
+    if (dd.fill == GF_DEM_GENERATE) {
         fprintf(f, "# granflow's packing of %lld spheres (fill.data), to be settled under gravity\nread_data fill.data\n",
                 (long long)plan.particles);
     } else {
@@ -243,8 +256,8 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     fprintf(f, "# the base is closed while the container fills\n"
                "fix base flow wall/gran hertz/history %s zplane %.10g NULL\n",
             law, box.gate_z);
-    int64_t chunk = gf_dem_steps(c, GF_DEM_CHUNK);
-    if (c->dem_fill_method == GF_DEM_POUR) {
+    int64_t chunk = gf_dem_steps(&dd, GF_DEM_CHUNK);
+    if (dd.fill == GF_DEM_POUR) {
         long maxk = (long)ceil(2.0 * plan.pour_time / GF_DEM_CHUNK) + 20;
         fprintf(f, "# pour %lld particles from the region %.4g < z < %.4g (batches of packing fraction %g)\n",
                 (long long)plan.particles, z_ins, z_ins + hp, GF_DEM_POUR_FRACTION);
@@ -261,12 +274,12 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
                 "label pour_done\n"
                 "unfix pour\n",
                 (long long)plan.particles, GF_DEM_TYPE_FLOW,
-                gf_dem_seed(c, 1), GF_DEM_POUR_FRACTION, GF_DEM_DENSITY, GF_DEM_DENSITY, (long long)plan.particles,
+                gf_dem_seed(&dd, 1), GF_DEM_POUR_FRACTION, GF_DEM_DENSITY, GF_DEM_DENSITY, (long long)plan.particles,
                 plan.pour_time, maxk, (long long)chunk, (long long)plan.particles);
     } else {
         fprintf(f, "velocity flow set 0 0 0\n");
     }
-    long maxs = (long)ceil(c->dem_settle_time / GF_DEM_CHUNK);
+    long maxs = (long)ceil(dd.settle_time / GF_DEM_CHUNK);
     if (maxs < 1) maxs = 1;
     fprintf(f,
             "# settle: at most %g tau, until the kinetic energy per particle is below %g\n"
@@ -281,8 +294,8 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
             "print \"granflow-phase settled ${nflow} ${kea}\"\n"
             "write_dump flow custom packing.dump id type x y z radius modify sort id\n"
             "write_restart settled.restart\n",
-            c->dem_settle_time, c->dem_settle_ke, (long long)plan.particles, c->dem_settle_time, maxs,
-            (long long)chunk, c->dem_settle_ke);
+            dd.settle_time, dd.settle_ke, (long long)plan.particles, dd.settle_time, maxs,
+            (long long)chunk, dd.settle_ke);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;
 
     // ---- in.drain ----
@@ -302,9 +315,9 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
             "print \"granflow-phase drain ${nflow} %.6g\"\n"
             "run %lld\n"
             "print \"granflow-phase done ${nflow} 0\"\n",
-            GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(c, 0.01),
-            (long long)(plan.particles + 1), gf_dem_seed(c, 2), c->output_snapshot_interval,
-            (long long)plan.snapshot_steps, c->run_duration, (long long)plan.drain_steps);
+            GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(&dd, 0.01),
+            (long long)(plan.particles + 1), gf_dem_seed(&dd, 2), dd.snapshot_interval,
+            (long long)plan.snapshot_steps, dd.duration, (long long)plan.drain_steps);
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;
 
     // config.ini: the container and keys, for calibrate/compare/analyze.

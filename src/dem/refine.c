@@ -18,6 +18,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "dem/dem_internal.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "granflow/sim.h"
 
@@ -266,9 +267,11 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         // The targets and what this run says of the model (issue 27 item 3).
         gf_ref_targets t;
         gf_ref_targets_make(&res->dem, &fs, vtol, &t);
-        const double p[3] = {log(cur.spot_insertion_rate / cur.spot_w), log(cur.spot_step_xy), cur.spot_radius};
+        gf_spot_params sp;
+        gf_config_spot_params(&cur, &sp);
+        const double p[3] = {log(sp.insertion_rate / sp.w), log(sp.step_xy), sp.radius};
         if (it == 1) {
-            gf_ref_model_init(&model, cur.spot_radius, t.ok[GF_REF_SLOPE] ? exp(t.spot[GF_REF_SLOPE]) : 0.0,
+            gf_ref_model_init(&model, sp.radius, t.ok[GF_REF_SLOPE] ? exp(t.spot[GF_REF_SLOPE]) : 0.0,
                               t.ok[GF_REF_LEVEL] ? exp(t.spot[GF_REF_LEVEL]) : 0.0);
         } else {
             double dp[3], dy[3], sig[3];
@@ -279,7 +282,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
                 ok[k] = t.ok[k] && prev_t.ok[k];
                 sig[k] = t.sig[k];
             }
-            gf_ref_model_update(&model, dp, dy, sig, ok, cur.spot_radius);
+            gf_ref_model_update(&model, dp, dy, sig, ok, sp.radius);
         }
         prev_t = t;
         memcpy(prev_p, p, sizeof prev_p);
@@ -293,7 +296,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         double r[3], dp[3], cov[3][3];
         bool row[3], col[3] = {t.ok[GF_REF_FLOW], t.ok[GF_REF_SLOPE] || t.ok[GF_REF_LEVEL],
                                !beta_ok && t.ok[GF_REF_SLOPE] && t.ok[GF_REF_LEVEL]};
-        double drs = cur.spot_radius * (fr - 1.0); // imposed by beta
+        double drs = sp.radius * (fr - 1.0); // imposed by beta
         for (int k = 0; k < 3; k++) {
             row[k] = t.ok[k];
             r[k] = t.dem[k] - t.spot[k] - model.J[k][GF_REF_RADIUS] * drs;
@@ -301,8 +304,8 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
             // flow, the target, always.
             if (k != GF_REF_FLOW && fabs(t.dem[k] - t.spot[k]) <= 2.0 * t.sig[k]) r[k] = 0.0;
         }
-        gf_ref_step(&model, r, t.sig, row, col, GF_REF_RS_PRIOR * cur.spot_radius, dp, cov);
-        double scale = gf_ref_limit(dp, cur.spot_radius, GF_REF_MAXSTEP);
+        gf_ref_step(&model, r, t.sig, row, col, GF_REF_RS_PRIOR * sp.radius, dp, cov);
+        double scale = gf_ref_limit(dp, sp.radius, GF_REF_MAXSTEP);
         if (score < best_score) {
             best_score = score;
             best = cur;
@@ -313,9 +316,8 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
             best_scale = scale;
         }
         if (match) break;
-        double rs = fmax(GF_REF_MIN_RS, cur.spot_radius + drs + dp[GF_REF_RADIUS]);
-        next.spot_radius = rs;
-        next.spot_step_xy = cur.spot_step_xy * exp(dp[GF_REF_STEP]);
+        double rs = fmax(GF_REF_MIN_RS, sp.radius + drs + dp[GF_REF_RADIUS]);
+        double dx = sp.step_xy * exp(dp[GF_REF_STEP]);
         // w and mu by their relations, but only from a run that already flows
         // as the DEM does (mu: the drop dN ~ Q / mu) and whose widths grow as
         // the DEM's (w: b_p = b_s / w, b_s ~ step_xy^2): compared at another
@@ -325,21 +327,21 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         bool flow_ok = fabs(fs.flow.value - res->dem.flow.value) <= ftol * res->dem.flow.value;
         bool growth_ok = !t.ok[GF_REF_SLOPE] || fabs(t.dem[GF_REF_SLOPE] - t.spot[GF_REF_SLOPE]) <=
                                                     fmax(2.0 * t.sig[GF_REF_SLOPE], log(1.0 + vtol));
-        if (flow_ok && growth_ok) next.spot_w = cur.spot_w * gf_ref_ratio(fs.bp, res->dem.bp);
-        if (flow_ok) next.spot_move_rate = cur.spot_move_rate * gf_ref_ratio(fs.drop, res->dem.drop);
-        next.spot_insertion_rate = next.spot_w * exp(p[GF_REF_LAMBDA] + dp[GF_REF_LAMBDA]);
-        next.spot_insertion_margin = NAN; // auto: follow the radius
-        next.relax_radius = NAN;
+        double w = flow_ok && growth_ok ? sp.w * gf_ref_ratio(fs.bp, res->dem.bp) : sp.w;
+        double mu = flow_ok ? sp.move_rate * gf_ref_ratio(fs.drop, res->dem.drop) : sp.move_rate;
+        // The insertion margin and r_e go back to auto: they follow the radius.
+        gf_config_set_spot_fit(&next, rs, w, w * exp(p[GF_REF_LAMBDA] + dp[GF_REF_LAMBDA]), mu, dx);
         if ((st = gf_config_validate(&next)) != GF_OK) return st;
         cur = next;
     }
     // The kept parameters with their standard errors: the noise of the kept
     // run's targets carried through the model (cov = (J^T W J)^-1).
-    res->insertion_rate = (gf_dem_value){best.spot_insertion_rate,
-                                         best_col[GF_REF_LAMBDA] ? best.spot_insertion_rate * sqrt(best_cov[0][0]) : NAN};
-    res->step_xy = (gf_dem_value){best.spot_step_xy, best_col[GF_REF_STEP] ? best.spot_step_xy * sqrt(best_cov[1][1]) : NAN};
-    res->radius = (gf_dem_value){best.spot_radius, best_col[GF_REF_RADIUS] ? sqrt(best_cov[2][2]) : NAN};
-    gf_ref_explain(res, &best_t, best_col, best_scale, best.spot_radius, ftol, vtol, max_iter);
+    gf_spot_params bp;
+    gf_config_spot_params(&best, &bp);
+    res->insertion_rate = (gf_dem_value){bp.insertion_rate, best_col[GF_REF_LAMBDA] ? bp.insertion_rate * sqrt(best_cov[0][0]) : NAN};
+    res->step_xy = (gf_dem_value){bp.step_xy, best_col[GF_REF_STEP] ? bp.step_xy * sqrt(best_cov[1][1]) : NAN};
+    res->radius = (gf_dem_value){bp.radius, best_col[GF_REF_RADIUS] ? sqrt(best_cov[2][2]) : NAN};
+    gf_ref_explain(res, &best_t, best_col, best_scale, bp.radius, ftol, vtol, max_iter);
     res->matched = best_score <= 1.0;
     *cfg = best;
     return GF_OK;

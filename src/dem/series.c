@@ -13,6 +13,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "core/textscan.h"
 #include "geom/container.h"
@@ -88,7 +89,9 @@ static void gf_dem_compact(gf_packing *p, const unsigned char *keep)
 static gf_status gf_dem_retag(gf_series *s)
 {
     if (s->nframes == 0) return GF_OK;
-    double thick = s->cfg.packing_layer_thickness;
+    gf_packing_defs pd;
+    gf_config_packing_defs(&s->cfg, &pd);
+    double thick = pd.layer_thickness;
     gf_packing *p0 = &s->frames[0].pk;
     gf_packing_tag_layers(p0, thick);
     gf_idmap m;
@@ -168,7 +171,9 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     gf_config cfg;
     gf_status st = gf_dem_units(src, &cfg);
     if (st != GF_OK) return st;
-    const gf_series_units u = {cfg.dump_diameter, cfg.dump_gravity};
+    gf_packing_defs units;
+    gf_config_packing_defs(&cfg, &units);
+    const gf_series_units u = {units.unit_diameter, units.unit_gravity};
     const bool converted = u.diameter != 1.0 || u.gravity != 1.0;
     const gf_series_opts so = {.units = &u, .stop = src->stop};
     st = gf_series_load(path, src->dump_dt, &so, out);
@@ -201,12 +206,15 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     r.have_type = gf_dem_first_dump(path, first, sizeof first) && gf_dem_has_type(first);
     int32_t types[GF_PACKING_MAXTYPES];
     size_t ntypes = 0;
-    if ((st = gf_packing_types_parse(cfg.packing_types, types, GF_PACKING_MAXTYPES, &ntypes)) != GF_OK) goto fail;
+    gf_packing_defs pd;
+    gf_config_packing_defs(&cfg, &pd);
+    if ((st = gf_packing_types_parse(pd.types, types, GF_PACKING_MAXTYPES, &ntypes)) != GF_OK) goto fail;
     if (ntypes && !r.have_type) {
-        st = gf_error_set(GF_ERR_PARAM, "packing.types = %s: the dumps of %s have no `type` column", cfg.packing_types,
+        st = gf_error_set(GF_ERR_PARAM, "packing.types = %s: the dumps of %s have no `type` column", pd.types,
                           path);
         goto fail;
     }
+    const double exit_plane = gf_config_exit_plane(&cfg);
     for (size_t k = 0; k < out->nframes; k++) {
         gf_packing *p = &out->frames[k].pk;
         size_t n0 = p->n;
@@ -219,7 +227,7 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
             bool ok = ntypes == 0;
             for (size_t t = 0; t < ntypes && !ok; t++) ok = p->layer[i] == types[t];
             if (!ok) r.other_types++;
-            else if (p->z[i] < gf_config_exit_plane(&cfg)) r.below_base++, ok = false;
+            else if (p->z[i] < exit_plane) r.below_base++, ok = false;
             keep[i] = ok;
         }
         gf_dem_compact(p, keep);
@@ -241,8 +249,7 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if ((st = gf_config_validate(&cfg)) != GF_OK) goto fail;
     // The series is in d and tau now: a config made from it (calibrate's
     // params.ini, with the first frame as its packing) must not convert again.
-    cfg.dump_diameter = 1.0;
-    cfg.dump_gravity = 1.0;
+    gf_config_set_dump_units(&cfg, 1.0, 1.0);
     out->cfg = cfg;
     r.diameter = u.diameter;
     r.gravity = u.gravity;

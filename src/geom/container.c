@@ -4,21 +4,28 @@
 
 gf_container gf_container_make(const gf_config *cfg)
 {
-    const gf_shape *t = gf_shape_find(cfg->container_shape);
+    gf_container_defs d;
+    gf_config_container_defs(cfg, &d);
+    return gf_container_build(&d);
+}
+
+gf_container gf_container_build(const gf_container_defs *d)
+{
+    const gf_shape *t = gf_shape_find(d->shape);
     gf_container c = {
         .ops = t ? t->ops : &gf_box_ops,
         .type = t,
-        .xlo = -0.5 * cfg->container_width,
-        .xhi = 0.5 * cfg->container_width,
-        .ylo = -0.5 * cfg->container_depth,
-        .yhi = 0.5 * cfg->container_depth,
-        .shape = cfg->orifice_shape,
-        .hole = 0.5 * cfg->orifice_diameter,
-        .ox = cfg->orifice_x,
-        .oy = cfg->orifice_y,
-        .exit_z = gf_config_exit_plane(cfg),
+        .xlo = -0.5 * d->width,
+        .xhi = 0.5 * d->width,
+        .ylo = -0.5 * d->depth,
+        .yhi = 0.5 * d->depth,
+        .shape = d->orifice.shape,
+        .hole = 0.5 * d->orifice.diameter,
+        .ox = d->orifice.x,
+        .oy = d->orifice.y,
+        .z_exit = d->exit_plane,
     };
-    if (t && t->make) t->make(&c, cfg);
+    if (t && t->make) t->make(&c, d);
     return c;
 }
 
@@ -32,7 +39,7 @@ void gf_container_bounds(const gf_container *c, double ztop, double lo[3], doubl
 {
     lo[0] = c->xlo;
     lo[1] = c->ylo;
-    lo[2] = fmin(0.0, c->exit_z) - 1.0;
+    lo[2] = fmin(0.0, c->z_exit) - 1.0;
     hi[0] = c->xhi;
     hi[1] = c->yhi;
     hi[2] = ztop;

@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "granflow/config.h"
+#include "granflow/defs.h"
 
 /// Most wall elements a point can be near at once (box: 4 sides + base;
 /// cylinder: wall, funnel or rim, pipe, column side, bottom or edge; wedge:
@@ -136,10 +137,10 @@ typedef struct gf_shape {
     gf_container_shape id;       ///< config's enum value of that name
     const gf_shape_ops *ops;
     const char *const *keys;     ///< e.g. {"container.width", "container.depth", ..., NULL}
-    /// Fills the shape's parameters of c (c->u) from a validated cfg; the
-    /// shared fields are already set (bounding box from width and depth,
-    /// outlet from the orifice keys, exit plane).
-    void (*make)(gf_container *c, const gf_config *cfg);
+    /// Fills the shape's parameters of c (c->u) from the container defs of
+    /// a validated config; the shared fields are already set (bounding box
+    /// from width and depth, outlet from the orifice keys, exit plane).
+    void (*make)(gf_container *c, const gf_container_defs *d);
     /// True when its walls are the bounding box's sides and its floor the
     /// plane z = 0 (the box): code may then use the bounding box directly.
     bool rectangular;
@@ -180,7 +181,7 @@ struct gf_container {
     gf_orifice_shape shape;    ///< the outlet: circle or slit (a cylinder's is a circle, a wedge's a slit)
     double hole;               ///< outlet radius (circle) or half-width (slit)
     double ox, oy;             ///< outlet centre (circle) or mid-line x = ox (slit); 0 for a cylinder
-    double exit_z;             ///< exit plane: a centre below this (over the outlet) has left
+    double z_exit;             ///< exit plane: a centre below this (over the outlet) has left
     double z_col;              ///< where the straight column starts: the top of a funnel (0 for a flat base)
     double z_bottom;           ///< the lower end of the walls: -(pipe or chute length), 0 for a flat base
     double gate_z;             ///< where the outlet is closed while a packing is made (DEM fill)
@@ -205,6 +206,8 @@ extern const gf_shape gf_mesh_shape;
 /// container.shape with no row in the table gets the box's walls and a
 /// NULL `type` (validation refuses such a config first).
 gf_container gf_container_make(const gf_config *cfg);
+/// The same from the container defs (gf_config_container_defs): what it calls.
+gf_container gf_container_build(const gf_container_defs *d);
 
 /// True when (x, y) lies over the outlet (the hole in the base).
 static inline bool gf_container_over_hole(const gf_container *c, double x, double y)
@@ -217,7 +220,7 @@ static inline bool gf_container_over_hole(const gf_container *c, double x, doubl
 /// True when a centre at (x, y, z) has left through the outlet.
 static inline bool gf_container_exited(const gf_container *c, double x, double y, double z)
 {
-    return z < c->exit_z && gf_container_over_hole(c, x, y);
+    return z < c->z_exit && gf_container_over_hole(c, x, y);
 }
 
 static inline int gf_container_walls(const gf_container *c, const double p[3], double reach, gf_wall_hit *hit)

@@ -253,11 +253,11 @@ static const char *gf_cyl_outlet_name(const gf_container *c)
     return c->u.cyl.pipe > 0.0 ? "end of the outlet pipe" : "outlet";
 }
 
-static void gf_cyl_make(gf_container *c, const gf_config *cfg)
+static void gf_cyl_make(gf_container *c, const gf_container_defs *d)
 {
     gf_cylinder_params *q = &c->u.cyl;
-    double R = cfg->container_radius, ro = 0.5 * cfg->outlet_diameter;
-    double a = cfg->hopper_angle * (3.14159265358979323846 / 180.0);
+    double R = d->radius, ro = 0.5 * d->outlet.diameter;
+    double a = d->angle * (3.14159265358979323846 / 180.0);
     c->xlo = c->ylo = -R;
     c->xhi = c->yhi = R;
     c->shape = GF_ORIFICE_CIRCLE;
@@ -265,15 +265,15 @@ static void gf_cyl_make(gf_container *c, const gf_config *cfg)
     c->ox = c->oy = 0.0; // on the axis (validation rejects an off-centre outlet)
     q->radius = R;
     q->r_out = ro;
-    q->r_in = cfg->inner_radius;
-    q->pipe = cfg->outlet_length;
-    q->angle = cfg->hopper_angle;
-    q->sin_a = cfg->hopper_angle > 0.0 ? sin(a) : 0.0;
-    q->cos_a = cfg->hopper_angle > 0.0 ? cos(a) : 1.0;
+    q->r_in = d->column_radius;
+    q->pipe = d->outlet.length;
+    q->angle = d->angle;
+    q->sin_a = d->angle > 0.0 ? sin(a) : 0.0;
+    q->cos_a = d->angle > 0.0 ? cos(a) : 1.0;
     c->z_col = (R - ro) * q->sin_a / q->cos_a;
     q->cone_len = (R - ro) / q->cos_a;
     c->z_bottom = -q->pipe;
-    c->gate_z = fmin(c->exit_z, 0.0);
+    c->gate_z = fmin(c->z_exit, 0.0);
 }
 
 const gf_shape_ops gf_cylinder_ops = {

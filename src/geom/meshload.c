@@ -83,7 +83,7 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
 {
     const gf_sdf *s = &ms->sdf;
     const gf_stl *m = &s->mesh;
-    const double tol = 1e-6 * fmax(1.0, fabs(ms->exit_z));
+    const double tol = 1e-6 * fmax(1.0, fabs(ms->z_exit));
     char outlet[160];
     if (ms->shape == GF_ORIFICE_SLIT)
         snprintf(outlet, sizeof outlet, "the slit |x - %g| < %g (container.orifice_x, orifice_diameter / 2)", ms->ox,
@@ -94,11 +94,11 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
     for (size_t t = 0; t < m->nt; t++)
         for (int k = 0; k < 3; k++) {
             const double *a = m->v[m->t[t][k]];
-            if (a[2] < ms->exit_z - tol)
+            if (a[2] < ms->z_exit - tol)
                 return gf_error_set(GF_ERR_FORMAT,
                                     "%s: triangle %zu: its vertex (%g, %g, %g) is below the exit plane z = %g "
                                     "(container.exit_z): the outlet must be the mesh's lowest part",
-                                    path, t + 1, a[0], a[1], a[2], ms->exit_z);
+                                    path, t + 1, a[0], a[1], a[2], ms->z_exit);
         }
     bool open = false;
     for (size_t t = 0; t < m->nt; t++)
@@ -109,7 +109,7 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
             for (int e = 0; e < 2; e++) {
                 const double *p = e ? b : a;
                 double dx = p[0] - ms->ox, dy = p[1] - ms->oy;
-                bool on = fabs(p[2] - ms->exit_z) <= tol &&
+                bool on = fabs(p[2] - ms->z_exit) <= tol &&
                           (ms->shape == GF_ORIFICE_SLIT ? fabs(dx) <= ms->hole + 0.05
                                                         : sqrt(dx * dx + dy * dy) <= ms->hole + 0.05);
                 if (!on)
@@ -117,12 +117,12 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
                                         "%s: triangle %zu: its edge (%g, %g, %g)-(%g, %g, %g) is open (no triangle "
                                         "on its other side) away from the outlet, %s on the exit plane z = %g: the "
                                         "mesh must be closed (watertight) except for the outlet",
-                                        path, t + 1, a[0], a[1], a[2], b[0], b[1], b[2], outlet, ms->exit_z);
+                                        path, t + 1, a[0], a[1], a[2], b[0], b[1], b[2], outlet, ms->z_exit);
             }
         }
     // The volume enclosed, the outlet closed by a lid on the exit plane: with
     // the apex on that plane, the lid adds nothing.
-    const double o[3] = {ms->ox, ms->oy, ms->exit_z};
+    const double o[3] = {ms->ox, ms->oy, ms->z_exit};
     double vol = 0.0;
     for (size_t t = 0; t < m->nt; t++) {
         double e[3][3];
@@ -138,12 +138,12 @@ static gf_status gf_ms_check(const gf_meshshape *ms, const char *path)
                             "reverse each triangle's vertex order",
                             path, vol);
     double y = ms->shape == GF_ORIFICE_SLIT ? 0.5 * (s->lo[1] + s->hi[1]) : ms->oy;
-    const double in[3] = {ms->ox, y, ms->exit_z + fmin(0.25, 0.5 * (s->hi[2] - s->lo[2]))};
+    const double in[3] = {ms->ox, y, ms->z_exit + fmin(0.25, 0.5 * (s->hi[2] - s->lo[2]))};
     if (!gf_sdf_inside(s, in))
         return gf_error_set(GF_ERR_FORMAT,
                             "%s: the outlet, %s on the exit plane z = %g, does not open onto the mesh's inside "
                             "(the point (%g, %g, %g) just above it is outside)%s",
-                            path, outlet, ms->exit_z, in[0], in[1], in[2],
+                            path, outlet, ms->z_exit, in[0], in[1], in[2],
                             open ? "" : "; the mesh is closed: its base must lie on the exit plane over the outlet");
     return GF_OK;
 }
@@ -166,7 +166,7 @@ static void gf_ms_release(gf_meshshape *ms)
 // the one under the lid (a funnel's top; the floor for straight walls).
 static double gf_ms_column_start(const gf_meshshape *ms)
 {
-    const double z0 = fmax(0.0, ms->exit_z), z1 = ms->sdf.hi[2] - 0.5;
+    const double z0 = fmax(0.0, ms->z_exit), z1 = ms->sdf.hi[2] - 0.5;
     if (!(z1 > z0)) return z0;
     const double a1 = gf_meshshape_section(ms, z1);
     double zc = z1;
@@ -198,7 +198,7 @@ static double gf_ms_axis_radius(const gf_meshshape *ms)
     for (int a = 0; a < 2; a++) // the bounding box centred on the axis, a square
         if (fabs(s->lo[a] + s->hi[a]) > 0.05 * rmax || fabs(s->hi[a] - s->lo[a] - 2.0 * rmax) > 0.05 * rmax) return 0.0;
     const double tol = 0.05 + rmax * (1.0 - cos(gf_ms_pi / 64.0));
-    const double z0 = fmax(0.0, ms->exit_z), z1 = ms->top;
+    const double z0 = fmax(0.0, ms->z_exit), z1 = ms->top;
     if (!(z1 > z0)) return 0.0;
     for (int k = 0; k < 24; k++) {
         double z = z0 + (z1 - z0) * (k + 0.5) / 24.0, axis[3] = {0.0, 0.0, z};
@@ -219,27 +219,27 @@ static double gf_ms_axis_radius(const gf_meshshape *ms)
     return rmax;
 }
 
-static gf_status gf_ms_build(const gf_config *cfg, gf_meshshape *ms)
+static gf_status gf_ms_build(const gf_container_defs *d, gf_meshshape *ms)
 {
     *ms = (gf_meshshape){
-        .shape = cfg->orifice_shape,
-        .hole = 0.5 * cfg->orifice_diameter,
-        .ox = cfg->orifice_x,
-        .oy = cfg->orifice_y,
-        .exit_z = cfg->exit_z,
+        .shape = d->orifice.shape,
+        .hole = 0.5 * d->orifice.diameter,
+        .ox = d->orifice.x,
+        .oy = d->orifice.y,
+        .z_exit = d->exit_level,
     };
     unsigned char *data = NULL;
     size_t len = 0, cap = 0;
-    gf_status st = gf_fs_read_all(cfg->container_mesh, GF_STL_MAX_BYTES, &data, &len, &cap);
+    gf_status st = gf_fs_read_all(d->mesh, GF_STL_MAX_BYTES, &data, &len, &cap);
     if (st != GF_OK) return st;
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < len; i++) h = (h ^ data[i]) * 1099511628211ull;
     ms->digest = h;
     gf_stl mesh;
-    st = gf_stl_parse(cfg->container_mesh, data, len, cfg->container_mesh_scale, &mesh);
+    st = gf_stl_parse(d->mesh, data, len, d->mesh_scale, &mesh);
     gf_free(data, cap);
     if (st != GF_OK) return st;
-    st = gf_sdf_build(&ms->sdf, &mesh, cfg->exit_z, cfg->container_mesh_resolution);
+    st = gf_sdf_build(&ms->sdf, &mesh, d->exit_level, d->mesh_resolution);
     if (st == GF_OK) st = gf_ms_topology(ms);
     if (st == GF_OK) {
         ms->closed = true;
@@ -247,10 +247,10 @@ static gf_status gf_ms_build(const gf_config *cfg, gf_meshshape *ms)
             for (int k = 0; k < 3; k++)
                 if (ms->sdf.mesh.adj[t][k] < 0) ms->closed = false;
         ms->top = ms->sdf.hi[2] - 1.0;
-        st = gf_ms_check(ms, cfg->container_mesh);
+        st = gf_ms_check(ms, d->mesh);
     }
     if (st == GF_OK) {
-        snprintf(ms->path, sizeof ms->path, "%s", cfg->container_mesh);
+        snprintf(ms->path, sizeof ms->path, "%s", d->mesh);
         ms->z_col = gf_ms_column_start(ms);
         ms->axis_r = gf_ms_axis_radius(ms);
     }
@@ -263,7 +263,7 @@ static gf_status gf_ms_build(const gf_config *cfg, gf_meshshape *ms)
 typedef struct gf_ms_entry {
     struct gf_ms_entry *next;
     char path[GF_PATH_MAX];
-    double scale, res, hole, ox, oy, exit_z;
+    double scale, res, hole, ox, oy, z_exit;
     gf_orifice_shape shape;
     gf_meshshape ms;
 } gf_ms_entry;
@@ -271,37 +271,36 @@ typedef struct gf_ms_entry {
 static gf_ms_entry *gf_ms_cache;
 static atomic_flag gf_ms_lock = ATOMIC_FLAG_INIT;
 
-static bool gf_ms_same(const gf_ms_entry *e, const gf_config *cfg)
+static bool gf_ms_same(const gf_ms_entry *e, const gf_container_defs *d)
 {
-    return strcmp(e->path, cfg->container_mesh) == 0 && e->scale == cfg->container_mesh_scale &&
-           e->res == cfg->container_mesh_resolution && e->hole == 0.5 * cfg->orifice_diameter &&
-           e->ox == cfg->orifice_x && e->oy == cfg->orifice_y && e->exit_z == cfg->exit_z &&
-           e->shape == cfg->orifice_shape;
+    return strcmp(e->path, d->mesh) == 0 && e->scale == d->mesh_scale && e->res == d->mesh_resolution &&
+           e->hole == 0.5 * d->orifice.diameter && e->ox == d->orifice.x && e->oy == d->orifice.y &&
+           e->z_exit == d->exit_level && e->shape == d->orifice.shape;
 }
 
-gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out)
+gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out)
 {
     *out = NULL;
-    if (!cfg->container_mesh[0])
+    if (!d->mesh[0])
         return gf_error_set(GF_ERR_PARAM, "container.shape = mesh needs container.mesh = FILE.stl");
     while (atomic_flag_test_and_set(&gf_ms_lock)) {
     }
     gf_status st = GF_OK;
     gf_ms_entry *e = gf_ms_cache;
-    while (e && !gf_ms_same(e, cfg)) e = e->next;
+    while (e && !gf_ms_same(e, d)) e = e->next;
     if (!e) {
         e = gf_alloc(sizeof *e);
         if (!e) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a mesh");
-        if (st == GF_OK) st = gf_ms_build(cfg, &e->ms);
+        if (st == GF_OK) st = gf_ms_build(d, &e->ms);
         if (st == GF_OK) {
-            snprintf(e->path, sizeof e->path, "%s", cfg->container_mesh);
-            e->scale = cfg->container_mesh_scale;
-            e->res = cfg->container_mesh_resolution;
-            e->hole = 0.5 * cfg->orifice_diameter;
-            e->ox = cfg->orifice_x;
-            e->oy = cfg->orifice_y;
-            e->exit_z = cfg->exit_z;
-            e->shape = cfg->orifice_shape;
+            snprintf(e->path, sizeof e->path, "%s", d->mesh);
+            e->scale = d->mesh_scale;
+            e->res = d->mesh_resolution;
+            e->hole = 0.5 * d->orifice.diameter;
+            e->ox = d->orifice.x;
+            e->oy = d->orifice.y;
+            e->z_exit = d->exit_level;
+            e->shape = d->orifice.shape;
             e->next = gf_ms_cache;
             gf_ms_cache = e;
         } else {
@@ -314,10 +313,10 @@ gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out)
     return st;
 }
 
-gf_status gf_meshshape_digest(const gf_config *cfg, uint64_t *digest)
+gf_status gf_meshshape_digest(const gf_container_defs *d, uint64_t *digest)
 {
     const gf_meshshape *ms;
-    gf_status st = gf_meshshape_load(cfg, &ms);
+    gf_status st = gf_meshshape_load(d, &ms);
     if (st == GF_OK) *digest = ms->digest;
     return st;
 }
@@ -343,18 +342,20 @@ void gf_meshshape_cache_clear(void)
 static gf_status gf_ms_config_check(void *arg)
 {
     gf_config *cfg = arg;
-    if (cfg->container_shape != GF_SHAPE_MESH) return GF_OK;
+    gf_container_defs d;
+    gf_config_container_defs(cfg, &d);
+    if (d.shape != GF_SHAPE_MESH) return GF_OK;
     char where[GF_PATH_MAX + 32];
     if (gf_config_where(cfg, "container.mesh", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
     const gf_meshshape *ms;
-    gf_status st = gf_meshshape_load(cfg, &ms);
+    gf_status st = gf_meshshape_load(&d, &ms);
     if (st != GF_OK) {
         char why[1024];
         snprintf(why, sizeof why, "%s", gf_last_error());
         return gf_error_set(st == GF_ERR_NOMEM ? st : GF_ERR_PARAM, "%s: container.mesh: %s", where, why);
     }
-    cfg->container_width = 2.0 * fmax(fabs(ms->sdf.lo[0]), fabs(ms->sdf.hi[0]));
-    cfg->container_depth = 2.0 * fmax(fabs(ms->sdf.lo[1]), fabs(ms->sdf.hi[1]));
+    gf_config_set_extent(cfg, 2.0 * fmax(fabs(ms->sdf.lo[0]), fabs(ms->sdf.hi[0])),
+                         2.0 * fmax(fabs(ms->sdf.lo[1]), fabs(ms->sdf.hi[1])));
     return GF_OK;
 }
 

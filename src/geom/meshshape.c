@@ -75,7 +75,7 @@ static bool gf_ms_visit(void *ctx, uint32_t t)
     double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (!(dist < w->search)) return true;
     // A closed mesh's base is cut open over the outlet by the orifice keys.
-    if (ms->closed && fabs(q[2] - ms->exit_z) < 1e-9 && gf_ms_over_hole(ms, q[0], q[1])) return true;
+    if (ms->closed && fabs(q[2] - ms->z_exit) < 1e-9 && gf_ms_over_hole(ms, q[0], q[1])) return true;
     const double *no = s->n[t]; // outward
     bool plane = r == GF_SDF_FACE, in = true;
     if (r != GF_SDF_FACE && r < GF_SDF_VERT0) {
@@ -99,7 +99,7 @@ static bool gf_ms_visit(void *ctx, uint32_t t)
             if (d[0] * (pw[0] - pv[0]) + d[1] * (pw[1] - pv[1]) + d[2] * (pw[2] - pv[2]) > 0.0) return true;
         }
         const double *vn = s->vn[v];
-        in = s->vopen[v] ? p[2] >= ms->exit_z : d[0] * vn[0] + d[1] * vn[1] + d[2] * vn[2] <= 0.0;
+        in = s->vopen[v] ? p[2] >= ms->z_exit : d[0] * vn[0] + d[1] * vn[1] + d[2] * vn[2] <= 0.0;
         if (!ms->vconvex[v] && in) return true; // inside a concave corner: its faces answer
     }
     if (plane) {
@@ -140,17 +140,17 @@ static bool gf_ms_contains(const gf_container *c, double x, double y, double z, 
     if (!ms) return false;
     double m = r - tol, p[3] = {x, y, z};
     bool hole = gf_container_over_hole(c, x, y);
-    if (z < ms->exit_z) return hole; // passing through the outlet, as the box's
+    if (z < ms->z_exit) return hole; // passing through the outlet, as the box's
     double d = gf_sdf_distance(&ms->sdf, p, fmax(m, 0.0));
-    if (ms->closed && hole && z < ms->exit_z + fmax(m, 0.0)) return true;
-    if (!(d > 0.0)) return hole && z < ms->exit_z + fmax(m, 0.0) && d > -1e-9;
-    return d >= m || (hole && z < ms->exit_z + m);
+    if (ms->closed && hole && z < ms->z_exit + fmax(m, 0.0)) return true;
+    if (!(d > 0.0)) return hole && z < ms->z_exit + fmax(m, 0.0) && d > -1e-9;
+    return d >= m || (hole && z < ms->z_exit + m);
 }
 
 static void gf_ms_spot_clamp(const gf_container *c, double n[3], double dw)
 {
     const gf_meshshape *ms = c->u.mesh;
-    if (!ms || n[2] < ms->exit_z) return;
+    if (!ms || n[2] < ms->z_exit) return;
     // Moved sideways (as the cylinder moves it off its funnel) until it is
     // d_w from every side wall near it: twice, for corners.
     for (int pass = 0; pass < 3; pass++) {
@@ -197,7 +197,7 @@ static double gf_ms_floor_z(const gf_container *c, double x, double y, double r)
     double z = s->hi[2] - r, step = fmax(0.05, fmin(0.25, 0.5 * r));
     double p[3] = {x, y, z};
     if (gf_sdf_distance(s, p, r) < r) return z;
-    double lo = ms->exit_z + r;
+    double lo = ms->z_exit + r;
     while (z - step > lo) {
         p[2] = z - step;
         if (gf_sdf_distance(s, p, r) < r) break;
@@ -220,7 +220,7 @@ static double gf_ms_floor_z(const gf_container *c, double x, double y, double r)
 // gives a segment, oriented with the inside on its left; the shoelace sum.
 double gf_meshshape_section(const gf_meshshape *ms, double z)
 {
-    if (!ms || z < ms->exit_z) return 0.0;
+    if (!ms || z < ms->z_exit) return 0.0;
     const gf_stl *m = &ms->sdf.mesh;
     double area = 0.0;
     for (size_t t = 0; t < m->nt; t++) {
@@ -268,7 +268,7 @@ bool gf_meshshape_slice_y(const gf_meshshape *ms, double y, size_t t, double seg
 static bool gf_ms_clear(const gf_container *c, double x, double y, double z, double m)
 {
     const gf_meshshape *ms = c->u.mesh;
-    if (!ms || z < ms->exit_z + m) return false;
+    if (!ms || z < ms->z_exit + m) return false;
     const double p[3] = {x, y, z};
     return gf_sdf_value(&ms->sdf, p) > m + ms->sdf.h * gf_ms_sqrt3 * 1.001 + 1e-9;
 }
@@ -323,7 +323,7 @@ static int gf_ms_simplify(double (*p)[2], int n, bool closed, double eps)
 
 static void gf_ms_box_outline(const gf_container *c, double ztop, gf_outline *o)
 {
-    const double q[4][2] = {{c->xlo, c->exit_z}, {c->xhi, c->exit_z}, {c->xhi, ztop}, {c->xlo, ztop}};
+    const double q[4][2] = {{c->xlo, c->z_exit}, {c->xhi, c->z_exit}, {c->xhi, ztop}, {c->xlo, ztop}};
     o->n = 4;
     memcpy(o->p, q, sizeof q);
 }
@@ -410,14 +410,14 @@ static void gf_ms_outline(const gf_container *c, double ztop, gf_outline *o)
     memcpy(o->p, pt, (size_t)n * sizeof pt[0]);
     // The walls: runs of segments that are neither the cut at ztop nor the
     // exit plane over the outlet. A loop starts at such a segment.
-    const double tol = 1e-6 * fmax(1.0, fabs(ms->exit_z));
+    const double tol = 1e-6 * fmax(1.0, fabs(ms->z_exit));
     int nseg = closed ? n : n - 1, start = 0;
     bool wall[GF_OUTLINE_MAX];
     for (int j = 0; j < nseg; j++) {
         const double *a = pt[j], *b = pt[(j + 1) % n];
         bool lid = a[1] >= ztop - 1e-9 && b[1] >= ztop - 1e-9;
         double mx = 0.5 * (a[0] + b[0]);
-        bool hole = fabs(a[1] - ms->exit_z) <= tol && fabs(b[1] - ms->exit_z) <= tol && fabs(mx - c->ox) < c->hole;
+        bool hole = fabs(a[1] - ms->z_exit) <= tol && fabs(b[1] - ms->z_exit) <= tol && fabs(mx - c->ox) < c->hole;
         wall[j] = !lid && !hole;
         if (closed && !wall[j] && start == 0) start = j + 1;
     }
@@ -507,20 +507,20 @@ static int gf_ms_describe(const gf_container *c, const char *const where[3], cha
 
 static const char *gf_ms_outlet_name(const gf_container *c)
 {
-    return c->exit_z < 0.0 ? "outlet on the exit plane" : "orifice";
+    return c->z_exit < 0.0 ? "outlet on the exit plane" : "orifice";
 }
 
 // The mesh from the cache (validation loaded it; NULL when it cannot be
 // loaded: then the container has no inside), its bounding box, the outlet
 // the orifice keys' on the exit plane.
-static void gf_ms_make(gf_container *c, const gf_config *cfg)
+static void gf_ms_make(gf_container *c, const gf_container_defs *d)
 {
     const gf_meshshape *ms = NULL;
-    if (gf_meshshape_load(cfg, &ms) != GF_OK) gf_error_clear();
+    if (gf_meshshape_load(d, &ms) != GF_OK) gf_error_clear();
     c->u.mesh = ms;
-    c->exit_z = cfg->exit_z;
-    c->z_bottom = fmin(0.0, cfg->exit_z); // the packing is built from the outlet up
-    c->gate_z = fmin(0.0, cfg->exit_z);
+    c->z_exit = d->exit_level;
+    c->z_bottom = fmin(0.0, d->exit_level); // the packing is built from the outlet up
+    c->gate_z = fmin(0.0, d->exit_level);
     c->z_col = ms ? ms->z_col : 0.0;
     if (ms) {
         c->xlo = ms->sdf.lo[0];

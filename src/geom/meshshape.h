@@ -18,7 +18,7 @@
 typedef struct gf_meshshape {
     gf_sdf sdf;
     gf_orifice_shape shape; ///< the outlet: container.orifice_shape, _diameter, _x, _y on the plane exit_z
-    double hole, ox, oy, exit_z;
+    double hole, ox, oy, z_exit;
     double top;             ///< height of the cross-section re-insertion asks about (just under the lid)
     uint64_t digest;        ///< FNV-1a of the file's bytes (a checkpoint names the mesh by it)
     uint8_t *tconvex;       ///< per triangle, bit k: edge k is convex seen from inside (or open)
@@ -38,7 +38,7 @@ typedef struct gf_meshshape {
 /// file, truncated, degenerate, inverted or inconsistent normals, open away
 /// from the outlet, reaching below the exit plane, an outlet that opens
 /// onto no inside).
-gf_status gf_meshshape_load(const gf_config *cfg, const gf_meshshape **out);
+gf_status gf_meshshape_load(const gf_container_defs *d, const gf_meshshape **out);
 
 /// Area of the mesh's horizontal cross-section at height z, d^2 (0 below the exit plane).
 double gf_meshshape_section(const gf_meshshape *ms, double z);
@@ -49,7 +49,7 @@ bool gf_meshshape_slice_y(const gf_meshshape *ms, double y, size_t t, double seg
 
 /// The FNV-1a digest of the bytes of cfg's container.mesh (a checkpoint
 /// names the mesh by it: a run directory's copy is the same mesh).
-gf_status gf_meshshape_digest(const gf_config *cfg, uint64_t *digest);
+gf_status gf_meshshape_digest(const gf_container_defs *d, uint64_t *digest);
 
 /// Frees every cached mesh (tests that count allocations; no container
 /// made earlier may be used afterwards).

@@ -97,7 +97,7 @@ static double gf_sdf_tri(const gf_sdf *s, uint32_t t, const double p[3])
         if (s->vopen[v]) open = true;
         else memcpy(pn, s->vn[v], sizeof pn);
     }
-    bool in = open ? p[2] >= s->exit_z : gf_sdf_dot(d, pn) <= 0.0;
+    bool in = open ? p[2] >= s->z_exit : gf_sdf_dot(d, pn) <= 0.0;
     return in ? dist : -dist;
 }
 
@@ -206,7 +206,7 @@ void gf_sdf_normal(const gf_sdf *s, const double p[3], double n[3])
 
 bool gf_sdf_inside(const gf_sdf *s, const double p[3])
 {
-    if (p[2] < s->exit_z) return false;
+    if (p[2] < s->z_exit) return false;
     return gf_sdf_distance(s, p, 0.0) > 0.0;
 }
 
@@ -381,7 +381,7 @@ static gf_status gf_sdf_signs(gf_sdf *s, uint8_t *in)
             double zk = s->g0[2] + k * s->h;
             while (c < n && z[c] <= zk) c++;
             above = n - c;
-            in[(size_t)k * ncol + col] = zk >= s->exit_z && (above & 1);
+            in[(size_t)k * ncol + col] = zk >= s->z_exit && (above & 1);
         }
     }
     GF_DELETE(zs, nz ? nz : 1);
@@ -445,7 +445,7 @@ static gf_status gf_sdf_field(gf_sdf *s)
 
 gf_status gf_sdf_build(gf_sdf *s, gf_stl *mesh, double exit_z, double h)
 {
-    *s = (gf_sdf){.mesh = *mesh, .exit_z = exit_z, .h = h};
+    *s = (gf_sdf){.mesh = *mesh, .z_exit = exit_z, .h = h};
     *mesh = (gf_stl){0};
     if (!(h > 0.0 && isfinite(h))) return gf_error_set(GF_ERR_PARAM, "mesh resolution %g must be > 0", h);
     gf_status st = gf_sdf_normals(s);

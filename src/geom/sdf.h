@@ -31,7 +31,7 @@ typedef struct gf_sdf {
     double (*n)[3];        ///< outward unit normal of each triangle
     double (*vn)[3];       ///< angle-weighted pseudonormal of each vertex (outward)
     uint8_t *vopen;        ///< vertex on an open (boundary) edge
-    double exit_z;         ///< nothing below this plane is inside (the outlet's plane)
+    double z_exit;         ///< nothing below this plane is inside (the outlet's plane)
     double lo[3], hi[3];   ///< the mesh's bounding box
     // The field: nodes lo - pad + h (i, j, k).
     double g0[3], h, band;

@@ -255,16 +255,16 @@ static const char *gf_wedge_outlet_name(const gf_container *c)
     return c->u.wedge.chute > 0.0 ? "end of the chute" : "slit";
 }
 
-static void gf_wedge_make(gf_container *c, const gf_config *cfg)
+static void gf_wedge_make(gf_container *c, const gf_container_defs *d)
 {
     gf_wedge_params *w = &c->u.wedge;
-    const double a = cfg->hopper_angle * (3.14159265358979323846 / 180.0);
+    const double a = d->angle * (3.14159265358979323846 / 180.0);
     c->shape = GF_ORIFICE_SLIT;
     c->oy = 0.0;
-    w->angle = cfg->hopper_angle;
+    w->angle = d->angle;
     w->sin_a = sin(a);
     w->cos_a = cos(a);
-    w->chute = cfg->outlet_length;
+    w->chute = d->outlet.length;
     w->run[0] = fmax(0.0, (c->ox - c->hole) - c->xlo);
     w->run[1] = fmax(0.0, c->xhi - (c->ox + c->hole));
     for (int k = 0; k < 2; k++) {
@@ -273,7 +273,7 @@ static void gf_wedge_make(gf_container *c, const gf_config *cfg)
     }
     c->z_col = fmax(w->top[0], w->top[1]);
     c->z_bottom = -w->chute;
-    c->gate_z = fmin(c->exit_z, 0.0);
+    c->gate_z = fmin(c->z_exit, 0.0);
 }
 
 const gf_shape_ops gf_wedge_ops = {

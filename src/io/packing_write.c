@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "granflow/defs.h"
 #include "io/dump_write.h"
 
 enum { GF_WRITE_PATH_MAX = 4096 };
@@ -37,10 +38,12 @@ static void gf_write_bounds(const gf_packing *p, const gf_config *cfg, double lo
         if (i == 0 || p->z[i] + r > zmax) zmax = p->z[i] + r;
     }
     if (cfg) {
-        lo[0] = -0.5 * cfg->container_width;
-        hi[0] = 0.5 * cfg->container_width;
-        lo[1] = -0.5 * cfg->container_depth;
-        hi[1] = 0.5 * cfg->container_depth;
+        gf_container_defs d;
+        gf_config_container_defs(cfg, &d);
+        lo[0] = -0.5 * d.width;
+        hi[0] = 0.5 * d.width;
+        lo[1] = -0.5 * d.depth;
+        hi[1] = 0.5 * d.depth;
     } else {
         lo[0] = bmin[0];
         hi[0] = bmax[0];

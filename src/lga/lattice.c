@@ -94,15 +94,14 @@ gf_status gf_lga_lattice_alloc(gf_lga *l, int w, int h, bool periodic)
         }
     memcpy(l->next, l->state, l->nsites * sizeof *l->state);
 
-    const gf_config *c = &l->cfg;
     for (int k = 0; k < 14; k++) {
-        l->thr_p[k] = gf_lga_thr(pow(c->lga_p, k));
-        l->thr_q[k] = gf_lga_thr(pow(c->lga_q, k));
+        l->thr_p[k] = gf_lga_thr(pow(l->d.p, k));
+        l->thr_q[k] = gf_lga_thr(pow(l->d.q, k));
     }
-    l->thr_g = gf_lga_thr(c->lga_g);
-    l->thr_h = gf_lga_thr(c->lga_h);
-    l->thr_k = gf_lga_thr(c->lga_k);
-    l->thr_b = gf_lga_thr(c->lga_b);
+    l->thr_g = gf_lga_thr(l->d.g);
+    l->thr_h = gf_lga_thr(l->d.h);
+    l->thr_k = gf_lga_thr(l->d.k);
+    l->thr_b = gf_lga_thr(l->d.b);
     return GF_OK;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "granflow/config.h"
+#include "granflow/defs.h"
 #include "granflow/lga.h"
 #include "lga/table.h"
 
@@ -45,7 +46,8 @@ typedef struct gf_lga_reflection {
 /// of GF_LGA_HALO sites on every side; site (i, j) sits at
 /// x = i sqrt(3)/2, y = j + (i odd ? 1/2 : 0) (nearest-neighbour distance 1).
 struct gf_lga {
-    gf_config cfg;          ///< the configuration (validated copy, auto values resolved)
+    gf_config cfg;          ///< the configuration (validated copy, auto values resolved), for config/'s messages and config.ini
+    gf_lga_defs d;          ///< what the automaton reads (gf_config_lga_defs of cfg)
     gf_lga_scenario scenario;
     int w, h;               ///< interior columns and rows
     int stride, rows;       ///< w + 2 halo, h + 2 halo

@@ -22,8 +22,9 @@ static gf_status gf_lga_begin(const gf_config *cfg, gf_lga **out, gf_lga **l)
     *l = gf_alloc(sizeof **l);
     if (!*l) return gf_error_set(GF_ERR_NOMEM, "out of memory (LGA engine)");
     (*l)->cfg = c;
-    (*l)->scenario = c.lga_scenario;
-    gf_rng_seed(&(*l)->rng, c.run_seed, GF_LGA_RNG_STREAM);
+    gf_config_lga_defs(&c, &(*l)->d);
+    (*l)->scenario = (*l)->d.scenario;
+    gf_rng_seed(&(*l)->rng, (*l)->d.seed, GF_LGA_RNG_STREAM);
     (*l)->settle_skip = -1; // not drawn yet
     return GF_OK;
 }

@@ -142,12 +142,12 @@ void gf_lga_settle(gf_lga *l)
             if ((s & (GF_LGA_REST | GF_LGA_MARK)) != GF_LGA_REST) continue;
             // Bernoulli(h) per resting particle, drawn as geometric gaps between
             // successes (the same law, one random number per success).
-            if (l->settle_skip < 0) l->settle_skip = gf_lga_geometric_gap(l, l->cfg.lga_h);
+            if (l->settle_skip < 0) l->settle_skip = gf_lga_geometric_gap(l, l->d.h);
             if (l->settle_skip > 0) {
                 l->settle_skip--;
                 continue;
             }
-            l->settle_skip = gf_lga_geometric_gap(l, l->cfg.lga_h); // failures before the next success
+            l->settle_skip = gf_lga_geometric_gap(l, l->d.h); // failures before the next success
             uint64_t r = gf_rng_next(&l->rng);
             size_t cand[5];
             int nc = 0;

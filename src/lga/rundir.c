@@ -127,7 +127,6 @@ static gf_status gf_lga_write_summary(const gf_lga_out *o, const gf_lga *l, cons
     FILE *f;
     gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
     if (st != GF_OK) return st;
-    const gf_config *c = &l->cfg;
     gf_lga_stats t = gf_lga_get_stats(l);
     gf_json j = gf_json_start(f, true);
     gf_json_object_begin(&j, NULL);
@@ -135,17 +134,17 @@ static gf_status gf_lga_write_summary(const gf_lga_out *o, const gf_lga *l, cons
     gf_json_string(&j, "status", status);
     gf_json_string(&j, "scenario", gf_lga_scenario_name(s->scenario));
     if (s->scenario == GF_LGA_SILO) {
-        gf_json_string(&j, "silo_flow", c->lga_silo_flow == GF_LGA_FUNNEL ? "funnel" : "mass");
-        gf_json_general(&j, "hopper_angle", gf_lga_hopper_angle(c), 6);
-        gf_json_general(&j, "outlet_width", c->lga_outlet_width, 6);
+        gf_json_string(&j, "silo_flow", l->d.flow == GF_LGA_FUNNEL ? "funnel" : "mass");
+        gf_json_general(&j, "hopper_angle", gf_lga_hopper_angle(&l->d), 6);
+        gf_json_general(&j, "outlet_width", l->d.outlet_width, 6);
     }
-    gf_json_uint(&j, "seed", c->run_seed);
-    gf_json_general(&j, "p", c->lga_p, 6);
-    gf_json_general(&j, "q", c->lga_q, 6);
-    gf_json_general(&j, "g", c->lga_g, 6);
-    gf_json_general(&j, "h", c->lga_h, 6);
-    gf_json_general(&j, "k", c->lga_k, 6);
-    gf_json_general(&j, "b", c->lga_b, 6);
+    gf_json_uint(&j, "seed", l->d.seed);
+    gf_json_general(&j, "p", l->d.p, 6);
+    gf_json_general(&j, "q", l->d.q, 6);
+    gf_json_general(&j, "g", l->d.g, 6);
+    gf_json_general(&j, "h", l->d.h, 6);
+    gf_json_general(&j, "k", l->d.k, 6);
+    gf_json_general(&j, "b", l->d.b, 6);
     gf_json_int(&j, "lattice_width", t.width);
     gf_json_int(&j, "lattice_height", t.height);
     gf_json_int(&j, "fluid_sites", t.fluid_sites);
@@ -225,7 +224,7 @@ static bool gf_lga_auto_done(const gf_lga *l, int64_t *quiet, int64_t *last_out,
     case GF_LGA_PILE:
         // a heap that buries the feed cannot take more: give up after ten times the feeding time
         if (s.to_add > 0)
-            return (double)s.iteration >= 10.0 * (double)(s.added + s.to_add) / l->cfg.lga_feed_rate + 1000.0;
+            return (double)s.iteration >= 10.0 * (double)(s.added + s.to_add) / l->d.feed_rate + 1000.0;
         if (*fed_at < 0) *fed_at = s.iteration;
         if (s.iteration % 10 == 0) *quiet = gf_lga_moving(l) == 0 ? *quiet + 10 : 0;
         return *quiet >= GF_LGA_QUIET || s.iteration - *fed_at >= GF_LGA_PILE_SETTLE_MAX;
@@ -295,8 +294,8 @@ gf_status gf_lga_run_dir(const gf_config *cfg, const gf_lga_run_opts *opts, gf_l
                         .slope_right = NAN, .wave_variance_initial = NAN, .wave_variance_final = NAN};
     char title[96];
     snprintf(title, sizeof title, "LGA %s", gf_lga_scenario_name(l->scenario));
-    const int64_t until = l->cfg.lga_iterations; // 0: the scenario's own end
-    const int64_t every = l->cfg.lga_snapshot_interval;
+    const int64_t until = l->d.iterations; // 0: the scenario's own end
+    const int64_t every = l->d.snapshot_interval;
     double wave_sum = 0;
     int64_t wave_n = 0, quiet = 0, last_out = 0, fed_at = -1;
     bool interrupted = false;

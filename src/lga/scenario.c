@@ -10,10 +10,10 @@
 
 #define GF_LGA_SQRT3_2 0.86602540378443864676 // column spacing
 
-double gf_lga_hopper_angle(const gf_config *cfg)
+double gf_lga_hopper_angle(const gf_lga_defs *d)
 {
-    if (!isnan(cfg->lga_hopper_angle)) return cfg->lga_hopper_angle;
-    return cfg->lga_silo_flow == GF_LGA_FUNNEL ? GF_LGA_FUNNEL_ANGLE : GF_LGA_MASS_ANGLE;
+    if (!isnan(d->angle)) return d->angle;
+    return d->flow == GF_LGA_FUNNEL ? GF_LGA_FUNNEL_ANGLE : GF_LGA_MASS_ANGLE;
 }
 
 static int gf_lga_or(int64_t v, int def) { return v > 0 ? (int)v : def; }
@@ -40,7 +40,7 @@ static gf_status gf_lga_scenario_alloc(gf_lga *l, int w, int h, bool periodic)
         return gf_error_set(GF_ERR_PARAM,
                             "%slga.width = %lld and lga.height = %lld make a lattice of %d x %d sites, too large (at "
                             "most %.0f sites)",
-                            at, (long long)l->cfg.lga_width, (long long)l->cfg.lga_height, w, h,
+                            at, (long long)l->d.width, (long long)l->d.height, w, h,
                             (double)GF_LGA_MAX_SITES);
     }
     return gf_lga_lattice_alloc(l, w, h, periodic);
@@ -109,8 +109,7 @@ static gf_status gf_lga_fill_random(gf_lga *l, int64_t n)
 // the edge leaves), particles fed in as v4 at the top centre.
 static gf_status gf_lga_build_pile(gf_lga *l)
 {
-    const gf_config *c = &l->cfg;
-    int w = gf_lga_or(c->lga_width, GF_LGA_PILE_WIDTH), h = gf_lga_or(c->lga_height, GF_LGA_PILE_HEIGHT);
+    int w = gf_lga_or(l->d.width, GF_LGA_PILE_WIDTH), h = gf_lga_or(l->d.height, GF_LGA_PILE_HEIGHT);
     if (w < 8) return gf_lga_size_error(l, "lga.width", w, "pile", 8);
     if (h < 6) return gf_lga_size_error(l, "lga.height", h, "pile", 6);
     gf_status st = gf_lga_scenario_alloc(l, w, h, false);
@@ -136,8 +135,8 @@ static gf_status gf_lga_build_pile(gf_lga *l)
             if (!l->feed_sites) return gf_error_set(GF_ERR_NOMEM, "out of memory (LGA feed)");
         }
     }
-    l->feed_total = c->lga_particles > 0 ? c->lga_particles : GF_LGA_PILE_PARTICLES;
-    l->feed_rate = c->lga_feed_rate;
+    l->feed_total = l->d.particles > 0 ? l->d.particles : GF_LGA_PILE_PARTICLES;
+    l->feed_rate = l->d.feed_rate;
     return gf_lga_scenario_finish(l);
 }
 
@@ -145,8 +144,7 @@ static gf_status gf_lga_build_pile(gf_lga *l)
 // particles placed at random with random velocities.
 static gf_status gf_lga_build_channel(gf_lga *l)
 {
-    const gf_config *c = &l->cfg;
-    int w = gf_lga_or(c->lga_width, GF_LGA_CHANNEL_WIDTH) + 2, h = gf_lga_or(c->lga_height, GF_LGA_CHANNEL_HEIGHT);
+    int w = gf_lga_or(l->d.width, GF_LGA_CHANNEL_WIDTH) + 2, h = gf_lga_or(l->d.height, GF_LGA_CHANNEL_HEIGHT);
     if (h < 8) return gf_lga_size_error(l, "lga.height", h, "channel", 8);
     gf_status st = gf_lga_scenario_alloc(l, w, h, true);
     if (st != GF_OK) return st;
@@ -154,8 +152,8 @@ static gf_status gf_lga_build_channel(gf_lga *l)
         l->state[gf_lga_index(l, 0, j)] = GF_LGA_WALL;
         l->state[gf_lga_index(l, w - 1, j)] = GF_LGA_WALL;
     }
-    int64_t n = c->lga_particles > 0 ? c->lga_particles : GF_LGA_CHANNEL_PARTICLES;
-    if (c->lga_particles == 0 && (c->lga_width > 0 || c->lga_height > 0))
+    int64_t n = l->d.particles > 0 ? l->d.particles : GF_LGA_CHANNEL_PARTICLES;
+    if (l->d.particles == 0 && (l->d.width > 0 || l->d.height > 0))
         n = (int64_t)(0.7 * (w - 2) * (double)h + 0.5); // the default density, 0.7 per site
     if ((st = gf_lga_fill_random(l, n)) != GF_OK) return st;
     return gf_lga_scenario_finish(l);
@@ -168,10 +166,10 @@ static gf_status gf_lga_build_channel(gf_lga *l)
 static gf_status gf_lga_build_silo(gf_lga *l)
 {
     const gf_config *c = &l->cfg;
-    int wp = gf_lga_or(c->lga_width, GF_LGA_SILO_WIDTH), hp = gf_lga_or(c->lga_height, GF_LGA_SILO_HEIGHT);
-    double angle = gf_lga_hopper_angle(c);
+    int wp = gf_lga_or(l->d.width, GF_LGA_SILO_WIDTH), hp = gf_lga_or(l->d.height, GF_LGA_SILO_HEIGHT);
+    double angle = gf_lga_hopper_angle(&l->d);
     double half = 0.5 * wp * GF_LGA_SQRT3_2; // half-width of the parallel part, d
-    double out = 0.5 * c->lga_outlet_width;
+    double out = 0.5 * l->d.outlet_width;
     if (out > half - 1.0) {
         char at[GF_PATH_MAX + 40], where[GF_PATH_MAX + 32];
         gf_config_where_lead(c, gf_config_is_set(c, "lga.outlet_width") ? "lga.outlet_width" : "lga.width", at,
@@ -180,7 +178,7 @@ static gf_status gf_lga_build_silo(gf_lga *l)
         return gf_error_set(GF_ERR_PARAM,
                             "%slga.outlet_width = %g must be less than the silo's width %g d - 2 (lga.width = %d "
                             "columns, %s)",
-                            at, c->lga_outlet_width, 2.0 * half, wp, where);
+                            at, l->d.outlet_width, 2.0 * half, wp, where);
     }
     if (hp < 4) return gf_lga_size_error(l, "lga.height", hp, "silo's parallel part", 4);
     double tana = tan(angle * 3.14159265358979323846 / 180.0);
@@ -201,7 +199,7 @@ static gf_status gf_lga_build_silo(gf_lga *l)
             if (y < y0) *s = dx < out ? GF_LGA_SINK : GF_LGA_WALL;
             else if (!(dx < fmin(half, out + (y - y0) * tana))) *s = GF_LGA_WALL;
         }
-    int64_t n = c->lga_particles > 0 ? c->lga_particles : GF_LGA_SILO_PARTICLES;
+    int64_t n = l->d.particles > 0 ? l->d.particles : GF_LGA_SILO_PARTICLES;
     int64_t placed = 0;
     for (int j = 0; j < h && placed < n; j++)
         for (int i = 0; i < w && placed < n; i++) {
@@ -221,10 +219,10 @@ static gf_status gf_lga_build_silo(gf_lga *l)
 
 gf_status gf_lga_scenario_build(gf_lga *l)
 {
-    switch (l->cfg.lga_scenario) {
+    switch (l->d.scenario) {
     case GF_LGA_PILE: return gf_lga_build_pile(l);
     case GF_LGA_CHANNEL: return gf_lga_build_channel(l);
     case GF_LGA_SILO: return gf_lga_build_silo(l);
     }
-    return gf_error_set(GF_ERR_PARAM, "lga.scenario: unknown scenario %d", (int)l->cfg.lga_scenario);
+    return gf_error_set(GF_ERR_PARAM, "lga.scenario: unknown scenario %d", (int)l->d.scenario);
 }

@@ -29,6 +29,6 @@ gf_status gf_lga_scenario_build(gf_lga *l);
 gf_status gf_lga_scenario_finish(gf_lga *l);
 
 /// The hopper angle the silo uses, degrees (lga.hopper_angle, or by lga.silo_flow when auto).
-double gf_lga_hopper_angle(const gf_config *cfg);
+double gf_lga_hopper_angle(const gf_lga_defs *d);
 
 #endif

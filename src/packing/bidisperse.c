@@ -13,16 +13,19 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "granflow/defs.h"
 
 gf_status gf_packing_bidisperse(const gf_config *cfg, gf_packing *p)
 {
-    const double f = cfg->packing_fraction2, r2 = cfg->packing_radius2;
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
+    const double f = pd.fraction2, r2 = pd.radius2;
     if (!(f > 0.0)) return GF_OK;
     if (!(r2 > 0.0 && r2 <= 0.5))
         return gf_error_set(GF_ERR_PARAM, "packing.radius2 = %g: a generated second species must be no larger "
                                           "than the first (0.5); import a larger one", r2);
     gf_rng rng;
-    gf_rng_seed(&rng, cfg->run_seed, 0x4232u /* "B2": the second size */);
+    gf_rng_seed(&rng, pd.seed, 0x4232u /* "B2": the second size */);
     for (size_t i = 0; i < p->n; i++)
         if (gf_rng_uniform(&rng) < f) p->r[i] = r2;
     return GF_OK;

@@ -20,6 +20,7 @@
 #include "core/rng.h"
 #include "geom/celllist.h"
 #include "geom/container.h"
+#include "granflow/defs.h"
 #include "packing/bidisperse.h"
 
 // Parameters of the method (docs/packing.md says why each has its value).
@@ -569,7 +570,7 @@ static int gf_gen_key_cmp(const void *a, const void *b)
 }
 
 // Copies the particles with z <= zmax into `out`, sorted by height, ids 1..n.
-static gf_status gf_gen_emit(const gf_gen *g, double zmax, const gf_config *cfg, gf_packing *out)
+static gf_status gf_gen_emit(const gf_gen *g, double zmax, const gf_packing_defs *pd, gf_packing *out)
 {
     size_t n = g->n, m = 0;
     gf_gen_key *key = GF_NEW(gf_gen_key, n);
@@ -589,7 +590,7 @@ static gf_status gf_gen_emit(const gf_gen *g, double zmax, const gf_config *cfg,
             out->r[k] = 0.5;
         }
         out->n = m;
-        gf_packing_tag_layers(out, cfg->packing_layer_thickness);
+        gf_packing_tag_layers(out, pd->layer_thickness);
     }
     GF_DELETE(key, n);
     return st;
@@ -621,8 +622,14 @@ static gf_status gf_gen_check(const gf_packing *p, const gf_gen *g, double width
 // layers, so that the column always overshoots and can be cut down to size.
 static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
 {
-    double width = cfg->container_width, depth = cfg->container_depth;
-    double fill = cfg->packing_fill_height;
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    gf_packing_defs pd, def;
+    gf_config_packing_defs(cfg, &pd);
+    const gf_config dcfg = gf_config_default();
+    gf_config_packing_defs(&dcfg, &def);
+    double width = cd.width, depth = cd.depth;
+    double fill = pd.fill_height;
     if (!(width >= 1.0 && depth >= 1.0 && isfinite(width) && isfinite(depth)))
         return gf_error_set(GF_ERR_PARAM,
                             "packing: a container %g x %g cannot hold a sphere of diameter 1",
@@ -631,28 +638,28 @@ static gf_status gf_gen_count(const gf_config *cfg, size_t *count)
         return gf_error_set(GF_ERR_PARAM,
                             "packing: a container %g x %g is larger than the generator's limit of %g d^2",
                             width, depth, GF_GEN_MAX_FOOTPRINT);
-    if (!(cfg->packing_layer_thickness > 0.0 && isfinite(cfg->packing_layer_thickness)))
+    if (!(pd.layer_thickness > 0.0 && isfinite(pd.layer_thickness)))
         return gf_error_set(GF_ERR_PARAM, "packing: layer thickness must be > 0 (got %g)",
-                            cfg->packing_layer_thickness);
+                            pd.layer_thickness);
     double n;
     if (fill > 0.0) {
         if (!(fill >= 1.0 && isfinite(fill)))
             return gf_error_set(GF_ERR_PARAM,
                                 "packing: fill height %g must be finite and at least one diameter",
                                 fill);
-        if (cfg->packing_particles != gf_config_default().packing_particles) // set, but not used: say so
+        if (pd.particles != def.particles) // set, but not used: say so
             gf_warn("packing.particles = %lld is ignored: packing.fill_height = %g sets the count "
                     "(set packing.fill_height = 0 to use packing.particles)",
-                    (long long)cfg->packing_particles, fill);
+                    (long long)pd.particles, fill);
         n = ceil(0.66 * width * depth * (fill + 2.0) / (gf_gen_pi / 6.0));
-        const gf_container c = gf_container_make(cfg); // and a pipe or chute below z = 0
+        const gf_container c = gf_container_build(&cd); // and a pipe or chute below z = 0
         if (c.z_bottom < 0.0) n += ceil(0.66 * gf_container_slice_volume(&c, c.z_bottom, 0.0) / (gf_gen_pi / 6.0));
     } else {
-        if (cfg->packing_particles < 1)
+        if (pd.particles < 1)
             return gf_error_set(GF_ERR_PARAM,
                                 "packing: number of particles must be >= 1 (got %lld)",
-                                (long long)cfg->packing_particles);
-        n = (double)cfg->packing_particles;
+                                (long long)pd.particles);
+        n = (double)pd.particles;
     }
     if (!(n <= (double)GF_MAX_PARTICLES))
         return gf_error_set(GF_ERR_PARAM, "packing: %.0f particles is more than the limit %lld", n,
@@ -681,39 +688,43 @@ gf_status gf_packing_generate(const gf_config *cfg, const gf_packing_opts *opts,
     volatile sig_atomic_t *stop = opts ? opts->stop : NULL;
     if (!cfg || !out) return gf_error_set(GF_ERR_PARAM, "packing: NULL argument");
     if (stop && *stop) return gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted before it began");
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
     size_t count = 0;
     gf_status st = gf_gen_count(cfg, &count);
     if (st == GF_OK) st = gf_gen_fits(count);
     gf_gen g = {0};
-    g.width = cfg->container_width;
-    g.depth = cfg->container_depth;
+    g.width = cd.width;
+    g.depth = cd.depth;
     g.stop = stop;
-    g.box = gf_container_make(cfg);
+    g.box = gf_container_build(&cd);
     g.shaped = !gf_container_rectangular(&g.box);
     // A pipe is filled from its end up (or from the exit plane, when that is
     // higher). Below the pipe's end (or below the outlet, with no pipe) there
     // is no wall: the outlet is closed while the packing is built, as the box's
     // orifice is, and what falls through it when the run starts falls freely
     // to an exit plane lower down.
-    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.exit_z, g.box.z_bottom)) : 0.0;
+    g.zoff = g.shaped ? fmin(0.0, fmax(g.box.z_exit, g.box.z_bottom)) : 0.0;
     if (st == GF_OK) st = gf_gen_init(&g, count);
-    if (st == GF_OK) st = gf_gen_run(&g, cfg->run_seed);
+    if (st == GF_OK) st = gf_gen_run(&g, pd.seed);
     if (st == GF_OK && gf_gen_halted(&g)) // before the sort and the checks, long for many spheres
         st = gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted after its relaxation");
     if (st == GF_OK) gf_gen_snap(&g);
     double zmax = INFINITY;
-    if (st == GF_OK && cfg->packing_fill_height > 0.0) {
-        zmax = cfg->packing_fill_height - 0.5 - g.zoff;
+    if (st == GF_OK && pd.fill_height > 0.0) {
+        zmax = pd.fill_height - 0.5 - g.zoff;
         double ztop = 0.0;
         for (size_t i = 0; i < g.n; i++) ztop = fmax(ztop, g.z[i]);
         if (ztop < zmax + 1.0) // the count above makes this a bug
             st = gf_error_set(GF_ERR_STATE, "packing: the column reached only %g, short of %g",
                               ztop, zmax + 1.0);
     }
-    if (st == GF_OK) st = gf_gen_emit(&g, zmax, cfg, out);
+    if (st == GF_OK) st = gf_gen_emit(&g, zmax, &pd, out);
     gf_gen_release(&g);
     if (st == GF_OK && gf_gen_halted(&g)) st = gf_error_set(GF_ERR_INTERRUPTED, "packing: interrupted while checking it");
-    if (st == GF_OK) st = gf_gen_check(out, &g, cfg->container_width, cfg->container_depth);
+    if (st == GF_OK) st = gf_gen_check(out, &g, cd.width, cd.depth);
     if (st == GF_OK) st = gf_packing_bidisperse(cfg, out); // packing.radius2, fraction2
     if (st != GF_OK) gf_packing_free(out); // nothing half-made comes back
     return st;

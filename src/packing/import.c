@@ -9,6 +9,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "granflow/defs.h"
 #include "granflow/packing.h"
 #include "io/packing_frames.h"
 #include "core/textscan.h"
@@ -66,7 +67,9 @@ static void gf_sort_centres(size_t *a, size_t *tmp, size_t n, const gf_packing *
 // they would stay together for the whole run).
 static gf_status gf_import_check(const gf_config *cfg, const gf_packing *p)
 {
-    const char *path = cfg->packing_file;
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
+    const char *path = pd.file;
     for (size_t i = 0; i < p->n; i++)
         if (!(p->r[i] >= GF_IMPORT_RMIN && p->r[i] <= GF_IMPORT_RMAX)) {
             // A file in other units (metres, say) shows here first: say which key converts it.
@@ -78,7 +81,7 @@ static gf_status gf_import_check(const gf_config *cfg, const gf_packing *p)
                                 "dump.diameter = the particle diameter in that unit (this one's is %g; "
                                 "dump.diameter = %g, %s)",
                                 path, (long long)p->id[i], p->r[i], GF_IMPORT_RMIN, GF_IMPORT_RMAX,
-                                2.0 * p->r[i] * cfg->dump_diameter, cfg->dump_diameter, where);
+                                2.0 * p->r[i] * pd.unit_diameter, pd.unit_diameter, where);
         }
     size_t *a = GF_NEW(size_t, p->n), *tmp = GF_NEW(size_t, p->n);
     gf_status st = GF_OK;
@@ -105,33 +108,35 @@ static int gf_import_is_lammps(const char *path)
 
 gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_import_report *rep)
 {
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
     gf_packing_import_report r = {0};
     if (rep) *rep = r;
-    const char *path = cfg->packing_file;
+    const char *path = pd.file;
     int32_t types[GF_PACKING_MAXTYPES];
     size_t ntypes;
     // Errors about packing.types start with where it was set.
     char at[GF_PATH_MAX + 40];
     gf_config_where_lead(cfg, "packing.types", at, sizeof at);
-    gf_status st = gf_packing_types_parse(cfg->packing_types, types, GF_PACKING_MAXTYPES, &ntypes);
+    gf_status st = gf_packing_types_parse(pd.types, types, GF_PACKING_MAXTYPES, &ntypes);
     if (st != GF_OK) {
         char why[256];
         snprintf(why, sizeof why, "%s", gf_last_error());
-        return gf_error_set(st, "%spacking.types = %s: %s", at, cfg->packing_types, why);
+        return gf_error_set(st, "%spacking.types = %s: %s", at, pd.types, why);
     }
     gf_packing pk = {0};
     if (ntypes == 0) {
-        st = gf_packing_read_in(path, GF_FORMAT_AUTO, cfg->dump_diameter, &pk);
+        st = gf_packing_read_in(path, GF_FORMAT_AUTO, pd.unit_diameter, &pk);
     } else if (!gf_import_is_lammps(path)) {
         st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s needs a LAMMPS dump with a type column, not %s",
-                          at, cfg->packing_types, path);
+                          at, pd.types, path);
     } else {
         gf_import_last last = {0};
-        st = gf_packing_read_frames_in(path, cfg->dump_diameter, gf_import_keep_last, &last);
+        st = gf_packing_read_frames_in(path, pd.unit_diameter, gf_import_keep_last, &last);
         if (st == GF_OK && last.frames == 0) st = gf_error_set(GF_ERR_FORMAT, "%s: no frame in the file", path);
         else if (st == GF_OK && !last.have_type)
             st = gf_error_set(GF_ERR_PARAM, "%spacking.types = %s: %s has no `type` column in its ITEM: ATOMS line",
-                              at, cfg->packing_types, path);
+                              at, pd.types, path);
         pk = last.pk; // the frames reader keeps the type column in `layer`
     }
     if (st != GF_OK) {
@@ -139,6 +144,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
         return st;
     }
     r.read = pk.n;
+    const double exit_plane = gf_config_exit_plane(cfg);
     size_t keep = 0;
     for (size_t i = 0; i < pk.n; i++) {
         bool ok = ntypes == 0;
@@ -147,7 +153,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
             r.other_types++;
             continue;
         }
-        if (pk.z[i] < gf_config_exit_plane(cfg)) {
+        if (pk.z[i] < exit_plane) {
             r.below_base++;
             continue;
         }
@@ -169,9 +175,9 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
         return gf_error_set(GF_ERR_PARAM,
                             "%s: no particle left of %zu (%zu of other atom types than packing.types = '%s', "
                             "%zu below the exit plane, container.exit_z less container.outlet_length)",
-                            path, r.read, r.other_types, cfg->packing_types, r.below_base);
+                            path, r.read, r.other_types, pd.types, r.below_base);
     }
-    gf_packing_tag_layers(&pk, cfg->packing_layer_thickness);
+    gf_packing_tag_layers(&pk, pd.layer_thickness);
     gf_packing_free(out);
     *out = pk;
     return GF_OK;

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "geom/celllist.h"
 #include "geom/container.h"
+#include "granflow/defs.h"
 #include "io/packing_frames.h"
 #include "packing/blame.h"
 #include "packing/layer.h"
@@ -83,11 +84,13 @@ double gf_packing_min_distance(const gf_packing *p)
 // tail " (packing.file, WHERE)"; both empty for a generated one.
 static void gf_packing_lead(const gf_config *cfg, int64_t id, char *lead, size_t nlead, char *from, size_t nfrom)
 {
+    gf_packing_defs pd;
+    gf_config_packing_defs(cfg, &pd);
     lead[0] = from[0] = '\0';
-    if (!cfg->packing_file[0]) return;
-    long line = gf_packing_line_of(cfg->packing_file, id);
-    if (line > 0) snprintf(lead, nlead, "%s:%ld: ", cfg->packing_file, line);
-    else snprintf(lead, nlead, "%s: ", cfg->packing_file);
+    if (!pd.file[0]) return;
+    long line = gf_packing_line_of(pd.file, id);
+    if (line > 0) snprintf(lead, nlead, "%s:%ld: ", pd.file, line);
+    else snprintf(lead, nlead, "%s: ", pd.file);
     char where[GF_PATH_MAX + 32];
     if (gf_config_where(cfg, "packing.file", where, sizeof where) == GF_OK)
         snprintf(from, nfrom, " (packing.file, %s)", where);

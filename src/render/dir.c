@@ -9,6 +9,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/stop.h"
+#include "granflow/defs.h"
 #include "granflow/render.h"
 #include "render/stress.h"
 
@@ -56,7 +57,9 @@ static gf_status gf_render_phi(const gf_series *s, size_t k, bool raw, double **
     const gf_packing *pk = &s->frames[k].pk;
     phi[k] = GF_NEW(double, gf_render_phi_len(pk));
     if (!phi[k]) return gf_error_set(GF_ERR_NOMEM, "render: out of memory");
-    const double W = s->cfg.container_width, D = s->cfg.container_depth;
+    gf_container_defs cd;
+    gf_config_container_defs(&s->cfg, &cd);
+    const double W = cd.width, D = cd.depth;
     if (!raw) return gf_voronoi_field(pk, W, D, NAN, GF_RENDER_PHI_RADIUS, phi[k]);
     double top = -INFINITY;
     for (size_t i = 0; i < pk->n; i++)
@@ -242,7 +245,9 @@ gf_status gf_render_dir(const char *dir, const gf_render_dir_opts *opt)
     j.opts = gf_render_opts_default();
     j.opts.px_per_d = opt->scale;
     j.opts.title = gf_render_name(dir, name, sizeof name);
-    double zmax = s.cfg.orifice_diameter; // one height for every picture: the highest top of the run
+    gf_container_defs cd;
+    gf_config_container_defs(&s.cfg, &cd);
+    double zmax = cd.orifice.diameter; // one height for every picture: the highest top of the run
     for (size_t k = 0; k < s.nframes; k++)
         for (size_t i = 0; i < s.frames[k].pk.n; i++)
             zmax = fmax(zmax, s.frames[k].pk.z[i] + s.frames[k].pk.r[i]);

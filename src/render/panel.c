@@ -10,6 +10,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "geom/container.h"
+#include "granflow/defs.h"
 #include "render/palette.h"
 
 enum { GF_LABEL_MIN_PX = 28, GF_BAR_MIN_PX = 84 };
@@ -30,7 +31,9 @@ int gf_panel_bar_width(const gf_render_opts *o)
 double gf_panel_zmax(const gf_packing *pk, const gf_config *cfg, const gf_render_opts *o)
 {
     if (isfinite(o->zmax)) return o->zmax;
-    double top = cfg->orifice_diameter;
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    double top = cd.orifice.diameter;
     for (size_t i = 0; i < pk->n; i++)
         if (pk->z[i] + pk->r[i] > top) top = pk->z[i] + pk->r[i];
     return top;
@@ -38,7 +41,9 @@ double gf_panel_zmax(const gf_packing *pk, const gf_config *cfg, const gf_render
 
 void gf_panel_layout(const gf_config *cfg, const gf_render_opts *o, double zmax, gf_panel *p)
 {
-    double w = cfg->container_width;
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    double w = cd.width;
     p->s = o->px_per_d;
     p->xlo = -0.5 * w - gf_margin;
     p->ztop = zmax + 1.0;
@@ -109,12 +114,14 @@ gf_status gf_panel_draw(cairo_t *cr, double ox, double oy, const gf_panel *p, co
                         const char *text, const char *title)
 {
     const double s = p->s, vy = oy + p->label; // top of the view
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
 #define GF_X(x) (ox + ((x) - p->xlo) * s)
 #define GF_Y(z) (vy + (p->ztop - (z)) * s)
-    const double hw = 0.5 * cfg->container_width;
+    const double hw = 0.5 * cd.width;
     // The orifice's edges in x (around container.orifice_x), within the walls.
-    const double hl = fmax(cfg->orifice_x - 0.5 * cfg->orifice_diameter, -hw);
-    const double hr = fmin(cfg->orifice_x + 0.5 * cfg->orifice_diameter, hw);
+    const double hl = fmax(cd.orifice.x - 0.5 * cd.orifice.diameter, -hw);
+    const double hr = fmin(cd.orifice.x + 0.5 * cd.orifice.diameter, hw);
 
     // the set of visible particles, far first
     size_t m = 0;

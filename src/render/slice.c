@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "draw/canvas.h"
+#include "granflow/defs.h"
 #include "render/panel.h"
 
 enum { GF_RENDER_MAX_PX = 32767, GF_SHEET_MAX_COLS = 10 }; // cairo's largest image side
@@ -41,10 +42,12 @@ static gf_status gf_render_check(const gf_config *cfg, const gf_render_opts *o, 
     if (!(isfinite(o->phi_lo) && isfinite(o->phi_hi) && o->phi_lo < o->phi_hi))
         return gf_error_set(GF_ERR_PARAM, "render: packing fraction scale [%g, %g] is empty", o->phi_lo,
                             o->phi_hi);
-    if (!(cfg->container_width > 0 && isfinite(cfg->container_width) && cfg->orifice_diameter >= 0 &&
-          isfinite(cfg->orifice_diameter) && isfinite(cfg->exit_z)))
+    gf_container_defs cd;
+    gf_config_container_defs(cfg, &cd);
+    if (!(cd.width > 0 && isfinite(cd.width) && cd.orifice.diameter >= 0 &&
+          isfinite(cd.orifice.diameter) && isfinite(cd.exit_level)))
         return gf_error_set(GF_ERR_PARAM, "render: bad container (width %g, orifice %g, exit_z %g)",
-                            cfg->container_width, cfg->orifice_diameter, cfg->exit_z);
+                            cd.width, cd.orifice.diameter, cd.exit_level);
     if (isnan(o->ymin) || (!isnan(o->zmax) && !isfinite(o->zmax)))
         return gf_error_set(GF_ERR_PARAM, "render: ymin and zmax must be finite");
     return GF_OK;

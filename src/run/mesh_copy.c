@@ -40,13 +40,15 @@ static gf_status gf_run_copy_file(const char *from, const char *to)
 
 gf_status gf_run_save_config(const gf_config *cfg, const char *dir, const char *cfgpath)
 {
-    const gf_container box = gf_container_make(cfg);
+    gf_container_defs d;
+    gf_config_container_defs(cfg, &d);
+    const gf_container box = gf_container_build(&d);
     if (!gf_container_reads_key(&box, "container.mesh")) return gf_config_save(cfg, cfgpath);
     char to[GF_PATH_MAX + 64];
     snprintf(to, sizeof to, "%s/%s", dir, GF_RUN_MESH_NAME);
-    gf_status st = gf_run_copy_file(cfg->container_mesh, to);
+    gf_status st = gf_run_copy_file(d.mesh, to);
     if (st != GF_OK) return st;
     gf_config c = *cfg;
-    snprintf(c.container_mesh, sizeof c.container_mesh, "%s", GF_RUN_MESH_NAME);
+    gf_config_set_mesh_path(&c, GF_RUN_MESH_NAME);
     return gf_config_save(&c, cfgpath);
 }

@@ -25,6 +25,7 @@
 #include "core/json.h"
 #include "core/limits.h"
 #include "geom/mesh.h"
+#include "granflow/defs.h"
 #include "granflow/packing.h"
 #include "io/vtk.h"
 #include "run/mesh_copy.h"
@@ -34,7 +35,8 @@
 #endif
 
 typedef struct gf_rundir {
-    const gf_config *cfg;
+    const gf_config *cfg; ///< handed to config/ and the writers (config.ini); read d
+    gf_rundir_defs d;
     const gf_run_opts *opts;
     char dir[GF_PATH_MAX];
     double wall0;
@@ -201,7 +203,7 @@ static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint6
 {
     gf_status st = GF_OK;
     const int32_t *pass = NULL;
-    if (rd->cfg->run_recirculate) {
+    if (rd->d.recirculate) {
         size_t n = rd->scratch.n;
         if (n > rd->pass_cap) {
             GF_DELETE(rd->pass, rd->pass_cap);
@@ -213,14 +215,14 @@ static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint6
         pass = rd->pass;
     }
     char path[GF_PATH_MAX + 64];
-    const gf_output_format fmt = rd->cfg->output_format;
+    const gf_output_format fmt = rd->d.format;
     if (fmt & GF_OUTPUT_DUMP) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd->dir, index);
         st = gf_run_write_snapshot(path, rd->cfg, &rd->scratch, pass, time, gf_sim_get_stats(sim).events);
     }
     if (st == GF_OK && (fmt & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd->dir, index);
-        st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->cfg->output_vtk_encoding);
+        st = gf_vtk_write_particles_as(path, &rd->scratch, pass, time, rd->d.vtk_encoding);
         if (st == GF_OK) st = gf_add_vtu(rd, index, time);
         // Rewriting the .pvd at every snapshot costs the square of their number (core/limits.h).
         if (st == GF_OK && rd->nvtu <= GF_PVD_EVERY_SNAPSHOT) st = gf_write_pvd(rd);
@@ -239,7 +241,7 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     size_t nexit;
     const gf_exit *e = gf_sim_exits(sim, &nexit);
     double last = nexit ? fmax(e[nexit - 1].time, rd->flow_t0) : rd->flow_t0;
-    if (rd->cfg->run_stall_time > 0 && rd->scratch.n > 0 && time - last >= rd->cfg->run_stall_time) {
+    if (rd->d.stall_time > 0 && rd->scratch.n > 0 && time - last >= rd->d.stall_time) {
         rd->stalled = true;
         return gf_error_set(GF_ERR_STATE, "stalled"); // ends gf_sim_run; gf_run_dir tells why
     }
@@ -298,7 +300,7 @@ static gf_status gf_write_summary(gf_rundir *rd, const gf_sim *sim)
     gf_json_string(&j, "granflow_version", gf_version());
     gf_json_string(&j, "status", rd->status);
     if (!strcmp(rd->status, "failed")) gf_json_string(&j, "error", gf_last_error());
-    gf_json_uint(&j, "seed", rd->cfg->run_seed);
+    gf_json_uint(&j, "seed", rd->d.seed);
     gf_json_uint(&j, "particles_initial", s.particles_initial);
     gf_json_uint(&j, "particles_remaining", s.particles_remaining);
     gf_json_uint(&j, "particles_exited", s.particles_exited);
@@ -337,7 +339,7 @@ static gf_status gf_save_all(gf_rundir *rd, const gf_sim *sim)
     if (rd->reserve) gf_free(rd->reserve, rd->reserve_size);
     gf_status st = gf_sim_save(sim, path);
     rd->reserve = rd->reserve_size ? gf_alloc(rd->reserve_size) : NULL;
-    if (st == GF_OK && (rd->cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_pvd(rd);
+    if (st == GF_OK && (rd->d.format & GF_OUTPUT_VTK)) st = gf_write_pvd(rd);
     return st == GF_OK ? gf_save_progress(rd, sim) : st;
 }
 
@@ -371,10 +373,10 @@ static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
                                 "cannot write checkpoint: No space left on device: it will take up to %s by the end "
                                 "of the run (twice while one replaces the other), and %s has %s free",
                                 need, rd->dir, have);
-        const gf_config *c = rd->cfg;
-        const double left = c->run_duration - gf_sim_get_stats(sim).time;
+        const gf_rundir_defs *c = &rd->d;
+        const double left = c->duration - gf_sim_get_stats(sim).time;
         const double snaps =
-            (c->output_format & GF_OUTPUT_DUMP) ? floor(fmax(0.0, left) / c->output_snapshot_interval) + 1.0 : 0.0;
+            (c->format & GF_OUTPUT_DUMP) ? floor(fmax(0.0, left) / c->snapshot_interval) + 1.0 : 0.0;
         const double dumps = snaps * 64.0 * (double)gf_sim_get_stats(sim).particles_remaining; // ~64 bytes an atom line
         if (free_bytes < 2.0 * bound + dumps) {
             char total[32];
@@ -401,7 +403,7 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
     gf_rundir *rd = ctx;
     gf_sim_stats s = gf_sim_get_stats(sim);
     double wall = gf_clock_now() - rd->wall0;
-    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->cfg->run_duration, rd->t0, s.particles_initial,
+    gf_run_progress p = {GF_RUN_PHASE_RUNNING, s.time, rd->d.duration, rd->t0, s.particles_initial,
                          s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd->moves0) / wall : 0.0, wall, NULL};
     rd->opts->progress(rd->opts->ctx, &p);
 }
@@ -419,7 +421,7 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
     if ((st = gf_container_mesh(&box, top, 96, &m)) != GF_OK) return st;
     char path[GF_PATH_MAX + 32];
     gf_path(path, sizeof path, rd->dir, "container.vtp");
-    st = gf_vtk_write_surface(path, &m, rd->cfg->output_vtk_encoding);
+    st = gf_vtk_write_surface(path, &m, rd->d.vtk_encoding);
     gf_path(path, sizeof path, rd->dir, "container.vtk");
     if (st == GF_OK) st = gf_vtk_write_mesh(path, &m, "granflow container");
     gf_mesh_free(&m);
@@ -429,21 +431,23 @@ static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
 static gf_status gf_make_packing(const gf_config *cfg, const gf_run_opts *opts, gf_packing *pk)
 {
     gf_packing_import_report rep;
+    gf_rundir_defs d;
+    gf_config_rundir_defs(cfg, &d);
     gf_status st = gf_packing_for_config(cfg, &(gf_packing_opts){.stop = opts->stop}, pk, &rep);
     if (st == GF_ERR_INTERRUPTED)
         gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
     // A DEM packing may hold other atom types (a frozen floor) and particles
     // already falling through the orifice: dropped, and said so.
-    if (st == GF_OK && cfg->packing_file[0] && opts->progress) {
+    if (st == GF_OK && d.packing[0] && opts->progress) {
         char note[GF_PATH_MAX + 256];
         char units[96] = "";
-        if (cfg->dump_diameter != 1.0)
-            snprintf(units, sizeof units, ", lengths / %g (dump.diameter)", cfg->dump_diameter);
+        if (d.unit_diameter != 1.0)
+            snprintf(units, sizeof units, ", lengths / %g (dump.diameter)", d.unit_diameter);
         snprintf(note, sizeof note,
                  "%zu of %zu particles from %s (%zu below the base counted as exited, %zu of other atom types "
                  "dropped%s)",
-                 pk->n, rep.read, cfg->packing_file, rep.below_base, rep.other_types, units);
-        gf_run_progress p = {.phase = GF_RUN_PHASE_IMPORTED, .until = cfg->run_duration, .initial = pk->n, .note = note};
+                 pk->n, rep.read, d.packing, rep.below_base, rep.other_types, units);
+        gf_run_progress p = {.phase = GF_RUN_PHASE_IMPORTED, .until = d.duration, .initial = pk->n, .note = note};
         opts->progress(opts->ctx, &p);
     }
     return st;
@@ -481,6 +485,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     if (st == GF_OK) st = gf_sim_check_config(&cfg); // before a packing is built
     if (st != GF_OK) return st;
     gf_rundir rd = {.cfg = &cfg, .opts = opts, .status = "running", .lock_fd = -1};
+    gf_config_rundir_defs(&cfg, &rd.d);
     if (snprintf(rd.dir, sizeof rd.dir, "%s", opts->dir) >= (int)sizeof rd.dir)
         return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(opts->dir),
                             GF_PATH_MAX - 1);
@@ -498,13 +503,13 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     gf_sim *sim = NULL;
     if (opts->resume) {
         st = gf_sim_load(&cfg, ckpt, &sim);
-        if (st == GF_OK && cfg.run_duration < gf_sim_get_stats(sim).time)
+        if (st == GF_OK && rd.d.duration < gf_sim_get_stats(sim).time)
             st = gf_error_set(GF_ERR_PARAM, "run.duration = %g is before the time this run already reached (%g tau)",
-                              cfg.run_duration, gf_sim_get_stats(sim).time);
+                              rd.d.duration, gf_sim_get_stats(sim).time);
     } else {
         if (opts->progress) {
-            gf_run_progress p = {.phase = cfg.packing_file[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING,
-                                 .until = cfg.run_duration};
+            gf_run_progress p = {.phase = rd.d.packing[0] ? GF_RUN_PHASE_READING : GF_RUN_PHASE_PACKING,
+                                 .until = rd.d.duration};
             opts->progress(opts->ctx, &p);
         }
         gf_packing pk = {0};
@@ -526,9 +531,9 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     // made (issue 26: a packing.file with a line break left an empty one).
     if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK))
+    if (st == GF_OK && !opts->resume && !opts->replica && (rd.d.format & GF_OUTPUT_VTK))
         st = gf_write_container(&rd, sim);
-    if (st == GF_OK && opts->resume && !opts->replica && (cfg.output_format & GF_OUTPUT_VTK)) st = gf_find_vtus(&rd);
+    if (st == GF_OK && opts->resume && !opts->replica && (rd.d.format & GF_OUTPUT_VTK)) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
         if (rd.lock_fd >= 0) close(rd.lock_fd);
@@ -550,7 +555,7 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         .stop = opts->stop,
     };
     st = gf_make_room(&rd, sim);
-    if (st == GF_OK) st = gf_sim_run(sim, cfg.run_duration, &hooks);
+    if (st == GF_OK) st = gf_sim_run(sim, rd.d.duration, &hooks);
     size_t nexit;
     gf_sim_exits(sim, &nexit);
     double reached = gf_sim_get_stats(sim).time;
@@ -561,17 +566,17 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         // is no free fall, so say so.
         char deep[256] = "";
         const gf_container ctr = gf_container_make(&cfg);
-        if (cfg.exit_z < -1.0)
+        if (rd.d.exit_level < -1.0)
             snprintf(deep, sizeof deep,
                      "; the exit plane is %g d below the %s, and a particle on its way there moves only as "
                      "spots pass (there is no free fall): raise container.exit_z, or run.stall_time to wait "
                      "longer",
-                     -cfg.exit_z,
+                     -rd.d.exit_level,
                      gf_container_outlet_name(&ctr));
         st = gf_error_set(GF_ERR_STATE,
                           "no particle has left the silo in %g tau (run.stall_time): it cannot drain "
                           "(check the orifice, container.exit_z and the packing); stopped at t = %.4g tau%s",
-                          cfg.run_stall_time, reached, deep);
+                          rd.d.stall_time, reached, deep);
     } else if (rd.stalled) {
         st = GF_OK;
     }
@@ -589,15 +594,15 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
             snprintf(note, sizeof note,
                      "the flow stopped: no particle has left since t = %.4g tau (run.stall_time = %g); "
                      "stopped at t = %.4g tau with %zu particles left",
-                     gf_sim_exits(sim, &nexit)[nexit - 1].time, cfg.run_stall_time, reached,
+                     gf_sim_exits(sim, &nexit)[nexit - 1].time, rd.d.stall_time, reached,
                      gf_sim_get_stats(sim).particles_remaining);
-            gf_run_progress p = {.phase = GF_RUN_PHASE_STALLED, .time = reached, .until = cfg.run_duration, .note = note};
+            gf_run_progress p = {.phase = GF_RUN_PHASE_STALLED, .time = reached, .until = rd.d.duration, .note = note};
             opts->progress(opts->ctx, &p);
         }
         if (opts->progress && run_st == GF_OK) {
             gf_sim_stats s = gf_sim_get_stats(sim);
             double wall = gf_clock_now() - rd.wall0;
-            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, cfg.run_duration, rd.t0, s.particles_initial,
+            gf_run_progress p = {GF_RUN_PHASE_DONE, s.time, rd.d.duration, rd.t0, s.particles_initial,
                                  s.particles_remaining, wall > 0 ? (double)(s.spot_moves - rd.moves0) / wall : 0.0, wall, NULL};
             opts->progress(opts->ctx, &p);
         }
@@ -640,6 +645,7 @@ gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
     opts.dir = dir;
     opts.force = force;
     gf_rundir rd = {.cfg = cfg, .opts = &opts, .status = "saved", .lock_fd = -1, .wall0 = gf_clock_now()};
+    gf_config_rundir_defs(cfg, &rd.d);
     if (snprintf(rd.dir, sizeof rd.dir, "%s", dir) >= (int)sizeof rd.dir)
         return gf_error_set(GF_ERR_PARAM, "run directory path too long (%zu bytes, at most %d)", strlen(dir),
                             GF_PATH_MAX - 1);
@@ -649,16 +655,16 @@ gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
         return gf_error_set(GF_ERR_EXISTS, "%s already holds a run (%s exists): clear it, force, or use another directory",
                             rd.dir, path);
     gf_status st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) st = gf_write_container(&rd, sim);
+    if (st == GF_OK && (rd.d.format & GF_OUTPUT_VTK)) st = gf_write_container(&rd, sim);
     // The snapshot of now, numbered on the snapshot grid as gf_run_dir numbers
     // them, so that a resumed run's next snapshots follow it.
-    const double t = gf_sim_get_stats(sim).time, dsnap = cfg->output_snapshot_interval;
+    const double t = gf_sim_get_stats(sim).time, dsnap = rd.d.snapshot_interval;
     const uint64_t index = dsnap > 0 ? (uint64_t)floor(t / dsnap + 1e-9) : 0;
-    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_DUMP)) {
+    if (st == GF_OK && (rd.d.format & GF_OUTPUT_DUMP)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".dump", rd.dir, index);
         st = gf_sim_write_snapshot(sim, path);
     }
-    if (st == GF_OK && (cfg->output_format & GF_OUTPUT_VTK)) {
+    if (st == GF_OK && (rd.d.format & GF_OUTPUT_VTK)) {
         snprintf(path, sizeof path, "%s/snapshots/snap_%06" PRIu64 ".vtu", rd.dir, index);
         st = gf_sim_write_vtk(sim, path);
     }

@@ -7,6 +7,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "granflow/defs.h"
 #include "io/vtk.h"
 
 typedef enum gf_sim_format { GF_SIM_DUMP, GF_SIM_VTK } gf_sim_format;
@@ -20,7 +21,9 @@ static gf_status gf_sim_write(const gf_sim *sim, const char *path, gf_sim_format
     size_t npass = 0;
     gf_status st = gf_sim_particles(sim, &pk);
     // The pass column exists only under recirculation, as in `granflow run`.
-    if (st == GF_OK && cfg->run_recirculate && pk.n) {
+    gf_rundir_defs d;
+    gf_config_rundir_defs(cfg, &d);
+    if (st == GF_OK && d.recirculate && pk.n) {
         npass = pk.n;
         pass = GF_NEW(int32_t, npass);
         st = pass ? gf_sim_passes(sim, pass, npass) : gf_error_set(GF_ERR_NOMEM, "out of memory");

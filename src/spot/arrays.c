@@ -10,6 +10,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "geom/container.h"
+#include "granflow/defs.h"
 #include "granflow/packing.h"
 
 gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts *opts, gf_sim **out)
@@ -22,9 +23,11 @@ gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts 
     gf_packing pk = {0};
     gf_packing_import_report rep;
     st = gf_packing_for_config(&c, opts, &pk, &rep);
+    gf_packing_defs pd;
+    gf_config_packing_defs(&c, &pd);
     if (st == GF_OK && (rep.other_types || rep.below_base))
         gf_warn("%s: %zu of %zu particles kept (%zu below the base counted as exited, %zu of other atom types dropped)",
-                c.packing_file, pk.n, rep.read, rep.below_base, rep.other_types);
+                pd.file, pk.n, rep.read, rep.below_base, rep.other_types);
     if (st == GF_OK) st = gf_sim_create(&c, &pk, out);
     gf_packing_free(&pk);
     return st;
@@ -85,7 +88,9 @@ gf_status gf_sim_create_from_arrays(const gf_config *cfg, size_t n, const double
         st = gf_packing_push(&pk, id ? id[i] : (int64_t)i + 1, 0, xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2],
                              radius ? radius[i] : 0.5);
     if (st == GF_OK) {
-        gf_packing_tag_layers(&pk, c.packing_layer_thickness);
+        gf_packing_defs pd;
+        gf_config_packing_defs(&c, &pd);
+        gf_packing_tag_layers(&pk, pd.layer_thickness);
         // gf_packing_check names the particle by id; the caller knows indices.
         gf_container box = gf_container_make(&c);
         for (size_t i = 0; i < n; i++)

@@ -91,15 +91,16 @@ static uint32_t gf_crc32(const unsigned char *data, size_t len)
 static gf_status gf_ckpt_physics(const gf_config *cfg, char **text, size_t *len, size_t *cap)
 {
     gf_config c = *cfg;
-    gf_config d = gf_config_default();
-    c.run_duration = d.run_duration;
-    c.run_checkpoint_interval = d.run_checkpoint_interval;
-    c.run_stall_time = d.run_stall_time;
-    c.run_threads = d.run_threads; // results do not depend on it
-    const gf_container box = gf_container_make(&c);
+    gf_config_reset_run_keys(&c);
+    gf_container_defs cd;
+    gf_config_container_defs(&c, &cd);
+    const gf_container box = gf_container_build(&cd);
     uint64_t digest;
-    if (gf_container_reads_key(&box, "container.mesh") && gf_meshshape_digest(&c, &digest) == GF_OK)
-        snprintf(c.container_mesh, sizeof c.container_mesh, "stl-fnv1a-%016" PRIx64, digest); // a run's copy is the same mesh
+    if (gf_container_reads_key(&box, "container.mesh") && gf_meshshape_digest(&cd, &digest) == GF_OK) {
+        char name[64];
+        snprintf(name, sizeof name, "stl-fnv1a-%016" PRIx64, digest); // a run's copy is the same mesh
+        gf_config_set_mesh_path(&c, name);
+    }
     for (size_t size = (size_t)1 << 16; size <= (size_t)1 << 26; size *= 2) {
         char *buf = gf_alloc(size);
         FILE *f = buf ? fmemopen(buf, size, "w") : NULL;
@@ -175,7 +176,7 @@ static gf_status gf_ckpt_fill(const gf_sim *sim, gf_buf *b_out)
         gf_put(&b, sim->grid.slot + c * GF_CELL_CAP, sizeof(uint32_t) * sim->grid.count[c]);
     // The domain engine's spot clocks, last (a checkpoint of another engine
     // ends before them, as those of earlier versions do).
-    if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+    if (sim->d.order == GF_ORDER_DOMAINS) {
         gf_put(&b, GF_CKPT_CLOCKS, 8);
         gf_put(&b, sim->snext, sizeof(double) * sim->ns);
     }
@@ -192,7 +193,7 @@ size_t gf_sim_checkpoint_bound(const gf_sim *sim)
     if (gf_ckpt_fill(sim, &m) != GF_OK) return 0;
     // Every particle still inside may yet leave (with recirculation, leave
     // again: a run that long is beyond this estimate).
-    return GF_CKPT_HEADER + m.len + sizeof(gf_exit) * (sim->cfg.run_recirculate ? sim->n : sim->n_alive);
+    return GF_CKPT_HEADER + m.len + sizeof(gf_exit) * (sim->d.recirculate ? sim->n : sim->n_alive);
 }
 
 gf_status gf_sim_save(const gf_sim *sim, const char *path)
@@ -242,7 +243,7 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
 static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
 {
     const gf_container *b = &sim->box;
-    const double zlo = fmin(0.0, b->exit_z) - 2.0, zhi = 1e7;
+    const double zlo = fmin(0.0, b->z_exit) - 2.0, zhi = 1e7;
     if (!(isfinite(sim->t) && sim->t >= 0 && isfinite(sim->t_reached) && isfinite(sim->t_pending) &&
           sim->grid_ztop > 0 && sim->grid_ztop <= zhi && sim->rmax > 0 && sim->rmax <= 1.0))
         return gf_error_set(GF_ERR_FORMAT, "%s: checkpoint holds impossible times or sizes", path);
@@ -355,7 +356,7 @@ static gf_status gf_ckpt_alloc_arrays(gf_sim *sim, const gf_rd *r, const char *p
 {
     uint64_t n = counts[0];
     if (r->bad || n == 0 || n > GF_MAX_PARTICLES || counts[1] > n || counts[2] < n || counts[3] > (1ull << 40) ||
-        (!sim->cfg.run_recirculate && counts[4] > counts[2]))
+        (!sim->d.recirculate && counts[4] > counts[2]))
         return gf_error_set(GF_ERR_FORMAT, "%s: inconsistent checkpoint header", path);
     double need = (double)n * (double)(sizeof(gf_pos) + sizeof(gf_ref) + sizeof(int64_t) + sizeof(int32_t) + 1) +
                   (double)counts[3] * (double)(4 * sizeof(double) + sizeof(uint32_t)) +
@@ -416,8 +417,8 @@ static void gf_ckpt_read_clocks(gf_sim *sim, gf_rd *r)
         gf_get(r, sim->snext, sizeof(double) * sim->ns);
         for (size_t k = 0; k < sim->ns; k++)
             if (!isfinite(sim->snext[k])) r->bad = true;
-    } else if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
-        for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->cfg.spot_move_rate);
+    } else if (sim->d.order == GF_ORDER_DOMAINS) {
+        for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->d.move_rate);
     }
 }
 

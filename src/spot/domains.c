@@ -193,14 +193,14 @@ static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q, const int n[3])
 static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
 {
     const gf_grid *g = &sim->grid;
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
     const int n[3] = {g->nx, g->ny, g->nz};
-    q->S = (int)c->parallel_sectors;
+    q->S = (int)c->sectors;
     int cut = 0;
     q->ndomain = 1;
     for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], need, c->parallel_domain_size, q->S, g->h, &q->bs[a], &q->nb[a], &q->nc[a]);
+        gf_status st = gf_dom_axis(n[a], need, c->domain_size, q->S, g->h, &q->bs[a], &q->nb[a], &q->nc[a]);
         if (st != GF_OK) return st;
         cut += q->nc[a] > 1;
         q->ndomain *= (size_t)((q->nb[a] + q->nc[a] - 1) / q->nc[a]);
@@ -228,7 +228,7 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
 // (it depends on the keys and the packing, never on the threads).
 static gf_status gf_dom_make(gf_sim *sim)
 {
-    const int threads = gf_par_threads(&sim->cfg);
+    const int threads = gf_par_threads(&sim->d);
     gf_dom *q = sim->dom;
     if (q && q->threads == threads) return GF_OK;
     if (!q) {
@@ -281,7 +281,7 @@ static void gf_dom_seed(const gf_sim *sim, size_t k, gf_rng *r)
 {
     uint64_t bits;
     memcpy(&bits, &sim->snext[k], sizeof bits);
-    gf_rng_seed(r, sim->cfg.run_seed ^ 0x646f6d61696e73ull /* "domains" */, (sim->sbirth[k] * 0x9e3779b97f4a7c15ull) ^ bits);
+    gf_rng_seed(r, sim->d.seed ^ 0x646f6d61696e73ull /* "domains" */, (sim->sbirth[k] * 0x9e3779b97f4a7c15ull) ^ bits);
 }
 
 // Heap order: earlier move first, then older spot.
@@ -355,7 +355,7 @@ static void gf_dom_sector(gf_sim *sim, gf_dom *q, int t, size_t b, double t_end)
         gf_dom_seed(sim, k, &rng);
         // A late move (the spot waited for this sector's phase) is made, and
         // timed, at the window's start: exits stay in time order.
-        w->t = fmax(sim->snext[k], t_end - sim->cfg.parallel_window);
+        w->t = fmax(sim->snext[k], t_end - sim->d.window);
         double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
         bool deleted;
         long ball = 0;
@@ -373,7 +373,7 @@ static void gf_dom_sector(gf_sim *sim, gf_dom *q, int t, size_t b, double t_end)
         sim->sx[k] = s[0];
         sim->sy[k] = s[1];
         sim->sz[k] = s[2];
-        sim->snext[k] += gf_rng_exp(&rng, sim->cfg.spot_move_rate);
+        sim->snext[k] += gf_rng_exp(&rng, sim->d.move_rate);
         const bool stays = q->blockof[gf_grid_cell(g, s[0], s[1], s[2])] == b;
         if (!stays && q->drop_crossing) { // the broken engine of the tests: the spot and its moves are lost
             q->dead[k] = 1;
@@ -426,13 +426,13 @@ static gf_status gf_dom_merge_exits(gf_sim *sim, gf_dom *q)
 // time later (SPEC 1.3 insertion, as the event engine).
 static gf_status gf_dom_insert(gf_sim *sim, double t_end, double window)
 {
-    const gf_config *c = &sim->cfg;
-    uint64_t nins = gf_rng_poisson(&sim->rng, c->spot_insertion_rate * window);
+    const gf_engine_defs *c = &sim->d;
+    uint64_t nins = gf_rng_poisson(&sim->rng, c->insertion_rate * window);
     for (uint64_t k = 0; k < nins; k++) {
         gf_status st = gf_spot_insert(sim);
         if (st != GF_OK) return st;
         double born = t_end - window * gf_rng_uniform(&sim->rng);
-        sim->snext[sim->ns - 1] = born + gf_rng_exp(&sim->rng, c->spot_move_rate);
+        sim->snext[sim->ns - 1] = born + gf_rng_exp(&sim->rng, c->move_rate);
     }
     return GF_OK;
 }
@@ -565,11 +565,11 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
 
 gf_status gf_sim_domains_cycle(gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     gf_status st = gf_dom_make(sim);
     if (st != GF_OK) return st;
     gf_dom *q = sim->dom;
-    const double window = c->parallel_window, t_end = sim->t_pending;
+    const double window = c->window, t_end = sim->t_pending;
     sim->t = t_end;
     sim->pending = false;
     sim->fstep++;
@@ -606,8 +606,8 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     if (q->profiling) q->prof.profiled_tau += window;
     // Method 3 (Sec. 5): the whole packing every k / mu, at the end of the
     // cycle in which it falls due.
-    if (c->relax_method == GF_RELAX_GLOBAL) {
-        const double every = c->relax_k / c->spot_move_rate;
+    if (c->method == GF_RELAX_GLOBAL) {
+        const double every = c->k / c->move_rate;
         if (floor(t_end / every) > floor((t_end - window) / every)) {
 #ifdef GF_MPI
             if ((st = gf_mpi_whole(sim)) != GF_OK) return st; // it moves every particle
@@ -668,7 +668,7 @@ gf_par_profile gf_dom_profile(const gf_sim *sim)
     f.colours = q->nsect;
     f.phases = 1;
     f.domains = q->ndomain;
-    f.window = sim->cfg.parallel_window;
+    f.window = sim->d.window;
     for (int a = 0; a < 3; a++) {
         f.blocks_along[a] = q->nb[a];
         f.block_cells[a] = q->bs[a];

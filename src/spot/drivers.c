@@ -19,29 +19,29 @@
 // every k/mu, counted rather than summed so no rounding accumulates.
 static double gf_sim_global_time(const gf_sim *sim)
 {
-    return (double)(sim->st.global_relaxations + 1) * sim->cfg.relax_k / sim->cfg.spot_move_rate;
+    return (double)(sim->st.global_relaxations + 1) * sim->d.k / sim->d.move_rate;
 }
 
 // The time of whatever happens next: the pending event, or a global
 // relaxation due before it.
 static double gf_sim_next_time(const gf_sim *sim)
 {
-    if (sim->cfg.relax_method == GF_RELAX_GLOBAL && sim->cfg.run_mode == GF_MODE_EVENT)
+    if (sim->d.method == GF_RELAX_GLOBAL && sim->d.mode == GF_MODE_EVENT)
         return fmin(sim->t_pending, gf_sim_global_time(sim));
     return sim->t_pending;
 }
 
 static gf_status gf_sim_fixed_step(gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     gf_status st = gf_sim_fixed_begin(sim);
     if (st != GF_OK) return st;
     size_t ns = sim->ns, cap = ns ? ns : 1;
     uint32_t *order = GF_NEW(uint32_t, cap);
     uint8_t *dead = GF_NEW(uint8_t, cap);
     if (!order || !dead) st = gf_error_set(GF_ERR_NOMEM, "out of memory for a fixed step");
-    for (size_t k = 0; st == GF_OK && k < ns; k++) order[k] = c->run_order == GF_ORDER_NEWEST ? (uint32_t)(ns - 1 - k) : (uint32_t)k;
-    if (st == GF_OK && c->run_order == GF_ORDER_RANDOM)
+    for (size_t k = 0; st == GF_OK && k < ns; k++) order[k] = c->order == GF_ORDER_NEWEST ? (uint32_t)(ns - 1 - k) : (uint32_t)k;
+    if (st == GF_OK && c->order == GF_ORDER_RANDOM)
         for (size_t k = ns; k > 1; k--) { // Fisher-Yates
             size_t j = (size_t)gf_rng_below(&sim->rng, k);
             uint32_t tmp = order[k - 1];
@@ -86,18 +86,18 @@ static gf_status gf_sim_whole(gf_sim *sim)
 // fixed mode (where one step is thousands of moves).
 static uint64_t gf_sim_work(const gf_sim *sim)
 {
-    return sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves : sim->st.events;
+    return sim->d.mode == GF_MODE_FIXED ? sim->st.spot_moves : sim->st.events;
 }
 
 // The action of the next event: a fixed step, a global relaxation due, an
 // insertion or a spot move.
 static gf_status gf_sim_action(gf_sim *sim)
 {
-    if (sim->cfg.run_mode == GF_MODE_FIXED)
-        return sim->cfg.run_order == GF_ORDER_SPATIAL   ? gf_sim_spatial_step(sim)
-               : sim->cfg.run_order == GF_ORDER_DOMAINS ? gf_sim_domains_cycle(sim)
+    if (sim->d.mode == GF_MODE_FIXED)
+        return sim->d.order == GF_ORDER_SPATIAL   ? gf_sim_spatial_step(sim)
+               : sim->d.order == GF_ORDER_DOMAINS ? gf_sim_domains_cycle(sim)
                                                         : gf_sim_fixed_step(sim);
-    if (sim->cfg.relax_method == GF_RELAX_GLOBAL) {
+    if (sim->d.method == GF_RELAX_GLOBAL) {
         double tg = gf_sim_global_time(sim);
         if (tg <= sim->t_pending) {
             sim->t = tg;
@@ -107,8 +107,8 @@ static gf_status gf_sim_action(gf_sim *sim)
     sim->t = sim->t_pending;
     sim->pending = false;
     sim->st.events++;
-    double lambda = sim->cfg.spot_insertion_rate;
-    double rate = lambda + (double)sim->ns * sim->cfg.spot_move_rate;
+    double lambda = sim->d.insertion_rate;
+    double rate = lambda + (double)sim->ns * sim->d.move_rate;
     if (gf_rng_uniform(&sim->rng) * rate < lambda) return gf_spot_insert(sim);
     return gf_spot_move(sim, (size_t)gf_rng_below(&sim->rng, sim->ns));
 }
@@ -117,7 +117,7 @@ static gf_status gf_sim_action(gf_sim *sim)
 static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
-    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->cfg.run_reorder_interval) {
+    if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->d.reorder_interval) {
         if ((st = gf_sim_whole(sim)) != GF_OK) return st; // the re-sort moves every particle
         if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
         sim->nl_built_at = gf_sim_work(sim);
@@ -132,12 +132,12 @@ static gf_status gf_sim_event(gf_sim *sim)
 static void gf_sim_draw_pending(gf_sim *sim)
 {
     if (sim->pending) return;
-    if (sim->cfg.run_mode == GF_MODE_FIXED && sim->cfg.run_order == GF_ORDER_DOMAINS) {
-        sim->t_pending = (double)(sim->fstep + 1) * sim->cfg.parallel_window; // cycles of one window
-    } else if (sim->cfg.run_mode == GF_MODE_FIXED) {
-        sim->t_pending = (double)(sim->fstep + 1) / sim->cfg.spot_move_rate;
+    if (sim->d.mode == GF_MODE_FIXED && sim->d.order == GF_ORDER_DOMAINS) {
+        sim->t_pending = (double)(sim->fstep + 1) * sim->d.window; // cycles of one window
+    } else if (sim->d.mode == GF_MODE_FIXED) {
+        sim->t_pending = (double)(sim->fstep + 1) / sim->d.move_rate;
     } else {
-        double rate = sim->cfg.spot_insertion_rate + (double)sim->ns * sim->cfg.spot_move_rate;
+        double rate = sim->d.insertion_rate + (double)sim->ns * sim->d.move_rate;
         sim->t_pending = sim->t + gf_rng_exp(&sim->rng, rate);
     }
     sim->pending = true;
@@ -180,7 +180,7 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
     static const gf_sim_hooks none = {0};
     if (!hooks) hooks = &none;
     if (isnan(until)) return gf_error_set(GF_ERR_PARAM, "gf_sim_run: the end time is NaN"); // would do nothing
-    const double dsnap = sim->cfg.output_snapshot_interval, dck = sim->cfg.run_checkpoint_interval;
+    const double dsnap = sim->d.snapshot_interval, dck = sim->d.checkpoint_interval;
     const double last_snap = until + 1e-9 * dsnap; // k * dsnap may round just above until
     uint64_t every = hooks->progress_every ? hooks->progress_every : UINT64_MAX;
     uint64_t countdown = every;
@@ -219,7 +219,7 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
         if ((st = gf_sim_event(sim)) != GF_OK) return st;
         sim->t_reached = sim->t;
         // Progress counts events, or the moves of a fixed step (thousands each).
-        uint64_t done = sim->cfg.run_mode == GF_MODE_FIXED ? sim->st.spot_moves - moves0 + 1 : 1;
+        uint64_t done = sim->d.mode == GF_MODE_FIXED ? sim->st.spot_moves - moves0 + 1 : 1;
         if (countdown <= done) {
             countdown = every;
             if (hooks->progress) hooks->progress(hooks->ctx, sim);

@@ -94,21 +94,21 @@ long gf_spot_apply(gf_sim *sim, gf_work *w, const double c[3], const double u0[3
     gf_pos *p = sim->p; // not restrict: gf_sim_exit_check parks through sim->p
     uint32_t *restrict inside = w->inside;
     uint8_t *restrict in_ball = w->in_ball;
-    const gf_config *cfg = &sim->cfg;
+    const gf_engine_defs *ed = &sim->d;
     double u[3] = {u0[0], u0[1], u0[2]};
     // Sec. 3 influence weighting: the spot's free volume is shared by the p
     // particles it reaches (at least min_count of them), off low in the silo.
-    if (cfg->spot_weighting && c[2] >= cfg->spot_weighting_zmin) {
+    if (ed->weighting && c[2] >= ed->weighting_zmin) {
         size_t p_ball = 0;
         for (size_t k = 0; k < m; k++) p_ball += in_ball[k];
-        double f = cfg->spot_weighting_bulk_count / fmax((double)p_ball, cfg->spot_weighting_min_count);
+        double f = ed->weighting_bulk_count / fmax((double)p_ball, ed->weighting_min_count);
         u[0] *= f;
         u[1] *= f;
         u[2] *= f;
     }
     // Mirror images of c in the side walls its ball crosses (Sec. 4, the reflection procedure).
     double mir[GF_WALL_HITS][3];
-    int nmir = cfg->spot_walls == GF_WALLS_REFLECT ? sim->box.ops->mirrors(&sim->box, c, sim->rs, mir) : 0;
+    int nmir = ed->walls == GF_WALLS_REFLECT ? sim->box.ops->mirrors(&sim->box, c, sim->rs, mir) : 0;
     // SPEC 1.3 spot(c, u, r_s): every particle within r_s of c moves by u
     // (times S(x) = 1 + the mirrored balls that also reach it, Sec. 4).
     // Particles that fall out leave the inside list, which relax() then uses

@@ -103,8 +103,8 @@ typedef struct gf_par {
 // to the nearest point of a cell touched: the blocks add a cell diagonal.
 double gf_par_reach(const gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
-    double step = sqrt(2.0 * c->spot_step_xy * c->spot_step_xy + c->spot_step_z * c->spot_step_z);
+    const gf_engine_defs *c = &sim->d;
+    double step = sqrt(2.0 * c->step_xy * c->step_xy + c->step_z * c->step_z);
     double h = fmax(sim->hmax, GF_SKIN);
     double list = h + GF_SKIN_SLACK + sqrt(3.0) * (2.0 * sim->rmax + 3.0 * h + GF_SKIN_SLACK);
     // The biased walk counts balls of r_s in boxes of cells around its candidates.
@@ -136,20 +136,20 @@ void gf_par_free(gf_sim *sim)
     sim->par = NULL;
 }
 
-int gf_par_threads(const gf_config *c)
+int gf_par_threads(const gf_engine_defs *d)
 {
 #ifdef _OPENMP
-    if (c->run_threads > 0) return (int)c->run_threads;
 #ifdef GF_MPI
-    // Every core, shared by this machine's ranks: more threads than cores
-    // make every colour phase's barrier wait for a preempted thread.
-    const int t = omp_get_num_procs() / gf_mpi_local_size();
-    return t > 0 ? t : 1;
-#else
-    return omp_get_num_procs();
+    if (d->threads_auto) {
+        // Every core, shared by this machine's ranks: more threads than cores
+        // make every colour phase's barrier wait for a preempted thread.
+        const int t = d->threads / gf_mpi_local_size();
+        return t > 0 ? t : 1;
+    }
 #endif
+    return d->threads; // run.threads, or every core (gf_config_engine_defs)
 #else
-    (void)c;
+    (void)d;
     return 1;
 #endif
 }
@@ -216,7 +216,7 @@ gf_status gf_par_colour_blocks(const gf_grid *g, const int bs[3], const int nb[3
 
 static gf_status gf_par_make(gf_sim *sim)
 {
-    int threads = gf_par_threads(&sim->cfg);
+    int threads = gf_par_threads(&sim->d);
     if (sim->par && sim->par->threads == threads) return GF_OK;
     gf_par_free(sim);
     gf_par *q = gf_alloc(sizeof *q);
@@ -288,7 +288,7 @@ static void gf_par_sort(gf_sim *sim, gf_par *q)
 static void gf_par_seed(const gf_sim *sim, size_t k, gf_rng *r)
 {
     uint64_t stream = (sim->sbirth[k] << 32) ^ (sim->fstep & 0xffffffffu);
-    gf_rng_seed(r, sim->cfg.run_seed ^ 0x7370617469616cull /* "spatial" */, stream);
+    gf_rng_seed(r, sim->d.seed ^ 0x7370617469616cull /* "spatial" */, stream);
 }
 
 // Each block's spots in a random order drawn from the block's own stream
@@ -306,7 +306,7 @@ static void gf_par_phases(gf_sim *sim, gf_par *q, int phases)
             continue;
         }
         gf_rng rng;
-        gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
+        gf_rng_seed(&rng, sim->d.seed ^ 0x736c6162ull /* "slab" */, (sim->fstep << 24) ^ b);
         for (size_t k = bl->end - bl->first; k > 1; k--) { // Fisher-Yates
             size_t j = (size_t)gf_rng_below(&rng, k);
             uint32_t tmp = q->spots.idx[bl->first + k - 1];
@@ -315,7 +315,7 @@ static void gf_par_phases(gf_sim *sim, gf_par *q, int phases)
         }
         for (size_t o = bl->first; o < bl->end; o++) {
             uint32_t k = q->spots.idx[o];
-            gf_rng_seed(&rng, sim->cfg.run_seed ^ 0x7068617365ull /* "phase" */,
+            gf_rng_seed(&rng, sim->d.seed ^ 0x7068617365ull /* "phase" */,
                         (sim->sbirth[k] << 32) ^ (sim->fstep & 0xffffffffu));
             q->phase[k] = (uint8_t)gf_rng_below(&rng, (uint64_t)phases);
             ps[q->phase[k] + 1]++;
@@ -417,7 +417,7 @@ static int gf_par_phase_count(void)
 
 uint64_t gf_par_shared_phases(const gf_sim *sim)
 {
-    if (sim->cfg.run_order == GF_ORDER_DOMAINS) return gf_dom_shared_phases(sim);
+    if (sim->d.order == GF_ORDER_DOMAINS) return gf_dom_shared_phases(sim);
     return sim->par ? sim->par->shared_phases : 0;
 }
 
@@ -457,7 +457,7 @@ static void gf_par_record(gf_par *q, size_t nrun)
 
 void gf_sim_set_par_profiling(gf_sim *sim, int on)
 {
-    if (sim->cfg.run_order == GF_ORDER_DOMAINS) {
+    if (sim->d.order == GF_ORDER_DOMAINS) {
         gf_dom_set_profiling(sim, on);
         return;
     }
@@ -468,7 +468,7 @@ void gf_sim_set_par_profiling(gf_sim *sim, int on)
 
 gf_par_profile gf_sim_par_profile(const gf_sim *sim)
 {
-    if (sim->cfg.run_order == GF_ORDER_DOMAINS) return gf_dom_profile(sim);
+    if (sim->d.order == GF_ORDER_DOMAINS) return gf_dom_profile(sim);
     gf_par_profile f = {0};
     const gf_par *q = sim->par;
     if (!q) return f;

@@ -37,17 +37,17 @@ bool gf_sim_reinsert_queue(gf_sim *sim, uint32_t i)
 }
 
 // Whether a sphere of radius r may be put back at (x, y) of container `box`.
-static bool gf_zone_allowed(const gf_container *box, const gf_config *cfg, double x, double y, double r)
+static bool gf_zone_allowed(const gf_container *box, const gf_engine_defs *ed, double x, double y, double r)
 {
     if (!gf_container_inside_xy(box, x, y, r)) return false;
-    if (cfg->run_reinsert != GF_REINSERT_ZONE) return true;
-    double rho = hypot(x, y), rmax = cfg->run_reinsert_rmax;
-    return rho >= cfg->run_reinsert_rmin && (isnan(rmax) || rho < rmax);
+    if (ed->reinsert != GF_REINSERT_ZONE) return true;
+    double rho = hypot(x, y), rmax = ed->reinsert_rmax;
+    return rho >= ed->reinsert_rmin && (isnan(rmax) || rho < rmax);
 }
 
 static bool gf_reinsert_allowed(const gf_sim *sim, double x, double y, double r)
 {
-    return gf_zone_allowed(&sim->box, &sim->cfg, x, y, r);
+    return gf_zone_allowed(&sim->box, &sim->d, x, y, r);
 }
 
 gf_status gf_sim_check_config(const gf_config *cfg_in)
@@ -55,7 +55,10 @@ gf_status gf_sim_check_config(const gf_config *cfg_in)
     if (!cfg_in) return gf_error_set(GF_ERR_PARAM, "gf_sim_check_config: NULL configuration");
     gf_config cfg = *cfg_in;
     gf_status st = gf_config_validate(&cfg);
-    if (st != GF_OK || !cfg.run_recirculate || cfg.run_reinsert != GF_REINSERT_ZONE) return st;
+    if (st != GF_OK) return st;
+    gf_engine_defs d;
+    gf_config_engine_defs(&cfg, &d);
+    if (!d.recirculate || d.reinsert != GF_REINSERT_ZONE) return st;
     // The share of the cross-section where a sphere of radius 1/2 may be put
     // back, on a 256 x 256 lattice over the bounding box: the targets are
     // drawn there by rejection, GF_REINSERT_SAMPLES tries each, so a share
@@ -69,7 +72,7 @@ gf_status gf_sim_check_config(const gf_config *cfg_in)
     long hits = 0;
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++)
-            hits += gf_zone_allowed(&box, &cfg, lo[0] + (hi[0] - lo[0]) * (i + 0.5) / n,
+            hits += gf_zone_allowed(&box, &d, lo[0] + (hi[0] - lo[0]) * (i + 0.5) / n,
                                     lo[1] + (hi[1] - lo[1]) * (j + 0.5) / n, 0.5);
     const double share = (double)hits / ((double)n * n);
     if (share * GF_REINSERT_SAMPLES >= 50.0) return GF_OK;

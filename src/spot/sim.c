@@ -17,21 +17,20 @@
 
 void gf_sim_derive(gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
-    sim->box = gf_container_make(c);
-    sim->rs = c->spot_radius;
-    sim->rs2 = c->spot_radius * c->spot_radius;
-    sim->re = c->relax_radius;
-    sim->re2 = c->relax_radius * c->relax_radius;
-    sim->alpha = c->relax_alpha;
-    sim->inv_w = 1.0 / c->spot_w;
-    sim->ball_frac = c->spot_ball_centre == GF_BALL_END ? 1.0 : 0.5;
-    sim->spot_ins_r = fmax(0.0, 0.5 * c->orifice_diameter - c->spot_insertion_margin);
-    // SPEC 1.3 mass balance: a spot is born one radius below the exit, so its
-    // ball sweeps its whole volume past the exit plane as it rises.
-    sim->spot_birth_z = gf_config_exit_plane(c) - c->spot_radius;
-    sim->no_relax = c->relax_method == GF_RELAX_NONE;
-    sim->use_nlist = c->relax_method != GF_RELAX_NONE;
+    gf_config_engine_defs(&sim->cfg, &sim->d);
+    const gf_engine_defs *c = &sim->d;
+    sim->box = gf_container_make(&sim->cfg);
+    sim->rs = c->radius;
+    sim->rs2 = c->radius * c->radius;
+    sim->re = c->r_e;
+    sim->re2 = c->r_e * c->r_e;
+    sim->alpha = c->alpha;
+    sim->inv_w = 1.0 / c->w;
+    sim->ball_frac = c->ball_centre == GF_BALL_END ? 1.0 : 0.5;
+    sim->spot_ins_r = c->insertion_radius;
+    sim->spot_birth_z = c->birth_z;
+    sim->no_relax = c->method == GF_RELAX_NONE;
+    sim->use_nlist = c->method != GF_RELAX_NONE;
 }
 
 gf_status gf_sim_alloc_scratch(gf_sim *sim)
@@ -51,7 +50,7 @@ gf_status gf_sim_make_grid(gf_sim *sim)
         sim->grid_ztop = top + 2.0;
         // Recirculation keeps the surface near where it began, but a flowing
         // packing dilates and the re-inserted top is loose: room above it.
-        if (sim->cfg.run_recirculate) sim->grid_ztop += 0.5 * top + 8.0;
+        if (sim->d.recirculate) sim->grid_ztop += 0.5 * top + 8.0;
     }
     double lo[3], hi[3];
     gf_container_bounds(&sim->box, sim->grid_ztop, lo, hi);
@@ -60,17 +59,17 @@ gf_status gf_sim_make_grid(gf_sim *sim)
 
 gf_status gf_sim_make_stress(gf_sim *sim)
 {
-    sim->sfr = sim->cfg.spot_flow_rule == GF_FLOW_SFR; // the one place the engine reads the key
+    sim->sfr = sim->d.flow_rule == GF_FLOW_SFR;
     if (!sim->sfr) return GF_OK;
     // The surface the run began with, as gf_sim_make_grid recorded it in
     // grid_ztop (a checkpoint keeps that, so a resumed run solves the same field).
     double top = sim->grid_ztop - 2.0;
-    if (sim->cfg.run_recirculate) top = (top - 8.0) / 1.5;
+    if (sim->d.recirculate) top = (top - 8.0) / 1.5;
     top += 0.5; // centres to the surface
     gf_stress_def def = gf_config_stress_def(&sim->cfg);
     gf_status st = gf_stress_solve(&def, &sim->box, top, &sim->stress);
     if (st != GF_OK) return st;
-    sim->sfr_walk = gf_sfr_walk_make(sim->cfg.spot_step_xy, sim->cfg.spot_step_z, sim->stress.eps);
+    sim->sfr_walk = gf_sfr_walk_make(sim->d.step_xy, sim->d.step_z, sim->stress.eps);
     return GF_OK;
 }
 
@@ -148,9 +147,9 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
     if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
     if ((st = gf_sim_make_stress(sim)) != GF_OK) goto fail;
     if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
-    gf_rng_seed(&sim->rng, cfg->run_seed, 0x5350u /* "SP": the spot stream */);
+    gf_rng_seed(&sim->rng, sim->d.seed, 0x5350u /* "SP": the spot stream */);
     sim->st.particles_initial = sim->n_initial;
-    sim->next_ckpt = cfg->run_checkpoint_interval;
+    sim->next_ckpt = sim->d.checkpoint_interval;
     *out = sim;
     return GF_OK;
 fail:
@@ -172,4 +171,8 @@ const gf_config *gf_sim_config(const gf_sim *sim) { return &sim->cfg; }
 
 void gf_sim_set_timing(gf_sim *sim, int on) { sim->timing = on != 0; }
 
-void gf_sim_set_threads(gf_sim *sim, int threads) { sim->cfg.run_threads = threads > 0 ? threads : 0; }
+void gf_sim_set_threads(gf_sim *sim, int threads)
+{
+    gf_config_set_threads(&sim->cfg, threads);
+    gf_config_engine_defs(&sim->cfg, &sim->d);
+}

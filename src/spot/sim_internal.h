@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "geom/container.h"
 #include "geom/grid.h"
+#include "granflow/defs.h"
 #include "granflow/sim.h"
 #include "spot/sfr.h"
 #include "stress/stress.h"
@@ -104,7 +105,8 @@ static inline void gf_work_touch(gf_work *w, int kind, uint32_t v)
 }
 
 struct gf_sim {
-    gf_config cfg;
+    gf_config cfg;       ///< kept to save and hand to config/ (checkpoints, gf_sim_config); read d
+    gf_engine_defs d;    ///< what the engine reads (gf_config_engine_defs of cfg)
     gf_container box;
 
     // Particles. Entries [0, n) are live or parked (exited, awaiting compaction).
@@ -237,7 +239,7 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i);
 /// Removes particle i if it fell out of the orifice; true when it did.
 static inline bool gf_sim_exit_check(gf_sim *sim, gf_work *w, uint32_t i)
 {
-    return sim->p[i].z < sim->box.exit_z && gf_sim_exit_slow(sim, w, i);
+    return sim->p[i].z < sim->box.z_exit && gf_sim_exit_slow(sim, w, i);
 }
 
 /// Bookkeeping after the moves of one step, for the entries k < m of
@@ -252,7 +254,7 @@ gf_status gf_sim_reinsert(gf_sim *sim);
 /// Whether a particle ending pass `pass` is to be put back.
 static inline bool gf_sim_recirculates(const gf_sim *sim, int32_t pass)
 {
-    return sim->cfg.run_recirculate && (sim->cfg.run_max_passes == 0 || pass < sim->cfg.run_max_passes);
+    return sim->d.recirculate && (sim->d.max_passes == 0 || pass < sim->d.max_passes);
 }
 
 /// Allocates the particle arrays for n particles.
@@ -298,7 +300,7 @@ void gf_dom_set_profiling(gf_sim *sim, int on);
 double gf_par_reach(const gf_sim *sim);
 /// Threads of the parallel engines: run.threads, or every core (a machine's
 /// cores shared between its MPI ranks).
-int gf_par_threads(const gf_config *c);
+int gf_par_threads(const gf_engine_defs *d);
 /// The removal test's column tops, as gf_grid_column_top would answer now.
 void gf_par_column_tops(const gf_sim *sim, double *coltop, size_t ncol);
 struct gf_celllist;
@@ -330,7 +332,7 @@ gf_status gf_spot_insert(gf_sim *sim);
 /// Moves spot k once with the serial worker (event mode, fixed random or
 /// newest order), removing it when the step says so (walk.c).
 gf_status gf_spot_move(gf_sim *sim, size_t k);
-/// Derived parameters and container from sim->cfg.
+/// The engine's defs (sim->d, gf_config_engine_defs), derived parameters and container from sim->cfg.
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
 gf_status gf_sim_make_grid(gf_sim *sim);

@@ -85,7 +85,7 @@ gf_status gf_spot_insert(gf_sim *sim)
     double x, y;
     if (sim->box.shape == GF_ORIFICE_SLIT) {
         x = sim->box.ox + (2.0 * gf_rng_uniform(&sim->rng) - 1.0) * sim->spot_ins_r;
-        double ylo = sim->box.ylo + sim->cfg.spot_wall_distance, yhi = sim->box.yhi - sim->cfg.spot_wall_distance;
+        double ylo = sim->box.ylo + sim->d.wall_distance, yhi = sim->box.yhi - sim->d.wall_distance;
         y = ylo + (yhi - ylo) * gf_rng_uniform(&sim->rng);
     } else {
         double rad = sim->spot_ins_r * sqrt(gf_rng_uniform(&sim->rng));
@@ -123,20 +123,20 @@ static void gf_walk_finish(const gf_sim *sim, double n[3]);
 
 static void gf_walk_candidate(const gf_sim *sim, const double s[3], uint64_t dir, double n[3])
 {
-    const gf_config *c = &sim->cfg;
-    double h = c->spot_step_xy;
+    const gf_engine_defs *c = &sim->d;
+    double h = c->step_xy;
     n[0] = s[0] + (dir == 0 ? h : dir == 1 ? -h : 0.0);
     n[1] = s[1] + (dir == 2 ? h : dir == 3 ? -h : 0.0);
-    n[2] = s[2] + c->spot_step_z;
+    n[2] = s[2] + c->step_z;
     gf_walk_finish(sim, n);
 }
 
 // A candidate's wall truncation and, below the base, the birth region.
 static void gf_walk_finish(const gf_sim *sim, double n[3])
 {
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     const gf_container *b = &sim->box;
-    double dw = c->spot_walls == GF_WALLS_REFLECT ? 0.0 : c->spot_wall_distance;
+    double dw = c->walls == GF_WALLS_REFLECT ? 0.0 : c->wall_distance;
     b->ops->spot_clamp(b, n, dw);
     double nx = n[0], ny = n[1], nz = n[2];
     if (nz < 0.0) { // kept over the birth region around the outlet centre (ox, oy)
@@ -201,7 +201,7 @@ static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double
 static bool gf_walk_biased(gf_sim *sim, gf_work *w, const double s[3], double n[3])
 {
     double cand[4][3], wgt[4], q = 0.0;
-    const double f = sim->ball_frac, beta = sim->cfg.spot_bias_exponent;
+    const double f = sim->ball_frac, beta = sim->d.bias_exponent;
     for (uint64_t d = 0; d < 4; d++) {
         gf_walk_candidate(sim, s, d, cand[d]);
         double c[3] = {s[0] + f * (cand[d][0] - s[0]), s[1] + f * (cand[d][1] - s[1]), s[2] + f * (cand[d][2] - s[2])};
@@ -236,13 +236,13 @@ static bool gf_walk_biased(gf_sim *sim, gf_work *w, const double s[3], double n[
 // Whether this move relaxes (2009 paper Sec. 5).
 static bool gf_relax_due(gf_sim *sim, gf_work *w, uint32_t *count)
 {
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     if (sim->no_relax) return false;
-    switch (c->relax_method) {
+    switch (c->method) {
     case GF_RELAX_FULL: return true;
-    case GF_RELAX_RANDOM: return gf_rng_uniform(w->rng) * c->relax_k < 1.0; // method 1: probability 1/k
+    case GF_RELAX_RANDOM: return gf_rng_uniform(w->rng) * c->k < 1.0; // method 1: probability 1/k
     case GF_RELAX_COUNTER:                                                   // method 2: every k-th own move
-        if (++*count < (uint32_t)llround(c->relax_k)) return false;
+        if (++*count < (uint32_t)llround(c->k)) return false;
         *count = 0;
         return true;
     default: return false; // none; global relaxes the whole packing on its own schedule
@@ -256,7 +256,7 @@ gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bo
     *deleted = false;
     *ball = 0;
     double n[3];
-    if (sim->cfg.spot_bias_exponent > 0.0) {
+    if (sim->d.bias_exponent > 0.0) {
         if (!gf_walk_biased(sim, w, s, n)) {
             *deleted = true;
             return GF_OK;
@@ -361,13 +361,13 @@ gf_status gf_sim_global(gf_sim *sim)
 // afterwards, keeping the array in birth order.
 gf_status gf_sim_fixed_begin(gf_sim *sim)
 {
-    const gf_config *c = &sim->cfg;
+    const gf_engine_defs *c = &sim->d;
     sim->t = sim->t_pending;
     sim->pending = false;
     sim->fstep++;
     sim->st.events++;
     gf_status st = GF_OK;
-    uint64_t nins = gf_rng_poisson(&sim->rng, c->spot_insertion_rate / c->spot_move_rate);
+    uint64_t nins = gf_rng_poisson(&sim->rng, c->insertion_rate / c->move_rate);
     for (uint64_t k = 0; k < nins && st == GF_OK; k++) st = gf_spot_insert(sim);
     return st;
 }
@@ -375,8 +375,8 @@ gf_status gf_sim_fixed_begin(gf_sim *sim)
 gf_status gf_sim_fixed_end(gf_sim *sim)
 {
     // Method 3: the whole packing every k steps (every k / mu).
-    const gf_config *c = &sim->cfg;
-    if (c->relax_method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->relax_k) == 0)
+    const gf_engine_defs *c = &sim->d;
+    if (c->method == GF_RELAX_GLOBAL && sim->fstep % (uint64_t)llround(c->k) == 0)
         return gf_sim_global(sim);
     return GF_OK;
 }
