@@ -6,8 +6,11 @@ Reads DIR/stress.csv of a plane-strain run with spot.flow_rule = sfr, walks
 spots from the orifice (|x| < INS) with the walk of src/spot/sfr.c (nearest
 node, a step below z = 0 goes the other way) and prints the variance of x
 where each first reaches z = 10, 20, 30 d: with the field's drift, with the
-drift forced vertical, and for the papers' walk (k = z / step_z steps of
-+-step_xy / sqrt 2 across). No particles: it isolates what the walk does.
+drift forced vertical, with the drift's speed proportional to |f| (step_z
+where |f| is Rankine's 1 / (1 + sin phi), the centre of the box near its
+surface: the other reading of the papers' drift, not the one implemented),
+and for the papers' walk (k = z / step_z steps of +-step_xy / sqrt 2
+across). No particles: it isolates what the walk does.
 usage: scripts/sfr_first_passage.py DIR [STEP_XY STEP_Z PHI_DEG INS]
 """
 import csv
@@ -29,7 +32,7 @@ delta = 2 * dz / L
 random.seed(1)
 
 
-def var_at(vertical, n=2000, targets=(10, 20, 30)):
+def var_at(vertical, n=2000, targets=(10, 20, 30), fref=None):
     rec = {t: [] for t in targets}
     for _ in range(n):
         x, z, ti = random.uniform(-ins, ins), 0.0, 0
@@ -46,7 +49,7 @@ def var_at(vertical, n=2000, targets=(10, 20, 30)):
             det = math.sin(2 * eps)
             a = (g0 * be[1] - g1 * be[0]) / det
             b = (al[0] * g1 - al[1] * g0) / det
-            dd = min(delta, 1 / max(abs(a), abs(b)))
+            dd = min(delta * (nf / fref if fref else 1.0), 1 / max(abs(a), abs(b)))
             u = random.random()
             cut = [(1 + dd * a) / 4, (1 - dd * a) / 4, (1 + dd * b) / 4]
             e = al if u < cut[0] else (-al[0], -al[1]) if u < cut[0] + cut[1] else \
@@ -67,4 +70,5 @@ def var_at(vertical, n=2000, targets=(10, 20, 30)):
 
 print("sfr walk over the field:      ", var_at(False))
 print("the same, drift vertical:     ", var_at(True))
+print("the same, speed prop. to |f|: ", var_at(False, fref=1 / (1 + math.sin(math.radians(phi)))))
 print("papers' walk:                 ", {t: round(ins * ins / 3 + t / dz * h * h / 2, 1) for t in (10, 20, 30)})

@@ -14,13 +14,13 @@ gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps)
 
 void gf_sfr_probs(const gf_sfr_walk *wk, double psi, const double f[2], double e[4][2], double prob[4])
 {
-    // Slip lines at psi -+ eps from the major principal direction (PRE 75, 041301, Sec. II).
+    // Slip lines at psi -+ eps from the major principal direction (PRE 75, 041301; docs/stress.md).
     double al[2] = {cos(psi - wk->eps), sin(psi - wk->eps)}, be[2] = {cos(psi + wk->eps), sin(psi + wk->eps)};
     e[0][0] = al[0], e[0][1] = al[1];
     e[1][0] = -al[0], e[1][1] = -al[1];
     e[2][0] = be[0], e[2][1] = be[1];
     e[3][0] = -be[0], e[3][1] = -be[1];
-    // Spots drift against the force on the grains (PRE 75, 041301, Sec. III): g = -f / |f|.
+    // Spots drift against the force on the grains (PRE 75, 041301, abstract; 2009 paper, Sec. 1): g = -f / |f|.
     double nf = hypot(f[0], f[1]), a = 0.0, b = 0.0;
     if (nf > 0.0) {
         double g[2] = {-f[0] / nf, -f[1] / nf};
