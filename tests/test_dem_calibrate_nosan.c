@@ -168,36 +168,49 @@ static void show_refine(void *ctx, int iter, int max_iter, const gf_config *c, c
 // parameters that set them back near the chosen ones. The other three
 // start right (the test is of the loop, not of the thesis relations, which
 // recovers_chosen_parameters tests). About 10 s of CPU.
-static void refine_recovers_flow_and_width(void **state)
+/// The refinement tests' granflow reference: a 20 x 8 box, orifice 6,
+/// 5,000 spheres, no relaxation, 16 tau, snapshots every 0.5 tau, with the
+/// chosen step_xy, lambda and r_s, run into NAME and loaded with the
+/// calibration's options.
+static gf_config reference(const char *name, double step_xy, double lambda, double r_s, gf_series *s,
+                           gf_analysis_opts *o)
 {
-    (void)state;
     gf_config c = gf_config_default();
     c.container_width = 20;
     c.container_depth = 8;
     c.orifice_diameter = 6;
     c.packing_particles = 5000;
-    c.spot_step_xy = 0.5;
-    c.spot_insertion_rate = 250;
+    c.spot_step_xy = step_xy;
+    c.spot_insertion_rate = lambda;
+    c.spot_radius = r_s;
     c.relax_method = GF_RELAX_NONE;
     c.run_duration = 16;
     c.run_seed = 5;
     c.output_snapshot_interval = 0.5;
     char dir[1024];
-    snprintf(dir, sizeof dir, "%s/ref", gf_test_tmpdir());
+    snprintf(dir, sizeof dir, "%s/%s", gf_test_tmpdir(), name);
     gf_run_opts ro = {.dir = dir};
     assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
-    gf_series s;
-    assert_int_equal(gf_dem_series_load(dir, NULL, &s, NULL), GF_OK);
-    gf_analysis_opts o = gf_analysis_opts_default();
-    assert_int_equal(gf_dem_window(&s, &o, NULL), GF_OK);
-    gf_dem_calibration_opts(&s, &o, &o);
+    assert_int_equal(gf_dem_series_load(dir, NULL, s, NULL), GF_OK);
+    *o = gf_analysis_opts_default();
+    assert_int_equal(gf_dem_window(s, o, NULL), GF_OK);
+    gf_dem_calibration_opts(s, o, o);
     // One window for every height. With the window per height (issue 27) this
-    // short draining reference (16 tau, 5,000 spheres) has heights near the
-    // orifice judged "still speeding up" in some spot runs and not in others
-    // with the same parameters (z = 7.4 and 8.8 at step_xy 0.50), and its
-    // Var varies by ~15% from run to run at the top, against errors of 1-2%
-    // from the sub-windows: no loop can meet 10% at every height there.
-    o.vel_window = GF_VEL_WINDOW_RUN;
+    // short draining reference has heights near the orifice judged "still
+    // speeding up" in some spot runs and not in others with the same
+    // parameters (z = 7.4 and 8.8 at step_xy 0.50), and its Var varies by
+    // ~15% from run to run at the top, against errors of 1-2% from the
+    // sub-windows: no loop can meet 10% at every height there.
+    o->vel_window = GF_VEL_WINDOW_RUN;
+    return c;
+}
+
+static void refine_recovers_flow_and_width(void **state)
+{
+    (void)state;
+    gf_series s;
+    gf_analysis_opts o;
+    gf_config c = reference("ref", 0.5, 250, 2.6, &s, &o);
 
     gf_config start = s.cfg;
     start.spot_step_xy = 0.676;
@@ -239,29 +252,10 @@ static void refine_recovers_flow_and_width(void **state)
 static void refine_recovers_three_parameters(void **state)
 {
     (void)state;
-    gf_config c = gf_config_default();
-    c.container_width = 20;
-    c.container_depth = 8;
-    c.orifice_diameter = 6;
-    c.packing_particles = 5000;
-    c.spot_step_xy = 0.5;
-    c.spot_insertion_rate = 250;
-    c.spot_radius = 2.2;
-    c.relax_method = GF_RELAX_NONE;
-    c.run_duration = 16;
-    c.run_seed = 5;
-    c.output_snapshot_interval = 0.5;
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/ref3", gf_test_tmpdir());
-    gf_run_opts ro = {.dir = dir};
-    assert_int_equal(gf_run_dir(&c, &ro, NULL), GF_OK);
     gf_series s;
-    assert_int_equal(gf_dem_series_load(dir, NULL, &s, NULL), GF_OK);
-    gf_analysis_opts o = gf_analysis_opts_default();
-    assert_int_equal(gf_dem_window(&s, &o, NULL), GF_OK);
-    gf_dem_calibration_opts(&s, &o, &o);
+    gf_analysis_opts o;
+    gf_config c = reference("ref3", 0.5, 250, 2.2, &s, &o);
     o.corr_size = 3.0; // beta > 1.5 d: not measurable here, r_s free
-    o.vel_window = GF_VEL_WINDOW_RUN; // as above
 
     gf_config start = s.cfg;
     start.spot_step_xy = 0.676;
