@@ -4,7 +4,8 @@
 // table is asked, not silently given the box's walls, by everything that
 // used to say "cylinder, else box": walls, outline, mesh, LAMMPS walls,
 // profile coordinate, bounds, volumes, messages, the analysis' choice of
-// radial profiles and the packing's bulk region.
+// radial profiles and the packing's bulk region; and gf_config_validate asks
+// a planted row to check its keys (its validate op and wall_key).
 #include "support.h"
 
 #include <math.h>

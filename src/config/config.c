@@ -266,16 +266,18 @@ static gf_status gf_check_outputs(const gf_config *cfg, double dt, const char *k
 // core/shape_check.h: config cannot call geom), which also completes what
 // they settle: the bounding box in container.width and depth, the outlet in
 // container.orifice_shape and orifice_diameter. `wall_key` receives the key
-// that bounds a spot's room across it (NULL: width or depth).
+// that bounds a spot's room across it (NULL: width or depth). A static
+// link that leaves geom/shapes.c out has no check: an error, not a config
+// passed unchecked (granflow_static and granflow.pc pull it in).
 static gf_status gf_config_validate_shape(gf_config *cfg, const char **wall_key)
 {
     *wall_key = NULL;
-    if (cfg->container_shape == GF_SHAPE_BOX) return GF_OK; // no keys of its own
     gf_shape_validate_fn *check = gf_shape_validate_get();
     if (!check) {
         gf_config_msg m;
         gf_config_msg_make(&m, cfg, "container.shape", NULL);
-        return gf_error_set(GF_ERR_STATE, "%s%s: the geometry library is not linked in", m.lead, m.key[0]);
+        return gf_error_set(GF_ERR_STATE, "%s%s: the geometry library is not linked in (geom/shapes.c)", m.lead,
+                            m.key[0]);
     }
     return check(cfg, wall_key);
 }
