@@ -292,7 +292,7 @@ GF_API bool gf_config_same_origin(const gf_config *cfg, const char *a, const cha
 /// first key not at its default (else ""), `key[i]` is "section.name =
 /// value" followed by " (WHERE)" unless that is the lead's place.
 typedef struct gf_config_msg {
-    char lead[GF_PATH_MAX + 32];
+    char lead[GF_PATH_MAX + 40]; ///< room for a "where" (GF_PATH_MAX + 32) and ": "
     char key[2][GF_PATH_MAX + 128];
 } gf_config_msg;
 
