@@ -4,7 +4,8 @@
 // table is asked, not silently given the box's walls, by everything that
 // used to say "cylinder, else box": walls, outline, mesh, LAMMPS walls,
 // profile coordinate, bounds, volumes, messages, the analysis' choice of
-// radial profiles and the packing's bulk region.
+// radial profiles and the packing's bulk region; and gf_config_validate asks
+// a planted row to check its keys (its validate op and wall_key).
 #include "support.h"
 
 #include <math.h>
@@ -12,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "geom/container.h"
 #include "geom/mesh.h"
 #include "granflow/granflow.h"
@@ -264,9 +266,71 @@ static void a_planted_shape_is_asked_everything(void **state)
         if (!asked[k]) fail_msg("op %d of the planted shape was never asked", k);
 }
 
+// ---- the check of a shape's keys: its own validate op, not config's code ----
+
+static int validated;
+static gf_container_shape validated_shape;
+
+// Rejects a width over 40 (worded as config words it), else settles a
+// 30 x 20 bounding box and a circular outlet 4 wide through config's setters.
+static gf_status fk_validate(const gf_container_defs *d, gf_config *cfg)
+{
+    validated++;
+    validated_shape = d->shape;
+    if (d->width > 40) {
+        gf_config_msg m;
+        gf_config_msg_make(&m, cfg, "container.width", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s is too wide for a fake with %s", m.lead, m.key[0], m.key[1]);
+    }
+    gf_config_set_extent(cfg, 30, 20);
+    gf_config_set_orifice(cfg, GF_ORIFICE_CIRCLE, 4);
+    return GF_OK;
+}
+
+// The fake's ops and make, with its own check, standing in for the wedge (a
+// value config parses): gf_config_validate must ask it, not check a wedge.
+static const gf_shape fake_wedge = {
+    .name = "fake", .id = GF_SHAPE_WEDGE, .ops = &fake_ops, .keys = fake_keys, .make = fk_make,
+    .validate = fk_validate, .wall_key = "container.exit_z", // a key no built-in names there
+};
+
+static void config_validation_asks_the_shape(void **state)
+{
+    (void)state;
+    assert_true(gf_shape_register(&fake_wedge));
+    validated = 0;
+    gf_config cfg = gf_config_default();
+    // A wedge's own check would say hopper_angle = 0 is flat; the fake's is asked instead.
+    assert_int_equal(gf_config_set(&cfg, "container.shape=wedge", "--set"), GF_OK);
+    assert_int_equal(gf_config_set(&cfg, "container.width=45", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&cfg), GF_ERR_PARAM);
+    assert_int_equal(validated, 1);
+    assert_int_equal(validated_shape, GF_SHAPE_WEDGE);
+    assert_string_equal(gf_last_error(),
+                        "--set: container.width = 45 is too wide for a fake with container.shape = wedge");
+
+    assert_int_equal(gf_config_set(&cfg, "container.width=35", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&cfg), GF_OK);
+    assert_int_equal(validated, 2);
+    gf_container_defs d; // what it settled, through the setters
+    gf_config_container_defs(&cfg, &d);
+    assert_true(d.width == 30 && d.depth == 20);
+    assert_true(d.orifice.shape == GF_ORIFICE_CIRCLE && d.orifice.diameter == 4);
+
+    // The key it names as the bound of a spot's room.
+    assert_int_equal(gf_config_set(&cfg, "container.width=35", "--set"), GF_OK);
+    assert_int_equal(gf_config_set(&cfg, "spot.wall_distance=11", "--set"), GF_OK);
+    assert_int_equal(gf_config_validate(&cfg), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "spot.wall_distance = 11 leaves spots no room"));
+    assert_non_null(strstr(gf_last_error(), "(container.exit_z = "));
+    assert_true(gf_shape_unregister(&fake_wedge));
+    assert_ptr_equal(gf_shape_find(GF_SHAPE_WEDGE), &gf_wedge_shape);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(builtin_shapes_answer_every_op),
     cmocka_unit_test(a_planted_shape_is_asked_everything),
+    cmocka_unit_test(config_validation_asks_the_shape),
 };
 
 GF_TEST_MAIN("shapes", tests)

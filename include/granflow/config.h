@@ -283,6 +283,22 @@ GF_API const char *gf_config_where_lead(const gf_config *cfg, const char *key, c
 /// True when `key` was set by a file or an assignment (not left at its default).
 GF_API bool gf_config_is_set(const gf_config *cfg, const char *key);
 
+/// True when keys `a` and `b` ("section.name") were set by the same origin
+/// (one file, or both by "--set"); false when either is at its default.
+GF_API bool gf_config_same_origin(const gf_config *cfg, const char *a, const char *b);
+
+/// The parts of a validation message about one or two keys (what the
+/// shapes' checks, src/geom/, word theirs with): `lead` is "WHERE: " of the
+/// first key not at its default (else ""), `key[i]` is "section.name =
+/// value" followed by " (WHERE)" unless that is the lead's place.
+typedef struct gf_config_msg {
+    char lead[GF_PATH_MAX + 40]; ///< room for a "where" (GF_PATH_MAX + 32) and ": "
+    char key[2][GF_PATH_MAX + 128];
+} gf_config_msg;
+
+/// Fills `m` for keys `a` and `b` ("section.name"; `b` may be NULL).
+GF_API void gf_config_msg_make(gf_config_msg *m, const gf_config *cfg, const char *a, const char *b);
+
 /// Most atom types `packing.types` may list.
 #define GF_PACKING_MAXTYPES 16
 

@@ -148,6 +148,10 @@ GF_API void gf_config_set_spot_fit(gf_config *cfg, double radius, double w, doub
 GF_API void gf_config_set_threads(gf_config *cfg, int64_t threads);
 /// The bounding box a mesh container was measured to have.
 GF_API void gf_config_set_extent(gf_config *cfg, double width, double depth);
+/// The outlet a shape's check settles (a cylinder's circle of
+/// container.outlet_diameter, a wedge's slit): container.orifice_shape and
+/// orifice_diameter, not marked as set.
+GF_API void gf_config_set_orifice(gf_config *cfg, gf_orifice_shape shape, double diameter);
 /// container.mesh, as written (no path resolution; a run's copy, a digest's name).
 GF_API void gf_config_set_mesh_path(gf_config *cfg, const char *path);
 /// Back to their defaults the run.* keys a resumed run may change (duration,

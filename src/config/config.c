@@ -261,127 +261,25 @@ static gf_status gf_check_outputs(const gf_config *cfg, double dt, const char *k
                         m.lead, m.key[0], m.key[1], GF_MAX_OUTPUTS, what, GF_MAX_OUTPUTS, or_else);
 }
 
-// The checks of a cylinder; then its bounding box and outlet in the box's
-// keys, for everything that reads those (grid, dumps, analysis, pictures).
-static gf_status gf_config_validate_cylinder(gf_config *cfg)
+// A shape's own keys (a cylinder's radius, a wedge's slope, a mesh's file)
+// are checked by that shape (its validate op in src/geom/, reached through
+// core/shape_check.h: config cannot call geom), which also completes what
+// they settle: the bounding box in container.width and depth, the outlet in
+// container.orifice_shape and orifice_diameter. `wall_key` receives the key
+// that bounds a spot's room across it (NULL: width or depth). A static
+// link that leaves geom/shapes.c out has no check: an error, not a config
+// passed unchecked (granflow_static and granflow.pc pull it in).
+static gf_status gf_config_validate_shape(gf_config *cfg, const char **wall_key)
 {
-    gf_config_msg m;
-    if (cfg->orifice_shape != GF_ORIFICE_CIRCLE) {
-        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
-        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a circle "
-                                          "(container.outlet_diameter)", m.lead, m.key[0], m.key[1]);
-    }
-    // A cylinder's outlet is outlet_diameter; an orifice_diameter set apart
-    // from it would be ignored. (A written effective config sets both equal
-    // in one file, and an outlet set elsewhere over it rules.)
-    if (gf_config_is_set(cfg, "container.orifice_diameter") && cfg->orifice_diameter != cfg->outlet_diameter &&
-        (!gf_config_is_set(cfg, "container.outlet_diameter") ||
-         gf_config_same_origin(cfg, "container.orifice_diameter", "container.outlet_diameter"))) {
-        gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.outlet_diameter");
-        return gf_error_set(GF_ERR_PARAM, "%s%s does nothing in a cylinder (container.shape = cylinder), whose "
-                                          "outlet is %s: set that instead", m.lead, m.key[0], m.key[1]);
-    }
-    // The bound is printed worked out (2R, R - 1): "less than 2 *
-    // container.radius = 0.5" read as if 0.5 were the bound (issue 26).
-    if (!(cfg->outlet_diameter < 2.0 * cfg->container_radius)) {
-        gf_config_msg_make(&m, cfg, "container.outlet_diameter", "container.radius");
-        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than the cylinder's diameter 2R = %g (%s)", m.lead,
-                            m.key[0], 2.0 * cfg->container_radius, m.key[1]);
-    }
-    if (cfg->inner_radius > 0.0 && !(cfg->inner_radius + 1.0 < cfg->container_radius)) {
-        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.radius");
-        return gf_error_set(GF_ERR_PARAM, "%s%s leaves no room for a sphere: it must be less than R - 1 = %g (%s)",
-                            m.lead, m.key[0], cfg->container_radius - 1.0, m.key[1]);
-    }
-    if (cfg->inner_radius > 0.0 && !(cfg->hopper_angle > 0.0)) {
-        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
-        return gf_error_set(GF_ERR_PARAM, "%s%s needs container.hopper_angle > 0, not %s: the column ends at the "
-                                          "top of the funnel, and on a flat base it would stand on the outlet",
-                            m.lead, m.key[0], m.key[1]);
-    }
-    if (cfg->inner_radius > 0.0) {
-        // Everything reaches the outlet through the gap between the column's
-        // bottom rim (r_i, z_top) and the funnel (docs/geometry.md): its
-        // distance to the funnel's line, or to the outlet's rim (r_o, 0) when
-        // the foot of that distance falls inside the outlet. A gap narrower
-        // than a sphere closes the silo (issue 26: hopper_angle = 1e-300 was
-        // accepted, then failed with "cannot drain").
-        const double a = cfg->hopper_angle * (3.14159265358979323846 / 180.0);
-        const double R = cfg->container_radius, ro = 0.5 * cfg->outlet_diameter, ri = cfg->inner_radius;
-        const double z_top = (R - ro) * tan(a);
-        const double t = (ri - ro) * cos(a) + z_top * sin(a);
-        const double gap = t >= 0.0 ? (R - ri) * sin(a) : hypot(ri - ro, z_top);
-        if (!(gap >= 1.0)) {
-            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
-            return gf_error_set(GF_ERR_PARAM,
-                                "%s%s with %s leaves a gap of %.3g d between the column's bottom (z = %.3g) and "
-                                "the funnel, narrower than a sphere: nothing could reach the outlet (raise "
-                                "container.hopper_angle, or lower container.inner_radius)",
-                                m.lead, m.key[0], m.key[1], gap, z_top);
-        }
-        // Spots are born on the disc of radius r_o - spot.insertion_margin
-        // and removed at the first step that takes them above the highest
-        // particle of their grid column. Under a column whose bottom is too
-        // low for a sphere there is none: if the column covers that whole
-        // disc, every spot goes at once and nothing can ever drain.
-        const double birth = fmax(0.0, ro - cfg->spot_insertion_margin);
-        if (z_top < 1.0 && ri >= birth) {
-            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
-            return gf_error_set(GF_ERR_PARAM,
-                                "%s%s with %s puts the column's bottom %.3g d above the outlet, too low for a "
-                                "sphere under it, over the whole disc where spots are born (radius "
-                                "container.outlet_diameter / 2 - spot.insertion_margin = %g): every spot would be "
-                                "removed at its first step and nothing could drain (raise container.hopper_angle "
-                                "to at least %.3g, or lower container.inner_radius below %g)",
-                                m.lead, m.key[0], m.key[1], z_top, birth, atan(1.0 / (R - ro)) * (180.0 / 3.14159265358979323846),
-                                birth);
-        }
-    }
-    cfg->container_width = cfg->container_depth = 2.0 * cfg->container_radius;
-    cfg->orifice_diameter = cfg->outlet_diameter;
-    return GF_OK;
-}
-
-// The mesh's file: read and checked by the shapes (geom/meshshape.c, through
-// core/shape_check.h), which put its bounding box in container.width, depth.
-static gf_status gf_config_validate_mesh(gf_config *cfg)
-{
-    gf_shape_check_fn *check = gf_shape_check_get();
-    if (!cfg->container_mesh[0]) {
+    *wall_key = NULL;
+    gf_shape_validate_fn *check = gf_shape_validate_get();
+    if (!check) {
         gf_config_msg m;
-        gf_config_msg_make(&m, cfg, "container.shape", "container.mesh");
-        return gf_error_set(GF_ERR_PARAM, "%s%s = mesh needs %s = FILE.stl (the walls as an STL file)", m.lead,
-                            m.key[0], m.key[1]);
+        gf_config_msg_make(&m, cfg, "container.shape", NULL);
+        return gf_error_set(GF_ERR_STATE, "%s%s: the geometry library is not linked in (geom/shapes.c)", m.lead,
+                            m.key[0]);
     }
-    if (!check) return gf_error_set(GF_ERR_STATE, "container.shape = mesh: the geometry library is not linked in");
-    return check(cfg);
-}
-
-// The checks of a wedge hopper (docs/geometry.md, "The wedge hopper"): its
-// outlet is a slit (container.orifice_diameter wide, at container.orifice_x)
-// between walls inclined at container.hopper_angle > 0.
-static gf_status gf_config_validate_wedge(gf_config *cfg)
-{
-    gf_config_msg m;
-    if (!(cfg->hopper_angle > 0.0)) {
-        gf_config_msg_make(&m, cfg, "container.hopper_angle", "container.shape");
-        return gf_error_set(GF_ERR_PARAM, "%s%s must be more than 0 with %s: a wedge's walls are inclined "
-                                          "(0 < angle <= 80 degrees to the horizontal); a flat base with a slit "
-                                          "is container.shape = box with container.orifice_shape = slit",
-                            m.lead, m.key[0], m.key[1]);
-    }
-    if (gf_config_is_set(cfg, "container.orifice_shape") && cfg->orifice_shape != GF_ORIFICE_SLIT) {
-        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
-        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a slit across the depth, "
-                                          "container.orifice_diameter wide", m.lead, m.key[0], m.key[1]);
-    }
-    if (cfg->inner_radius > 0.0) {
-        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.shape");
-        return gf_error_set(GF_ERR_PARAM, "%s%s: a central column needs container.shape = cylinder, not %s",
-                            m.lead, m.key[0], m.key[1]);
-    }
-    cfg->orifice_shape = GF_ORIFICE_SLIT;
-    return GF_OK;
+    return check(cfg, wall_key);
 }
 
 gf_status gf_config_validate(gf_config *cfg)
@@ -403,9 +301,8 @@ gf_status gf_config_validate(gf_config *cfg)
     cfg->dem_kt = gf_config_dem_kt(cfg);
     cfg->dem_gammat = gf_config_dem_gammat(cfg);
 
-    if (cfg->container_shape == GF_SHAPE_CYLINDER && (st = gf_config_validate_cylinder(cfg)) != GF_OK) return st;
-    if (cfg->container_shape == GF_SHAPE_MESH && (st = gf_config_validate_mesh(cfg)) != GF_OK) return st;
-    if (cfg->container_shape == GF_SHAPE_WEDGE && (st = gf_config_validate_wedge(cfg)) != GF_OK) return st;
+    const char *wall_key;
+    if ((st = gf_config_validate_shape(cfg, &wall_key)) != GF_OK) return st;
     if (!(cfg->orifice_diameter < cfg->container_width)) {
         gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.width");
         return gf_error_set(GF_ERR_PARAM, "%s%s must be less than %s", m.lead, m.key[0], m.key[1]);
@@ -413,7 +310,7 @@ gf_status gf_config_validate(gf_config *cfg)
     if ((st = gf_config_check_orifice(cfg)) != GF_OK) return st;
     double room = fmin(cfg->container_width, cfg->container_depth);
     if (!(2.0 * cfg->spot_wall_distance < room)) {
-        const char *wall = cfg->container_shape == GF_SHAPE_CYLINDER ? "container.radius"
+        const char *wall = wall_key                                      ? wall_key
                            : cfg->container_depth < cfg->container_width ? "container.depth"
                                                                          : "container.width";
         gf_config_msg_make(&m, cfg, "spot.wall_distance", wall);

@@ -215,6 +215,12 @@ void gf_config_set_extent(gf_config *cfg, double width, double depth)
     cfg->container_depth = depth;
 }
 
+void gf_config_set_orifice(gf_config *cfg, gf_orifice_shape shape, double diameter)
+{
+    cfg->orifice_shape = shape;
+    cfg->orifice_diameter = diameter;
+}
+
 void gf_config_set_dump_units(gf_config *cfg, double diameter, double gravity)
 {
     cfg->dump_diameter = diameter;

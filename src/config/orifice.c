@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The orifice position: where on the base it may be (docs/config.md, "Checks across keys").
+// The orifice position: where on the base it may be (docs/config.md, "Checks
+// across keys"). A shape whose outlet has a fixed place (a cylinder's axis)
+// checks that in its own validate op (src/geom/).
 #include "config/orifice.h"
 
 #include <math.h>
@@ -14,12 +16,6 @@ gf_status gf_config_check_orifice(const gf_config *cfg)
     const char *key[2] = {"container.orifice_x", "container.orifice_y"};
     for (int k = 0; k < 2; k++) {
         if (xy[k] == 0.0) continue;
-        if (cfg->container_shape == GF_SHAPE_CYLINDER) {
-            gf_config_msg_make(&m, cfg, key[k], "container.shape");
-            return gf_error_set(GF_ERR_PARAM, "%s%s: a cylinder's outlet is on its axis (x = y = 0); an "
-                                              "off-centre orifice needs container.shape = box, not %s",
-                                m.lead, m.key[0], m.key[1]);
-        }
         if (k == 1 && cfg->orifice_shape == GF_ORIFICE_SLIT) {
             gf_config_msg_make(&m, cfg, key[k], "container.orifice_shape");
             return gf_error_set(GF_ERR_PARAM, "%s%s: a slit spans the whole depth (%s has no y position; "

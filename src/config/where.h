@@ -17,19 +17,7 @@ void gf_config_mark(gf_config *cfg, const gf_key *k, const char *origin, int lin
 /// Where key `k` got its value: "FILE:LINE", "--set", "default".
 void gf_config_where_of(const gf_config *cfg, const gf_key *k, char *buf, size_t n);
 
-/// True when keys `a` and `b` ("section.name") were set by the same origin
-/// (one file, or both by "--set"); false when either is at its default.
-bool gf_config_same_origin(const gf_config *cfg, const char *a, const char *b);
-
-/// The parts of a message about one or two keys: `lead` is "WHERE: " of the
-/// first key not at its default (else ""), `key[i]` is "section.name = value"
-/// followed by " (WHERE)" unless that is the lead's place.
-typedef struct gf_config_msg {
-    char lead[GF_PATH_MAX + 32];
-    char key[2][GF_PATH_MAX + 128];
-} gf_config_msg;
-
-/// Fills `m` for keys `a` and `b` ("section.name"; `b` may be NULL).
-void gf_config_msg_make(gf_config_msg *m, const gf_config *cfg, const char *a, const char *b);
+// gf_config_same_origin and gf_config_msg_make are public (granflow/config.h):
+// the shapes (geom/) word their own checks' messages with them.
 
 #endif

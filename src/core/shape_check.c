@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The container-file check hook (core/shape_check.h).
+// The container-keys check hook (core/shape_check.h).
 #include "core/shape_check.h"
 
-static gf_shape_check_fn *gf_shape_check_fn_;
+static gf_shape_validate_fn *gf_shape_validate_fn_;
 
-void gf_shape_check_set(gf_shape_check_fn *fn) { gf_shape_check_fn_ = fn; }
+void gf_shape_validate_set(gf_shape_validate_fn *fn) { gf_shape_validate_fn_ = fn; }
 
-gf_shape_check_fn *gf_shape_check_get(void) { return gf_shape_check_fn_; }
+gf_shape_validate_fn *gf_shape_validate_get(void) { return gf_shape_validate_fn_; }

@@ -144,13 +144,27 @@ typedef struct gf_shape {
     /// True when its walls are the bounding box's sides and its floor the
     /// plane z = 0 (the box): code may then use the bounding box directly.
     bool rectangular;
+    /// Checks the shape's own keys in the container defs `d` of `cfg` (while
+    /// gf_config_validate runs: each key is in its range, nothing across
+    /// keys is checked yet), and completes what it settles through config's
+    /// setters (gf_config_set_extent, gf_config_set_orifice). Errors name
+    /// file, line and key (gf_config_msg_make). NULL: nothing to check.
+    gf_status (*validate)(const gf_container_defs *d, gf_config *cfg);
+    /// The key that bounds a spot's room across the container, named when
+    /// spot.wall_distance leaves none ("container.radius"); NULL: the smaller
+    /// of container.width and container.depth.
+    const char *wall_key;
 } gf_shape;
 
 /// The shape of a container.shape value; NULL for none.
 const gf_shape *gf_shape_find(gf_container_shape id);
 
-/// Adds a shape to the table (tests; a shape not built in). At most 4; false when full.
+/// Adds a shape to the table (tests; a shape not built in). At most 4; false
+/// when full. A row whose id is a built-in's stands in for it until removed
+/// (a test's stand-in for container.shape = wedge, which config can parse).
 bool gf_shape_register(const gf_shape *s);
+/// Removes a shape gf_shape_register added; false when it is not there.
+bool gf_shape_unregister(const gf_shape *s);
 
 /// A cylinder's parameters (cylinder.c): wall radius, outlet radius, column
 /// radius, pipe, funnel.

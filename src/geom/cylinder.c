@@ -298,6 +298,101 @@ const gf_shape_ops gf_cylinder_ops = {
     .outlet_name = gf_cyl_outlet_name,
 };
 
+// ---- the check of its keys (gf_config_validate) ----------------------------
+
+// The checks of a cylinder; then its bounding box and outlet in the box's
+// keys, for everything that reads those (grid, dumps, analysis, pictures).
+static gf_status gf_cyl_validate(const gf_container_defs *d, gf_config *cfg)
+{
+    gf_config_msg m;
+    if (d->orifice.shape != GF_ORIFICE_CIRCLE) {
+        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a circle "
+                                          "(container.outlet_diameter)", m.lead, m.key[0], m.key[1]);
+    }
+    // A cylinder's outlet is outlet_diameter; an orifice_diameter set apart
+    // from it would be ignored. (A written effective config sets both equal
+    // in one file, and an outlet set elsewhere over it rules.)
+    if (gf_config_is_set(cfg, "container.orifice_diameter") && d->orifice.diameter != d->outlet.diameter &&
+        (!gf_config_is_set(cfg, "container.outlet_diameter") ||
+         gf_config_same_origin(cfg, "container.orifice_diameter", "container.outlet_diameter"))) {
+        gf_config_msg_make(&m, cfg, "container.orifice_diameter", "container.outlet_diameter");
+        return gf_error_set(GF_ERR_PARAM, "%s%s does nothing in a cylinder (container.shape = cylinder), whose "
+                                          "outlet is %s: set that instead", m.lead, m.key[0], m.key[1]);
+    }
+    // The bound is printed worked out (2R, R - 1): "less than 2 *
+    // container.radius = 0.5" read as if 0.5 were the bound (issue 26).
+    if (!(d->outlet.diameter < 2.0 * d->radius)) {
+        gf_config_msg_make(&m, cfg, "container.outlet_diameter", "container.radius");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be less than the cylinder's diameter 2R = %g (%s)", m.lead,
+                            m.key[0], 2.0 * d->radius, m.key[1]);
+    }
+    if (d->column_radius > 0.0 && !(d->column_radius + 1.0 < d->radius)) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.radius");
+        return gf_error_set(GF_ERR_PARAM, "%s%s leaves no room for a sphere: it must be less than R - 1 = %g (%s)",
+                            m.lead, m.key[0], d->radius - 1.0, m.key[1]);
+    }
+    if (d->column_radius > 0.0 && !(d->angle > 0.0)) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+        return gf_error_set(GF_ERR_PARAM, "%s%s needs container.hopper_angle > 0, not %s: the column ends at the "
+                                          "top of the funnel, and on a flat base it would stand on the outlet",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    if (d->column_radius > 0.0) {
+        // Everything reaches the outlet through the gap between the column's
+        // bottom rim (r_i, z_top) and the funnel (docs/geometry.md): its
+        // distance to the funnel's line, or to the outlet's rim (r_o, 0) when
+        // the foot of that distance falls inside the outlet. A gap narrower
+        // than a sphere closes the silo (issue 26: hopper_angle = 1e-300 was
+        // accepted, then failed with "cannot drain").
+        const double a = d->angle * (3.14159265358979323846 / 180.0);
+        const double R = d->radius, ro = 0.5 * d->outlet.diameter, ri = d->column_radius;
+        const double z_top = (R - ro) * tan(a);
+        const double t = (ri - ro) * cos(a) + z_top * sin(a);
+        const double gap = t >= 0.0 ? (R - ri) * sin(a) : hypot(ri - ro, z_top);
+        if (!(gap >= 1.0)) {
+            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s%s with %s leaves a gap of %.3g d between the column's bottom (z = %.3g) and "
+                                "the funnel, narrower than a sphere: nothing could reach the outlet (raise "
+                                "container.hopper_angle, or lower container.inner_radius)",
+                                m.lead, m.key[0], m.key[1], gap, z_top);
+        }
+        // Spots are born on the disc of radius r_o - spot.insertion_margin
+        // and removed at the first step that takes them above the highest
+        // particle of their grid column. Under a column whose bottom is too
+        // low for a sphere there is none: if the column covers that whole
+        // disc, every spot goes at once and nothing can ever drain.
+        gf_engine_defs e;
+        gf_config_engine_defs(cfg, &e);
+        const double birth = fmax(0.0, ro - e.insertion_margin);
+        if (z_top < 1.0 && ri >= birth) {
+            gf_config_msg_make(&m, cfg, "container.inner_radius", "container.hopper_angle");
+            return gf_error_set(GF_ERR_PARAM,
+                                "%s%s with %s puts the column's bottom %.3g d above the outlet, too low for a "
+                                "sphere under it, over the whole disc where spots are born (radius "
+                                "container.outlet_diameter / 2 - spot.insertion_margin = %g): every spot would be "
+                                "removed at its first step and nothing could drain (raise container.hopper_angle "
+                                "to at least %.3g, or lower container.inner_radius below %g)",
+                                m.lead, m.key[0], m.key[1], z_top, birth, atan(1.0 / (R - ro)) * (180.0 / 3.14159265358979323846),
+                                birth);
+        }
+    }
+    // The outlet is on the axis (docs/config.md, "Checks across keys").
+    const double xy[2] = {d->orifice.x, d->orifice.y};
+    const char *key[2] = {"container.orifice_x", "container.orifice_y"};
+    for (int k = 0; k < 2; k++) {
+        if (xy[k] == 0.0) continue;
+        gf_config_msg_make(&m, cfg, key[k], "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s: a cylinder's outlet is on its axis (x = y = 0); an "
+                                          "off-centre orifice needs container.shape = box, not %s",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    gf_config_set_extent(cfg, 2.0 * d->radius, 2.0 * d->radius);
+    gf_config_set_orifice(cfg, d->orifice.shape, d->outlet.diameter);
+    return GF_OK;
+}
+
 static const char *const gf_cyl_keys[] = {"container.radius",        "container.hopper_angle",
                                           "container.outlet_diameter", "container.outlet_length",
                                           "container.inner_radius",  NULL};
@@ -309,4 +404,6 @@ const gf_shape gf_cylinder_shape = {
     .keys = gf_cyl_keys,
     .make = gf_cyl_make,
     .rectangular = false,
+    .validate = gf_cyl_validate,
+    .wall_key = "container.radius",
 };

@@ -2,8 +2,9 @@
 // A mesh container's walls read, checked and kept (geom/meshshape.h): the
 // STL's topology (convex and concave edges, each vertex's neighbours), the
 // checks that leave the outlet the only way out, the cache every container
-// of the same configuration shares, and the check configuration's
-// validation asks for through core/shape_check.h (config cannot call geom).
+// of the same configuration shares, and the mesh row's validate op that
+// configuration's validation reaches through core/shape_check.h (config
+// cannot call geom).
 #include "geom/meshshape.h"
 
 #include <math.h>
@@ -14,7 +15,6 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "core/fs.h"
-#include "core/shape_check.h"
 
 // ---- loading and checking -----------------------------------------------------
 
@@ -334,21 +334,23 @@ void gf_meshshape_cache_clear(void)
     atomic_flag_clear(&gf_ms_lock);
 }
 
-// ---- the configuration's check ------------------------------------------------
+// ---- the check of its keys (gf_config_validate) ----------------------------
 
 // container.shape = mesh: the file read and checked (its messages lead with
 // where container.mesh was set), its bounding box as container.width and
 // depth (symmetric about x = y = 0, as the box code reads them).
-static gf_status gf_ms_config_check(void *arg)
+gf_status gf_meshshape_validate(const gf_container_defs *d, gf_config *cfg)
 {
-    gf_config *cfg = arg;
-    gf_container_defs d;
-    gf_config_container_defs(cfg, &d);
-    if (d.shape != GF_SHAPE_MESH) return GF_OK;
+    if (!d->mesh[0]) {
+        gf_config_msg m;
+        gf_config_msg_make(&m, cfg, "container.shape", "container.mesh");
+        return gf_error_set(GF_ERR_PARAM, "%s%s = mesh needs %s = FILE.stl (the walls as an STL file)", m.lead,
+                            m.key[0], m.key[1]);
+    }
     char where[GF_PATH_MAX + 32];
     if (gf_config_where(cfg, "container.mesh", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
     const gf_meshshape *ms;
-    gf_status st = gf_meshshape_load(&d, &ms);
+    gf_status st = gf_meshshape_load(d, &ms);
     if (st != GF_OK) {
         char why[1024];
         snprintf(why, sizeof why, "%s", gf_last_error());
@@ -358,5 +360,3 @@ static gf_status gf_ms_config_check(void *arg)
                          2.0 * fmax(fabs(ms->sdf.lo[1]), fabs(ms->sdf.hi[1])));
     return GF_OK;
 }
-
-__attribute__((constructor)) static void gf_ms_register(void) { gf_shape_check_set(gf_ms_config_check); }

@@ -565,4 +565,5 @@ const gf_shape gf_mesh_shape = {
     .keys = gf_ms_keys,
     .make = gf_ms_make,
     .rectangular = false,
+    .validate = gf_meshshape_validate,
 };

@@ -55,4 +55,8 @@ gf_status gf_meshshape_digest(const gf_container_defs *d, uint64_t *digest);
 /// made earlier may be used afterwards).
 void gf_meshshape_cache_clear(void);
 
+/// The mesh row's validate op (gf_shape): container.mesh named, the file
+/// read and checked, its bounding box set as container.width and depth.
+gf_status gf_meshshape_validate(const gf_container_defs *d, gf_config *cfg);
+
 #endif

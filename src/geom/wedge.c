@@ -298,6 +298,35 @@ const gf_shape_ops gf_wedge_ops = {
     .outlet_name = gf_wedge_outlet_name,
 };
 
+// ---- the check of its keys (gf_config_validate) ----------------------------
+
+// The checks of a wedge hopper (docs/geometry.md, "The wedge hopper"): its
+// outlet is a slit (container.orifice_diameter wide, at container.orifice_x)
+// between walls inclined at container.hopper_angle > 0.
+static gf_status gf_wedge_validate(const gf_container_defs *d, gf_config *cfg)
+{
+    gf_config_msg m;
+    if (!(d->angle > 0.0)) {
+        gf_config_msg_make(&m, cfg, "container.hopper_angle", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s must be more than 0 with %s: a wedge's walls are inclined "
+                                          "(0 < angle <= 80 degrees to the horizontal); a flat base with a slit "
+                                          "is container.shape = box with container.orifice_shape = slit",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    if (gf_config_is_set(cfg, "container.orifice_shape") && d->orifice.shape != GF_ORIFICE_SLIT) {
+        gf_config_msg_make(&m, cfg, "container.orifice_shape", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s is not possible with %s: its outlet is a slit across the depth, "
+                                          "container.orifice_diameter wide", m.lead, m.key[0], m.key[1]);
+    }
+    if (d->column_radius > 0.0) {
+        gf_config_msg_make(&m, cfg, "container.inner_radius", "container.shape");
+        return gf_error_set(GF_ERR_PARAM, "%s%s: a central column needs container.shape = cylinder, not %s",
+                            m.lead, m.key[0], m.key[1]);
+    }
+    gf_config_set_orifice(cfg, GF_ORIFICE_SLIT, d->orifice.diameter);
+    return GF_OK;
+}
+
 static const char *const gf_wedge_keys[] = {"container.width",         "container.hopper_angle",
                                             "container.orifice_diameter", "container.depth",
                                             "container.outlet_length", "container.orifice_x",
@@ -310,4 +339,5 @@ const gf_shape gf_wedge_shape = {
     .keys = gf_wedge_keys,
     .make = gf_wedge_make,
     .rectangular = false,
+    .validate = gf_wedge_validate,
 };
