@@ -200,7 +200,11 @@ static void gf_ref_explain(gf_dem_refine_result *res, const gf_ref_targets *t, c
         double e = (s->var[z].value - d->var[z].value) / d->var[z].value;
         if (fabs(e) <= vtol) continue;
         nh++;
-        if (off < sizeof hs) off += (size_t)snprintf(hs + off, sizeof hs - off, "%s%g (%+.0f%%)", nh > 1 ? ", " : "", d->z[z], 100.0 * e);
+        if (off >= sizeof hs) continue;
+        if (isfinite(e))
+            off += (size_t)snprintf(hs + off, sizeof hs - off, "%s%.3g (%+.0f%%)", nh > 1 ? ", " : "", d->z[z], 100.0 * e);
+        else // the spot run had no steady frames there
+            off += (size_t)snprintf(hs + off, sizeof hs - off, "%s%.3g (not steady)", nh > 1 ? ", " : "", d->z[z]);
     }
     if (nh > 0) {
         bool line_ok = true;
