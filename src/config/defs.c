@@ -63,15 +63,17 @@ void gf_config_container_defs(const gf_config *cfg, gf_container_defs *d)
 void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
 {
     memset(d, 0, sizeof *d);
-    d->radius = cfg->spot_radius;
-    d->w = cfg->spot_w;
-    d->insertion_rate = cfg->spot_insertion_rate;
-    d->move_rate = cfg->spot_move_rate;
-    d->step_xy = cfg->spot_step_xy;
-    d->step_z = cfg->spot_step_z;
-    d->wall_distance = cfg->spot_wall_distance;
+    gf_spot_params sp; // the spot's own parameters, from their one builder
+    gf_config_spot_params(cfg, &sp);
+    d->radius = sp.radius;
+    d->w = sp.w;
+    d->insertion_rate = sp.insertion_rate;
+    d->move_rate = sp.move_rate;
+    d->step_xy = sp.step_xy;
+    d->step_z = sp.step_z;
+    d->wall_distance = sp.wall_distance;
+    d->insertion_margin = sp.insertion_margin;
     d->ball_centre = cfg->spot_ball_centre;
-    d->insertion_margin = gf_config_insertion_margin(cfg);
     d->insertion_radius = fmax(0.0, 0.5 * cfg->orifice_diameter - d->insertion_margin);
     // SPEC 1.3 mass balance: a spot is born one radius below the exit, so its
     // ball sweeps its whole volume past the exit plane as it rises.
@@ -84,7 +86,7 @@ void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
     d->walls = cfg->spot_walls;
     d->flow_rule = cfg->spot_flow_rule;
     d->alpha = cfg->relax_alpha;
-    d->r_e = gf_config_r_e(cfg);
+    d->r_e = sp.r_e;
     d->method = cfg->relax_method;
     d->k = cfg->relax_k;
     d->duration = cfg->run_duration;

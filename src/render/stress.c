@@ -24,6 +24,13 @@ static double gf_px(const gf_stress_view *v, double x) { return v->margin + (x -
 static double gf_py(const gf_stress_view *v, double z) { return v->margin + 36.0 + (v->zmax - z) * v->scale; }
 
 // The field at a point of the picture: u = |x| about the axis (mirrored).
+// The outline of the slice as a closed cairo path.
+static void gf_outline_path(cairo_t *cr, const gf_stress_view *v, const gf_outline *o)
+{
+    for (int i = 0; i < o->n; i++) (i ? cairo_line_to : cairo_move_to)(cr, gf_px(v, o->p[i][0]), gf_py(v, o->p[i][1]));
+    cairo_close_path(cr);
+}
+
 static bool gf_stress_pic_at(const gf_stress_field *f, double x, double z, gf_stress_point *p, double *sign)
 {
     *sign = f->axisym && x < 0.0 ? -1.0 : 1.0;
@@ -77,14 +84,7 @@ gf_status gf_render_stress(const gf_stress_field *f, const gf_container *c, cons
         if (f->in[k]) pmax = fmax(pmax, f->pt[k].p);
     gf_outline o;
     gf_container_outline(c, f->ztop, &o);
-    for (int i = 0; i < o.n; i++) { // the shading clipped to the inside
-        double x = gf_px(&v, o.p[i][0]), y = gf_py(&v, o.p[i][1]);
-        if (i == 0)
-            cairo_move_to(cr, x, y);
-        else
-            cairo_line_to(cr, x, y);
-    }
-    cairo_close_path(cr);
+    gf_outline_path(cr, &v, &o); // the shading clipped to the inside
     cairo_save(cr);
     cairo_clip(cr);
     double cell = fmax(f->du, f->dz) * 0.5;
@@ -102,14 +102,7 @@ gf_status gf_render_stress(const gf_stress_field *f, const gf_container *c, cons
     // The walls.
     cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
     cairo_set_line_width(cr, 2.0);
-    for (int i = 0; i < o.n; i++) {
-        double x = gf_px(&v, o.p[i][0]), y = gf_py(&v, o.p[i][1]);
-        if (i == 0)
-            cairo_move_to(cr, x, y);
-        else
-            cairo_line_to(cr, x, y);
-    }
-    cairo_close_path(cr);
+    gf_outline_path(cr, &v, &o);
     cairo_stroke(cr);
     // Slip lines from points along the surface, and from the walls' tops.
     int nseed = (int)fmax(6.0, w / 4.0);
