@@ -45,6 +45,8 @@ typedef struct gf_series {
                         ///< container centred on the first frame's box and fitted to the
                         ///< particles (gf_series_fit_walls)
     bool has_config;    ///< cfg is the run's config.ini (a run of granflow: its dumps are in d and tau)
+    bool spot_run;      ///< a spot run of granflow (its summary.json counts spot moves): the flow at
+                        ///< height z starts once the spots born at the opening have risen there
 } gf_series;
 
 /// The units of dumps granflow did not write (the keys dump.diameter and

@@ -366,6 +366,19 @@ static gf_status gf_series_check_exits(const gf_series *s, const char *last_file
     return GF_OK;
 }
 
+/// Whether `path` is a spot run's summary.json (it counts spot moves; a DEM
+/// run directory has none). Only its first 4 KB are read: the counters come first.
+static bool gf_series_is_spot_run(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    char buf[4097];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = 0;
+    return strstr(buf, "\"spot_moves\"") != NULL;
+}
+
 static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
 {
     qsort(L->fr, L->nfr, sizeof *L->fr, gf_frame_cmp);
@@ -390,6 +403,8 @@ static gf_status gf_series_build(gf_loader *L, const char *dir, gf_series *s)
             if (st == GF_OK) st = gf_config_validate(&s->cfg);
             if (st != GF_OK) return st;
         }
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        s->spot_run = gf_series_is_spot_run(path);
         snprintf(path, sizeof path, "%s/exits.csv", dir);
         if (gf_is_file(path)) {
             st = gf_exits_read(path, &s->exits, &s->nexits);

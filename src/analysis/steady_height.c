@@ -44,6 +44,7 @@ gf_steady_height gf_steady_height_find(const double *m, size_t n)
     r.late = L;
     if (nl < 2 || !(L < 0.0) || fabs(L) <= GF_SH_FLOW_SE * sd / sqrt((double)nl)) {
         r.steady = false;
+        r.no_flow = true;
         snprintf(r.why, sizeof r.why, "no steady frames: no downward flow here in the last half of the window");
         return r;
     }
@@ -83,4 +84,25 @@ gf_steady_height gf_steady_height_find(const double *m, size_t n)
                  r.first + 1, n, n, L, r.first + 1) < 0)
         r.why[0] = 0;
     return r;
+}
+
+double gf_steady_height_rise_time(double z, double birth_z, double r_s, double step_z, double mu)
+{
+    double moves = fmax(0.0, (z - birth_z + r_s) / step_z);
+    return (moves + 3.0 * sqrt(moves)) / mu;
+}
+
+void gf_steady_height_by_rise(gf_steady_height *v, const double *t_pair, size_t n, double t_ready)
+{
+    if (v->no_flow || !(t_ready >= 0.0)) return;
+    size_t first = 0;
+    while (first < n && t_pair[first] < t_ready) first++;
+    size_t need = n / 8 > 2 ? n / 8 : 2; // as the noise test's chunks
+    if (n - first < need) return; // the spots arrive too late in the window: the noise judges
+    v->steady = true;
+    v->first = first;
+    if (snprintf(v->why, sizeof v->why,
+                 "frame pairs %zu to %zu of %zu: from t = %.3g tau, when the first spots have risen here", first + 1,
+                 n, n, t_ready) < 0)
+        v->why[0] = 0;
 }

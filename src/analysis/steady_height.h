@@ -14,6 +14,7 @@
 /// Verdict on one height.
 typedef struct gf_steady_height {
     bool steady;     ///< false: no steady frames (no downward flow, or still speeding up at the end)
+    bool no_flow;    ///< not steady because nothing flows down here in the late half
     size_t first;    ///< first steady frame pair (when steady)
     double late;     ///< late mean v_z, d/tau (the last half of the pairs)
     char why[160];   ///< one sentence: which pairs and why
@@ -30,5 +31,21 @@ typedef struct gf_steady_height {
 /// third by more than 3 standard errors (the quarters' own noise, pooled;
 /// judged with 2 pairs or more in each) and 5%: not steady.
 gf_steady_height gf_steady_height_find(const double *mean_vz, size_t n);
+
+/// A spot run's flow at height z is steady once the spots born when the
+/// orifice opened have risen there, plus three standard deviations of their
+/// arrival (issue 27 item 2: "t > t_start + z / rise speed for spot runs"):
+/// `moves` = (z - birth height + r_s) / step_z moves at rate mu take
+/// (moves + 3 sqrt(moves)) / mu. This is the time returned, from the run's start.
+double gf_steady_height_rise_time(double z, double birth_z, double r_s, double step_z, double mu);
+
+/// Replaces the verdict `v` of gf_steady_height_find on the pairs starting at
+/// t_pair[0..n) by the spot run's: steady from the first pair starting at or
+/// after t_ready, when at least an eighth of the pairs (and 2) do; a height
+/// where nothing flows stays not steady, and one the spots reach too late
+/// keeps the noise's verdict. The rise time does not depend on the noise, so
+/// runs of the same parameters agree on which heights they measure (the
+/// noise test alone read slow swings of a spot run's flow as a start-up).
+void gf_steady_height_by_rise(gf_steady_height *v, const double *t_pair, size_t n, double t_ready);
 
 #endif

@@ -103,10 +103,21 @@ static gf_table *gf_vel_table(gf_measure_out *out, const char *name, const char 
 
 /// Each height's steady frame pairs (velocity.window = height; run: all of
 /// them) and its profile summed over those pairs.
-static gf_status gf_vel_steady(gf_vel_acc *a, const gf_analysis_opts *o)
+static gf_status gf_vel_steady(gf_vel_acc *a, const gf_analysis_opts *o, const gf_series *s)
 {
-    double *m = GF_NEW(double, a->npairs + 1);
-    if (!m) return gf_error_set(GF_ERR_NOMEM, "velocity: out of memory");
+    double *m = GF_NEW(double, a->npairs + 1), *tp = GF_NEW(double, a->npairs + 1);
+    if (!m || !tp) {
+        if (m) GF_DELETE(m, a->npairs + 1);
+        if (tp) GF_DELETE(tp, a->npairs + 1);
+        return gf_error_set(GF_ERR_NOMEM, "velocity: out of memory");
+    }
+    for (size_t j = 0; j < a->npairs; j++) tp[j] = a->frames[j].time;
+    // A spot run's own rise time (the papers' walk: up by step_z each move;
+    // sfr's drift follows the stress field, so the noise judges there).
+    gf_engine_defs ed;
+    gf_config_engine_defs(&s->cfg, &ed);
+    const bool by_rise = s->spot_run && s->nframes && ed.flow_rule == GF_FLOW_DIFFUSIVE && ed.step_z > 0.0 &&
+                         ed.move_rate > 0.0;
     for (size_t h = 0; h < a->nh; h++) {
         for (size_t j = 0; j < a->npairs; j++) {
             const double *b = a->band + 2 * (j * a->nh + h);
@@ -115,6 +126,11 @@ static gf_status gf_vel_steady(gf_vel_acc *a, const gf_analysis_opts *o)
         gf_steady_height *v = &a->verdict[h];
         if (o->vel_window == GF_VEL_WINDOW_HEIGHT) {
             *v = gf_steady_height_find(m, a->npairs);
+            if (by_rise)
+                gf_steady_height_by_rise(v, tp, a->npairs,
+                                         s->frames[0].time + gf_steady_height_rise_time(o->vel_heights[h], ed.birth_z,
+                                                                                        ed.radius, ed.step_z,
+                                                                                        ed.move_rate));
         } else {
             *v = (gf_steady_height){.steady = true};
             snprintf(v->why, sizeof v->why, "all %zu frame pairs of the window (velocity.window = run)", a->npairs);
@@ -124,6 +140,7 @@ static gf_status gf_vel_steady(gf_vel_acc *a, const gf_analysis_opts *o)
             for (size_t i = 0; i < 2 * a->np; i++) a->prof[2 * h * a->np + i] += a->pp[2 * (j * a->nh + h) * a->np + i];
     }
     GF_DELETE(m, a->npairs + 1);
+    GF_DELETE(tp, a->npairs + 1);
     return GF_OK;
 }
 
@@ -342,7 +359,7 @@ gf_status gf_measure_velocity(const gf_series *s, const gf_analysis_opts *o, gf_
         if (st == GF_OK) gf_vel_acc_add(&a, &steps, o, k - k0);
     }
     gf_steps_free(&steps);
-    if (st == GF_OK && a.nh) st = gf_vel_steady(&a, o);
+    if (st == GF_OK && a.nh) st = gf_vel_steady(&a, o, s);
     size_t unsteady = 0;
     for (size_t h = 0; st == GF_OK && h < a.nh; h++) unsteady += !a.verdict[h].steady;
 
