@@ -517,14 +517,22 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         // On MPI ranks rank 0 packs and sends the packing; a stop on any rank
         // stops all of them there together (each packing its own, a rank
         // stopped meanwhile left the others waiting for it for ever).
-        st = gf_mpi_rank() == 0 ? gf_make_packing(&cfg, opts, &pk) : GF_OK;
-        st = gf_mpi_share_packing(st, &pk, opts->stop);
-        if (st == GF_ERR_INTERRUPTED)
-            gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+        // The domain engine with a packing.file: every rank reads it keeping
+        // its own region (issue 23: a rank holds only its region).
+        const bool windowed = gf_mpi_windowed(&cfg);
+        if (windowed) {
+            st = gf_mpi_sim_create_part(&cfg, &sim);
+        } else {
+            st = gf_mpi_rank() == 0 ? gf_make_packing(&cfg, opts, &pk) : GF_OK;
+            st = gf_mpi_share_packing(st, &pk, opts->stop);
+            if (st == GF_ERR_INTERRUPTED)
+                gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+        }
+        if (st == GF_OK && !windowed) st = gf_sim_create(&cfg, &pk, &sim);
 #else
         st = gf_make_packing(&cfg, opts, &pk);
-#endif
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
+#endif
         gf_packing_free(&pk);
     }
     // config.ini must hold the configuration: refused before the directory is

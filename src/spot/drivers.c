@@ -75,6 +75,13 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
 static gf_status gf_sim_whole(gf_sim *sim)
 {
 #ifdef GF_MPI
+    if (sim->part) { // its window only, maybe before any phase: over the slabs the engine makes
+        gf_status st;
+        const gf_slabs *s = gf_dom_slabs_made(sim, &st);
+        if (st != GF_OK) return st;
+        if (!s) return gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
+        if ((st = gf_mpi_slabs_partial(s)) != GF_OK) return st;
+    }
     return gf_mpi_whole(sim);
 #else
     (void)sim;
@@ -170,8 +177,10 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
 {
     gf_status st = gf_sim_run_loop(sim, until, hooks);
     // What the caller reads next (a checkpoint after a stop, the summary)
-    // is the whole state. (An error ends the job: mpi_app aborts it.)
-    gf_status sw = st == GF_OK || st == GF_ERR_INTERRUPTED ? gf_sim_whole(sim) : GF_OK;
+    // is the whole state, unless it reads counters only (the bench: its
+    // ranks' peak resident sets are those of their regions). (An error
+    // ends the job: mpi_app aborts it.)
+    gf_status sw = (st == GF_OK || st == GF_ERR_INTERRUPTED) && !sim->keep_part ? gf_sim_whole(sim) : GF_OK;
     return sw != GF_OK ? sw : st;
 }
 
@@ -196,15 +205,17 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
             if (ts > sim->t_reached) sim->t_reached = ts;
             // (whole on every rank, whether it writes or not: a collective)
-            if ((st = gf_sim_whole(sim)) != GF_OK ||
-                (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
+            // (no hook, nothing reads the state: the bench's ranks keep their regions)
+            if (hooks->snapshot && ((st = gf_sim_whole(sim)) != GF_OK ||
+                                    (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
                 return st;
             sim->next_snap++;
         }
         while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
-            if ((st = gf_sim_whole(sim)) != GF_OK || (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
+            if (hooks->checkpoint &&
+                ((st = gf_sim_whole(sim)) != GF_OK || (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
                 return st;
             // Due times that no longer advance (an interval below the rounding
             // of the time; gf_config_validate refuses those) skip ahead.

@@ -12,8 +12,10 @@
 // that rank's record of it is old. The state outside a rank's region goes
 // stale; gf_mpi_whole makes it whole again before anything reads it.
 //
-// Memory is still replicated: every rank allocates every particle (the
-// division of the memory is the step after this one, docs/performance.md).
+// A rank that read only its region of packing.file (window.c) holds only
+// that region's records until gf_mpi_whole gathers the others' (every rank's
+// arrays are allocated whole, their pages outside the region never written:
+// docs/performance.md).
 #include <mpi.h>
 #include <inttypes.h>
 #include <limits.h>
@@ -279,7 +281,7 @@ static uint64_t gf_slab_hash(const gf_sim *sim, const gf_slabs *s, int a, int b)
         const uint32_t *sl = g->slot + c * GF_CELL_CAP;
         for (uint32_t k = 0; k < g->count[c]; k++) {
             uint32_t i = sl[k];
-            gf_mpi_part r = {i, g->cell_of[i], g->slot_of[i], sim->alive[i], sim->p[i], sim->p0[i]};
+            gf_mpi_part r = gf_mpi_part_of(sim, i);
             h = gf_mpi_hash(h, &r, sizeof r);
             if (row) h = gf_mpi_hash(h, sim->nl + ((size_t)i << sim->nl_shift), row);
         }
@@ -363,6 +365,14 @@ gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *colto
     return GF_OK;
 }
 
+gf_status gf_mpi_slabs_partial(const gf_slabs *s)
+{
+    if (!gf_slab_arrays(gf_mpi_size())) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+    gf_slab_st.slabs = s;
+    gf_slab_st.dirty = true;
+    return GF_OK;
+}
+
 gf_status gf_mpi_whole(gf_sim *sim)
 {
     if (!gf_slab_st.dirty) return GF_OK;
@@ -438,6 +448,13 @@ gf_status gf_mpi_whole(gf_sim *sim)
     t->wait += MPI_Wtime() - t0;
     t->wholes++;
     if (st != GF_OK) return st;
+    // Every rank holds every particle again (a rank that read its region
+    // only now holds the rest: its window is the whole).
+    sim->part = false;
+    sim->win_lo = 0;
+    sim->win_hi = sim->n;
+    sim->grid.i0 = 0;
+    sim->grid.i1 = sim->grid.np;
     gf_grid_recompute_top(&sim->grid);
     return gf_mpi_checking() ? gf_mpi_check(sim, NULL, NULL, 0) : GF_OK;
 }
