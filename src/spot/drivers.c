@@ -4,6 +4,9 @@
 // or spatial order, the last in parallel.c), gf_sim_step and gf_sim_run with
 // their snapshot and checkpoint hooks. The top of the engine: calls the
 // spatial step (parallel.c) and the kernel (walk.c), nothing calls back.
+#ifdef GF_MPI
+#include <mpi.h>
+#endif
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,6 +89,27 @@ static gf_status gf_sim_whole(gf_sim *sim)
 #else
     (void)sim;
     return GF_OK;
+#endif
+}
+
+// Before a snapshot, a checkpoint or the end of gf_sim_run, which rank 0
+// alone writes: ranks that read only their regions of packing.file
+// (window.c) gather the state on rank 0 and keep their regions (issue 23);
+// otherwise as gf_sim_whole.
+static gf_status gf_sim_gather(gf_sim *sim)
+{
+#ifdef GF_MPI
+    int part = sim->part, any = part;
+    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (!any) return gf_sim_whole(sim);
+    gf_status st;
+    const gf_slabs *s = gf_dom_slabs_made(sim, &st);
+    if (st != GF_OK) return st;
+    if (!s) return gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
+    if ((st = gf_mpi_slabs_partial(s)) != GF_OK) return st;
+    return gf_mpi_gather0(sim);
+#else
+    return gf_sim_whole(sim);
 #endif
 }
 
@@ -180,7 +204,7 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
     // is the whole state, unless it reads counters only (the bench: its
     // ranks' peak resident sets are those of their regions). (An error
     // ends the job: mpi_app aborts it.)
-    gf_status sw = (st == GF_OK || st == GF_ERR_INTERRUPTED) && !sim->keep_part ? gf_sim_whole(sim) : GF_OK;
+    gf_status sw = (st == GF_OK || st == GF_ERR_INTERRUPTED) && !sim->keep_part ? gf_sim_gather(sim) : GF_OK;
     return sw != GF_OK ? sw : st;
 }
 
@@ -206,7 +230,7 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
             if (ts > sim->t_reached) sim->t_reached = ts;
             // (whole on every rank, whether it writes or not: a collective)
             // (no hook, nothing reads the state: the bench's ranks keep their regions)
-            if (hooks->snapshot && ((st = gf_sim_whole(sim)) != GF_OK ||
+            if (hooks->snapshot && ((st = gf_sim_gather(sim)) != GF_OK ||
                                     (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
                 return st;
             sim->next_snap++;
@@ -215,7 +239,7 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
             if (hooks->checkpoint &&
-                ((st = gf_sim_whole(sim)) != GF_OK || (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
+                ((st = gf_sim_gather(sim)) != GF_OK || (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
                 return st;
             // Due times that no longer advance (an interval below the rounding
             // of the time; gf_config_validate refuses those) skip ahead.

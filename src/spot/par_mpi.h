@@ -107,6 +107,12 @@ gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *colto
 /// every rank, so that all hold the single process's state again. Nothing to
 /// do when no slab phase ran since. A collective (every rank decides alike).
 gf_status gf_mpi_whole(gf_sim *sim);
+/// gf_mpi_whole for rank 0 alone (snapshots, checkpoints and the end of a
+/// run of ranks that read their regions: rank 0 writes them): every other
+/// rank sends it the cells it owns and their particles, in messages of a
+/// few MB, and keeps its own region only. The state stays partial on the
+/// others (the next gf_mpi_whole still gathers it). A collective.
+gf_status gf_mpi_gather0(gf_sim *sim);
 /// A rank holding only its window (sim->part) before any slab phase: the
 /// state is partial over these slabs, so the next gf_mpi_whole gathers it.
 gf_status gf_mpi_slabs_partial(const gf_slabs *s);

@@ -459,6 +459,118 @@ gf_status gf_mpi_whole(gf_sim *sim)
     return gf_mpi_checking() ? gf_mpi_check(sim, NULL, NULL, 0) : GF_OK;
 }
 
+// The message of this rank's owned cells from c on and their particles
+// (whole, with their rows), up to about `most` bytes (at least one cell);
+// *c is left at the first cell not sent. An empty message (no cell) ends a
+// rank's part of the gather to rank 0.
+static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, size_t *c, size_t most, gf_slab_buf *m)
+{
+    const gf_grid *g = &sim->grid;
+    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS];
+    gf_mpi_records_kinds(sim, 0, 0, limit, rec);
+    const bool rows = limit[GF_TOUCH_ROW] > 0;
+    const size_t per = rec[GF_TOUCH_PARTICLE] + (rows ? rec[GF_TOUCH_ROW] : 0);
+    gf_mpi_head h = {{0}};
+    size_t need = sizeof h, end = *c;
+    for (; end < g->ncell; end++) {
+        int L = gf_slabs_layer(s, (uint32_t)end);
+        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        const size_t more = rec[GF_TOUCH_CELL] + g->count[end] * per;
+        if (h.v[1 + GF_TOUCH_CELL] > 0 && need + more > most) break;
+        h.v[1 + GF_TOUCH_CELL]++;
+        h.v[1 + GF_TOUCH_PARTICLE] += g->count[end];
+        need += more;
+    }
+    if (rows) h.v[1 + GF_TOUCH_ROW] = h.v[1 + GF_TOUCH_PARTICLE];
+    if (need > INT_MAX || !gf_mpi_room((void **)&m->b, &m->cap, need, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI gather of the state (%zu bytes)", need);
+    h.v[0] = (uint32_t)need;
+    memcpy(m->b, &h, sizeof h);
+    unsigned char *o = m->b + sizeof h;
+    unsigned char *orow = o + h.v[1 + GF_TOUCH_PARTICLE] * rec[GF_TOUCH_PARTICLE];
+    unsigned char *ocell = orow + h.v[1 + GF_TOUCH_ROW] * rec[GF_TOUCH_ROW];
+    for (size_t k = *c; k < end; k++) {
+        int L = gf_slabs_layer(s, (uint32_t)k);
+        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)k, NULL, NULL, 0, ocell);
+        ocell += rec[GF_TOUCH_CELL];
+        for (uint32_t j = 0; j < g->count[k]; j++) {
+            uint32_t i = g->slot[k * GF_CELL_CAP + j];
+            gf_mpi_record_write(sim, GF_TOUCH_PARTICLE, i, NULL, NULL, 0, o);
+            o += rec[GF_TOUCH_PARTICLE];
+            if (!rows) continue;
+            gf_mpi_record_write(sim, GF_TOUCH_ROW, i, NULL, NULL, 0, orow);
+            orow += rec[GF_TOUCH_ROW];
+        }
+    }
+    m->len = need;
+    *c = end;
+    return GF_OK;
+}
+
+gf_status gf_mpi_gather0(gf_sim *sim)
+{
+    if (!gf_slab_st.dirty) return GF_OK;
+    enum { GF_GATHER_TAG = 2325 };
+    // Messages of ~4 MB: a rank's buffer, kept from gather to gather, stays
+    // small beside its region (its whole slab at once was ~0.9 of it).
+    const size_t most = (size_t)4 << 20;
+    const gf_slabs *s = gf_slab_st.slabs;
+    const int R = gf_mpi_size(), me = gf_mpi_rank();
+    gf_mpi_tallies *t = gf_mpi_tally();
+    double t0 = MPI_Wtime();
+    gf_status st = GF_OK;
+    if (me != 0) {
+        gf_slab_buf *m = &gf_slab_st.out[me];
+        size_t c = 0;
+        for (bool last = false; !last;) {
+            // (Out of memory fails this rank; mpi_app aborts the job.)
+            if ((st = gf_slab_chunk(sim, s, me, &c, most, m)) != GF_OK) return st;
+            uint32_t cells;
+            memcpy(&cells, m->b + sizeof(uint32_t) * (1 + GF_TOUCH_CELL), sizeof cells);
+            last = cells == 0;
+            MPI_Send(m->b, (int)m->len, MPI_BYTE, 0, GF_GATHER_TAG, MPI_COMM_WORLD);
+            t->sent += m->len;
+        }
+    } else {
+        gf_slab_buf *in = &gf_slab_st.in[me];
+        for (int r = 1; r < R; r++)
+            for (bool last = false; !last;) {
+                MPI_Status ms;
+                int len = 0;
+                MPI_Probe(r, GF_GATHER_TAG, MPI_COMM_WORLD, &ms);
+                MPI_Get_count(&ms, MPI_BYTE, &len);
+                if (len < 0 || !gf_mpi_room((void **)&in->b, &in->cap, (size_t)len + 1, 1))
+                    return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI gather of the state (%d bytes)", len);
+                MPI_Recv(in->b, len, MPI_BYTE, r, GF_GATHER_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                if (st != GF_OK) continue;
+                if ((size_t)len < sizeof(gf_mpi_head)) {
+                    st = gf_error_set(GF_ERR_STATE, "MPI gather: rank %d sent %d bytes", r, len);
+                    break;
+                }
+                uint32_t cells;
+                memcpy(&cells, in->b + sizeof(uint32_t) * (1 + GF_TOUCH_CELL), sizeof cells);
+                last = cells == 0;
+                if ((st = gf_mpi_records_check(sim, in->b, (size_t)len, 0, 0, r)) != GF_OK) break;
+                gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
+                gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
+                t->applied += (size_t)len;
+            }
+        if (st == GF_OK) {
+            // Rank 0 holds every particle now; the others still their regions.
+            sim->part = false;
+            sim->win_lo = 0;
+            sim->win_hi = sim->n;
+            sim->grid.i0 = 0;
+            sim->grid.i1 = sim->grid.np;
+            gf_grid_recompute_top(&sim->grid);
+        }
+    }
+    t->wait += MPI_Wtime() - t0;
+    t->wholes++;
+    return st;
+}
+
 int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap)
 {
     enum { F = GF_MPI_FIGURES + 2 };

@@ -86,7 +86,8 @@ static gf_status gf_win_shape(gf_sim *sim, const gf_packing_defs *pd, gf_win_sca
 // The window's particles at their indices; the checks of an import on them.
 static gf_status gf_win_place(gf_sim *sim, const gf_packing_defs *pd, gf_packing *pk, size_t base, size_t total)
 {
-    gf_status st = gf_packing_import_check(&sim->cfg, pk);
+    // (A window above the packing's top, in the room recirculation leaves, holds none.)
+    gf_status st = pk->n > 0 ? gf_packing_import_check(&sim->cfg, pk) : GF_OK;
     if (st != GF_OK) return st;
     gf_packing_tag_layers(pk, pd->layer_thickness);
     if ((st = gf_packing_check(pk, &sim->cfg)) != GF_OK) return st;
