@@ -237,7 +237,10 @@ gf_status gf_mpi_agree(const gf_sim *sim)
     h = gf_mpi_hash(h, &sim->next_snap, sizeof sim->next_snap);
     h = gf_mpi_hash(h, &sim->rng.s, sizeof sim->rng.s);
     // (Ranks holding their regions only differ there: GF_MPI_CHECK compares
-    // the overlaps of their regions after every phase.)
+    // the overlaps of their regions after every phase. What each read of
+    // the whole file agrees: the count above, the grid's top, the radii.)
+    h = gf_mpi_hash(h, &sim->grid_ztop, sizeof sim->grid_ztop);
+    h = gf_mpi_hash(h, &sim->rmax, sizeof sim->rmax);
     int part = sim->part, any = part;
     MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     if (!any) h = gf_mpi_hash_particles(h, sim);
