@@ -3,10 +3,12 @@
 // r of R of the domain engine reads the file keeping its region's particles
 // and a margin, at the indices one process gives them, and holds nothing
 // else: its records equal the single process's, its region's neighbour
-// lists are whole, and the other particles' records were never written. No
-// MPI: rank and ranks are numbers here.
+// lists are whole, and the other particles' records were never written; its
+// re-sort of its window is one process's. No MPI: rank and ranks are
+// numbers here.
 #include "support.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -106,6 +108,47 @@ static void one_rank_holds_everything(void **state)
     gf_sim_destroy(all);
 }
 
+// A window's re-sort (gf_window_resort, what each MPI rank does at a
+// re-sort) is one process's: after particles left, a window of every cell
+// gives the indices, grid, references and rows of gf_nlist_build's re-sort.
+static void a_window_resorts_as_one_process(void **state)
+{
+    (void)state;
+    gf_config c = window_config();
+    assert_int_equal(gf_config_set_key(&c, "run.reorder_interval", "1000000000"), GF_OK);
+    assert_int_equal(gf_config_set_key(&c, "container.orifice_diameter", "6"), GF_OK);
+    gf_sim *all = NULL, *w = NULL;
+    assert_int_equal(gf_sim_create_from_config(&c, NULL, &all), GF_OK);
+    assert_int_equal(gf_sim_create_part(&c, 1, 0, &w), GF_OK);
+    assert_int_equal(gf_sim_run(all, 3.0, NULL), GF_OK);
+    assert_int_equal(gf_sim_run(w, 3.0, NULL), GF_OK);
+    assert_true(all->n_alive < all->n); // particles left: the re-sort drops them
+    double rmin = INFINITY, rmax = 0.0;
+    for (size_t i = 0; i < w->n; i++)
+        if (w->alive[i]) {
+            rmin = fmin(rmin, w->p[i].r);
+            rmax = fmax(rmax, w->p[i].r);
+        }
+    assert_int_equal(gf_nlist_build(all, true), GF_OK);
+    assert_int_equal(gf_window_resort(w, 0, w->grid.ncell, 0, w->n_alive, rmin, rmax), GF_OK);
+    assert_int_equal(w->n, all->n);
+    assert_true(w->win_lo == 0 && w->win_hi == all->n);
+    assert_true(w->hmax == all->hmax && w->contact2 == all->contact2);
+    const size_t row = sizeof(uint32_t) << all->nl_shift;
+    for (size_t i = 0; i < all->n; i++) {
+        assert_memory_equal(&w->p[i], &all->p[i], sizeof all->p[i]);
+        assert_memory_equal(&w->p0[i], &all->p0[i], sizeof all->p0[i]);
+        assert_true(w->id[i] == all->id[i] && w->layer[i] == all->layer[i] && w->alive[i] == 1 && all->alive[i] == 1);
+        assert_memory_equal(&w->hist[i], &all->hist[i], sizeof all->hist[i]);
+        assert_int_equal(w->grid.cell_of[i], all->grid.cell_of[i]);
+        assert_int_equal(w->grid.slot_of[i], all->grid.slot_of[i]);
+        assert_memory_equal((const char *)w->nl + i * row, (const char *)all->nl + i * row, row);
+    }
+    assert_memory_equal(w->grid.count, all->grid.count, all->grid.ncell * sizeof *all->grid.count);
+    gf_sim_destroy(w);
+    gf_sim_destroy(all);
+}
+
 // Without packing.file there is nothing to read a window of: refused (the
 // caller then makes the whole packing, as one process does).
 static void a_window_needs_a_packing_file(void **state)
@@ -120,6 +163,7 @@ static void a_window_needs_a_packing_file(void **state)
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_rank_holds_its_window_at_the_single_process_indices),
     cmocka_unit_test(one_rank_holds_everything),
+    cmocka_unit_test(a_window_resorts_as_one_process),
     cmocka_unit_test(a_window_needs_a_packing_file),
 };
 

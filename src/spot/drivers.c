@@ -113,6 +113,25 @@ static gf_status gf_sim_gather(gf_sim *sim)
 #endif
 }
 
+// The full re-sort (every run.reorder_interval): it moves every particle.
+// Ranks that hold their regions along z re-sort their windows and keep
+// them (par_mpi_slabs.c gf_mpi_resort); otherwise the state is made whole.
+static gf_status gf_sim_resort(gf_sim *sim)
+{
+    gf_status st;
+#ifdef GF_MPI
+    int part = sim->part, any = part;
+    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (any) {
+        const gf_slabs *s = gf_dom_slabs_made(sim, &st);
+        if (st != GF_OK) return st;
+        if (s && s->axis == 2) return gf_mpi_resort(sim, s);
+    }
+#endif
+    if ((st = gf_sim_whole(sim)) != GF_OK) return st;
+    return gf_nlist_build(sim, true);
+}
+
 // Work done, in the units of run.reorder_interval: events, or spot moves in
 // fixed mode (where one step is thousands of moves).
 static uint64_t gf_sim_work(const gf_sim *sim)
@@ -149,8 +168,7 @@ static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
     if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->d.reorder_interval) {
-        if ((st = gf_sim_whole(sim)) != GF_OK) return st; // the re-sort moves every particle
-        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+        if ((st = gf_sim_resort(sim)) != GF_OK) return st;
         sim->nl_built_at = gf_sim_work(sim);
     }
     st = gf_sim_action(sim);

@@ -230,9 +230,9 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
         if (r < 0.0) r = sim->p[i].r;
         mono = mono && sim->p[i].r == r;
     }
-    if (sim->part) { // the whole packing's radii (every skin is GF_SKIN after a window's build)
-        mono = sim->rmin_all == sim->rmax;
-        r = sim->rmax;
+    if (sim->part) { // every particle's radii (every skin is GF_SKIN after a window's build)
+        mono = sim->rmin_all == sim->rmax_all;
+        r = sim->rmax_all;
     }
     sim->contact2 = mono && r > 0.0 ? 4.0 * r * r : 0.0;
     if (!sim->nl) {

@@ -113,6 +113,11 @@ gf_status gf_mpi_whole(gf_sim *sim);
 /// few MB, and keeps its own region only. The state stays partial on the
 /// others (the next gf_mpi_whole still gathers it). A collective.
 gf_status gf_mpi_gather0(gf_sim *sim);
+/// The neighbour-list re-sort of ranks holding their windows (slabs along
+/// z): each rank gets its margin layers from their owners, then re-sorts its
+/// window as one process re-sorts the whole (gf_window_resort), keeping only
+/// its window. A collective.
+gf_status gf_mpi_resort(gf_sim *sim, const gf_slabs *s);
 /// A rank holding only its window (sim->part) before any slab phase: the
 /// state is partial over these slabs, so the next gf_mpi_whole gathers it.
 gf_status gf_mpi_slabs_partial(const gf_slabs *s);

@@ -463,7 +463,18 @@ gf_status gf_mpi_whole(gf_sim *sim)
 // (whole, with their rows), up to about `most` bytes (at least one cell);
 // *c is left at the first cell not sent. An empty message (no cell) ends a
 // rank's part of the gather to rank 0.
-static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, size_t *c, size_t most, gf_slab_buf *m)
+// Layers [a0, a1) and [b0, b1), of those this rank owns.
+typedef struct gf_slab_pick {
+    int a0, a1, b0, b1;
+} gf_slab_pick;
+
+static inline bool gf_slab_picked(const gf_slabs *s, int me, const gf_slab_pick *k, int L)
+{
+    return L >= s->lo[me] && L < s->hi[me] && ((L >= k->a0 && L < k->a1) || (L >= k->b0 && L < k->b1));
+}
+
+static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, const gf_slab_pick *pick, size_t *c,
+                               size_t most, gf_slab_buf *m)
 {
     const gf_grid *g = &sim->grid;
     size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS];
@@ -473,8 +484,7 @@ static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, siz
     gf_mpi_head h = {{0}};
     size_t need = sizeof h, end = *c;
     for (; end < g->ncell; end++) {
-        int L = gf_slabs_layer(s, (uint32_t)end);
-        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        if (!gf_slab_picked(s, me, pick, gf_slabs_layer(s, (uint32_t)end))) continue;
         const size_t more = rec[GF_TOUCH_CELL] + g->count[end] * per;
         if (h.v[1 + GF_TOUCH_CELL] > 0 && need + more > most) break;
         h.v[1 + GF_TOUCH_CELL]++;
@@ -490,8 +500,7 @@ static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, siz
     unsigned char *orow = o + h.v[1 + GF_TOUCH_PARTICLE] * rec[GF_TOUCH_PARTICLE];
     unsigned char *ocell = orow + h.v[1 + GF_TOUCH_ROW] * rec[GF_TOUCH_ROW];
     for (size_t k = *c; k < end; k++) {
-        int L = gf_slabs_layer(s, (uint32_t)k);
-        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        if (!gf_slab_picked(s, me, pick, gf_slabs_layer(s, (uint32_t)k))) continue;
         gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)k, NULL, NULL, 0, ocell);
         ocell += rec[GF_TOUCH_CELL];
         for (uint32_t j = 0; j < g->count[k]; j++) {
@@ -525,7 +534,8 @@ gf_status gf_mpi_gather0(gf_sim *sim)
         size_t c = 0;
         for (bool last = false; !last;) {
             // (Out of memory fails this rank; mpi_app aborts the job.)
-            if ((st = gf_slab_chunk(sim, s, me, &c, most, m)) != GF_OK) return st;
+            const gf_slab_pick all = {0, s->n, 0, 0};
+            if ((st = gf_slab_chunk(sim, s, me, &all, &c, most, m)) != GF_OK) return st;
             uint32_t cells;
             memcpy(&cells, m->b + sizeof(uint32_t) * (1 + GF_TOUCH_CELL), sizeof cells);
             last = cells == 0;
@@ -569,6 +579,80 @@ gf_status gf_mpi_gather0(gf_sim *sim)
     t->wait += MPI_Wtime() - t0;
     t->wholes++;
     return st;
+}
+
+gf_status gf_mpi_resort(gf_sim *sim, const gf_slabs *s)
+{
+    enum { GF_MARGIN_TAG = 2326 };
+    const int R = gf_mpi_size(), me = gf_mpi_rank();
+    const gf_grid *g = &sim->grid;
+    const int m = gf_window_margin(sim);
+    const size_t layer = (size_t)g->nx * (size_t)g->ny;
+    if (!gf_slab_arrays(R)) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+    gf_status st = GF_OK;
+    // Each partner's margin (the layers of its window beyond its region)
+    // from the ranks that own them, whole: its window is then exact.
+    int nreq = 0;
+    for (int r = 0; r < R && st == GF_OK; r++) {
+        if (!gf_slabs_partners(s, me, r)) continue;
+        const gf_slab_pick pick = {s->rlo[r] - m, s->rlo[r], s->rhi[r], s->rhi[r] + m};
+        size_t c = 0;
+        if ((st = gf_slab_chunk(sim, s, me, &pick, &c, SIZE_MAX, &gf_slab_st.out[r])) != GF_OK) break;
+        MPI_Isend(gf_slab_st.out[r].b, (int)gf_slab_st.out[r].len, MPI_BYTE, r, GF_MARGIN_TAG, MPI_COMM_WORLD,
+                  &gf_slab_st.req[nreq++]);
+    }
+    gf_mpi_tallies *t = gf_mpi_tally();
+    for (int r = 0; r < R; r++) {
+        if (!gf_slabs_partners(s, me, r)) continue;
+        MPI_Status ms;
+        int len = 0;
+        MPI_Probe(r, GF_MARGIN_TAG, MPI_COMM_WORLD, &ms);
+        MPI_Get_count(&ms, MPI_BYTE, &len);
+        gf_slab_buf *in = &gf_slab_st.in[r];
+        if (len < 0 || !gf_mpi_room((void **)&in->b, &in->cap, (size_t)len + 1, 1)) {
+            st = gf_error_set(GF_ERR_NOMEM, "out of memory for the re-sort's margins (%d bytes)", len);
+            len = 0;
+        }
+        MPI_Recv(len ? in->b : NULL, len, MPI_BYTE, r, GF_MARGIN_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (st != GF_OK || (st = gf_mpi_records_check(sim, in->b, (size_t)len, 0, 0, r)) != GF_OK) continue;
+        gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
+        gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
+    }
+    MPI_Waitall(nreq, gf_slab_st.req, MPI_STATUSES_IGNORE);
+    // (An error here is this rank's: mpi_app aborts the job.)
+    if (st != GF_OK) return st;
+    // The particles in the cells each rank owns, and their radii: one
+    // process's index of the first particle of a cell is the count below it.
+    int wlo = s->rlo[me] - m > 0 ? s->rlo[me] - m : 0, whi = s->rhi[me] + m < s->n ? s->rhi[me] + m : s->n;
+    if (s->rlo[me] >= s->rhi[me]) wlo = whi = 0;
+    uint64_t own = 0, below = 0;
+    double r2[2] = {INFINITY, INFINITY}; // the smallest radius, and the largest negated
+    for (size_t c = (size_t)wlo * layer; c < (size_t)whi * layer; c++) {
+        const int L = (int)(c / layer);
+        if (L < s->lo[me]) below += g->count[c];
+        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        own += g->count[c];
+        for (uint32_t k = 0; k < g->count[c]; k++) {
+            const double r = sim->p[g->slot[c * GF_CELL_CAP + k]].r;
+            r2[0] = fmin(r2[0], r);
+            r2[1] = fmin(r2[1], -r);
+        }
+    }
+    uint64_t *owns = GF_NEW(uint64_t, (size_t)R);
+    if (!owns) return gf_error_set(GF_ERR_NOMEM, "out of memory for the re-sort");
+    MPI_Allgather(&own, 1, MPI_UINT64_T, owns, 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, r2, 2, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    uint64_t total = 0, first = 0;
+    for (int r = 0; r < R; r++) {
+        if (r < me) first += owns[r];
+        total += owns[r];
+    }
+    GF_DELETE(owns, (size_t)R);
+    if (total != sim->n_alive)
+        return gf_error_set(GF_ERR_STATE, "re-sort: the ranks' cells hold %" PRIu64 " particles, %zu are in the container",
+                            total, sim->n_alive);
+    return gf_window_resort(sim, (size_t)wlo * layer, (size_t)whi * layer, (size_t)(first - below), (size_t)total,
+                            r2[0], -r2[1]);
 }
 
 int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap)

@@ -128,7 +128,8 @@ struct gf_sim {
     // gather made the state whole (par_mpi_slabs.c) and in one process.
     bool part;
     size_t win_lo, win_hi;
-    double rmin_all;  ///< part: the smallest radius of the whole packing
+    double rmin_all;  ///< part: the smallest radius of the particles in the container (creation, re-sort)
+    double rmax_all;  ///< part: the largest
     bool keep_part;   ///< part: gf_sim_run leaves the state as it is at its end (the bench reads counters only)
     double contact2;  ///< (2 r)^2 when every live particle has radius r, else 0 (derived at every list build)
 
@@ -365,6 +366,16 @@ gf_status gf_sim_create_part(const gf_config *cfg, int R, int me, gf_sim **out);
 /// engine's slabs, slabs.h) and a margin of `margin` layers each side,
 /// [*lo, *hi): all layers when the slabs are not cut along z (domains.c).
 gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int *lo, int *hi);
+/// The margin of a rank's window beyond its region, in cell layers: the
+/// reach of a neighbour-list search (window.c).
+int gf_window_margin(const gf_sim *sim);
+/// A rank's re-sort of its window (window.c; the whole-state re-sort is
+/// gf_nlist_build(sim, true)): the particles in cells [c0, c1), whose
+/// records and cells must be exact here, take the indices [base, base + k)
+/// one process's stable re-sort by cell gives them (k of them; `base` the
+/// particles in the cells below c0, `n` in all, rmin and rmax their radii's
+/// extremes); then its grid and neighbour rows are redone there.
+gf_status gf_window_resort(gf_sim *sim, size_t c0, size_t c1, size_t base, size_t n, double rmin, double rmax);
 /// Makes the domain engine's decomposition if not yet made and returns its
 /// slabs (NULL: one process or not the domain engine).
 const gf_slabs *gf_dom_slabs_made(gf_sim *sim, gf_status *st);

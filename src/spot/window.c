@@ -14,6 +14,8 @@
 // rows, in file order, and counting those below it. No MPI here: rank and
 // ranks are numbers, so every build tests it (tests/test_slabs.c).
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
@@ -73,7 +75,7 @@ static gf_status gf_win_shape(gf_sim *sim, const gf_packing_defs *pd, gf_win_sca
     if (!(s->rmin >= GF_IMPORT_RMIN && s->rmax <= GF_IMPORT_RMAX))
         return gf_error_set(GF_ERR_FORMAT, "%s: radii from %g to %g d: the engine takes radii in [%g, %g] d",
                             pd->file, s->rmin, s->rmax, GF_IMPORT_RMIN, GF_IMPORT_RMAX);
-    sim->rmax = s->rmax;
+    sim->rmax = sim->rmax_all = s->rmax;
     sim->rmin_all = s->rmin;
     double top = s->zmax > 0.0 ? s->zmax : 0.0; // (gf_sim_make_grid's top starts at 0)
     sim->grid_ztop = top + 2.0;
@@ -106,6 +108,83 @@ static gf_status gf_win_place(gf_sim *sim, const gf_packing_defs *pd, gf_packing
     return GF_OK;
 }
 
+int gf_window_margin(const gf_sim *sim)
+{
+    // A neighbour-list search's reach (nlist.c gf_nlist_find, every skin
+    // GF_SKIN) in whole layers, so the rows of the region are whole.
+    const double reach = 2.0 * sim->rmax + 3.0 * GF_SKIN + GF_SKIN_SLACK + 1e-3;
+    return (int)ceil(reach / sim->grid.h) + 1;
+}
+
+static int gf_cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+gf_status gf_window_resort(gf_sim *sim, size_t c0, size_t c1, size_t base, size_t n, double rmin, double rmax)
+{
+    gf_grid *g = &sim->grid;
+    // The window's particles in one process's new order: by cell, then by
+    // index (its re-sort is stable), each cell's slots sorted.
+    size_t k = 0;
+    for (size_t c = c0; c < c1; c++) k += g->count[c];
+    uint32_t *old = GF_NEW(uint32_t, k ? k : 1);
+    gf_pos *p = GF_NEW(gf_pos, k ? k : 1);
+    int64_t *id = GF_NEW(int64_t, k ? k : 1);
+    int32_t *layer = GF_NEW(int32_t, k ? k : 1);
+    gf_hist *hist = GF_NEW(gf_hist, k ? k : 1);
+    gf_status st = GF_OK;
+    if (!old || !p || !id || !layer || !hist) st = gf_error_set(GF_ERR_NOMEM, "out of memory re-sorting particles");
+    if (st == GF_OK && base + k > sim->cap)
+        st = gf_error_set(GF_ERR_STATE, "re-sort: a window of %zu particles from %zu, beyond the %zu there are", k, base,
+                          sim->cap);
+    for (size_t c = c0, j = 0; st == GF_OK && c < c1; c++) {
+        memcpy(old + j, g->slot + c * GF_CELL_CAP, g->count[c] * sizeof *old);
+        qsort(old + j, g->count[c], sizeof *old, gf_cmp_u32);
+        j += g->count[c];
+    }
+    for (size_t j = 0; st == GF_OK && j < k; j++) {
+        p[j] = sim->p[old[j]];
+        id[j] = sim->id[old[j]];
+        layer[j] = sim->layer[old[j]];
+        hist[j] = sim->hist[old[j]];
+    }
+    if (st == GF_OK) {
+        // The old window's records past the new one are left as they are
+        // (stale, never read: outside the window).
+        for (size_t c = c0; c < c1; c++) g->count[c] = 0;
+        for (size_t j = 0; j < k; j++) {
+            size_t i = base + j;
+            sim->p[i] = p[j];
+            sim->id[i] = id[j];
+            sim->layer[i] = layer[j];
+            sim->hist[i] = hist[j];
+            sim->alive[i] = 1;
+            sim->p0[i] = (gf_ref){(float)p[j].x, (float)p[j].y, (float)p[j].z, (float)GF_SKIN};
+            g->cell_of[i] = GF_NO_CELL;
+        }
+        sim->n = n;
+        sim->part = true;
+        sim->win_lo = base;
+        sim->win_hi = base + k;
+        g->i0 = base;
+        g->i1 = base + k;
+        sim->rmin_all = rmin;
+        sim->rmax_all = rmax;
+        for (size_t j = 0; st == GF_OK && j < k; j++)
+            st = gf_grid_insert(g, (uint32_t)(base + j), gf_grid_cell(g, p[j].x, p[j].y, p[j].z));
+    }
+    GF_DELETE(old, k ? k : 1);
+    GF_DELETE(p, k ? k : 1);
+    GF_DELETE(id, k ? k : 1);
+    GF_DELETE(layer, k ? k : 1);
+    GF_DELETE(hist, k ? k : 1);
+    if (st != GF_OK) return st;
+    sim->nl_built_at = sim->st.events;
+    return gf_nlist_build(sim, false); // (the rows of the window; hmax and contact2 of every particle)
+}
+
 gf_status gf_sim_create_part(const gf_config *cfg, int R, int me, gf_sim **out)
 {
     *out = NULL;
@@ -122,10 +201,7 @@ gf_status gf_sim_create_part(const gf_config *cfg, int R, int me, gf_sim **out)
     sim->part = true;
     if ((st = gf_win_shape(sim, &pd, &s)) != GF_OK) goto fail;
     if ((st = gf_nlist_slots(sim)) != GF_OK) goto fail;
-    // The margin: a neighbour-list search's reach (nlist.c gf_nlist_find,
-    // every skin GF_SKIN) in whole layers, so the rows of the region are whole.
-    const double reach = 2.0 * sim->rmax + 3.0 * GF_SKIN + GF_SKIN_SLACK + 1e-3;
-    const int margin = (int)ceil(reach / sim->grid.h) + 1;
+    const int margin = gf_window_margin(sim);
     s.g = &sim->grid;
     if ((st = gf_dom_window_layers(sim, R, me, margin, &s.lo, &s.hi)) != GF_OK) goto fail;
     if ((st = gf_packing_read_where(pd.file, pd.unit_diameter, gf_win_keep, &s, &pk)) != GF_OK) goto fail;

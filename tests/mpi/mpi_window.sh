@@ -2,10 +2,11 @@
 # MPI test of a rank holding only its region (issue 23 item 3; build-mpi
 # only, label mpi): the domain engine given a packing.file, every rank reads
 # the file keeping its region's particles (src/spot/window.c). A tall silo
-# packed once: 2 and 4 ranks (GF_MPI_CHECK=1: every halo checked after every
-# phase) write the single process's run directory byte for byte; a run
-# stopped at 4 ranks resumes on 1 process to the uninterrupted run; and the
-# bench's ranks each hold the records of well under half the particles
+# packed once, re-sorted every 3,000 moves (each rank re-sorts its own
+# window, gf_mpi_resort): 2 and 4 ranks (GF_MPI_CHECK=1: every halo checked
+# after every phase) write the single process's run directory byte for byte;
+# a run stopped at 4 ranks resumes on 1 process to the uninterrupted run; and
+# the bench's ranks each hold the records of well under half the particles
 # (rank_held_particles: a non-zero id; every rank held all of them before).
 # usage: bash tests/mpi/mpi_window.sh GRANFLOW_BINARY(MPI build) TESTS_DATA_DIR [MPIRUN]
 NAME=mpi_window
@@ -16,7 +17,7 @@ source "$HERE/lib.bash" "${3:-}"
 # 6,000 spheres 156 d tall: 6 domains along z, 4 slabs of them.
 TALL=(--set container.width=8 --set container.depth=4 --set container.orifice_diameter=5
       --set spot.step_z=0.2 --set run.mode=fixed --set run.order=domains --set parallel.sectors=4
-      --set output.snapshot_interval=0.5)
+      --set output.snapshot_interval=0.5 --set run.reorder_interval=3000)
 same() {
     local a=$1 b=$2 f
     for f in $(cd "$a" && ls snapshots/*) exits.csv; do
@@ -34,11 +35,13 @@ FILE=(--set "packing.file=$PWD/tall.dump")
 gf run -q "${TALL[@]}" "${FILE[@]}" --set run.duration=2 --set run.threads=1 -o S
 expect_rc 0 "single process"
 [ "$(wc -l <S/exits.csv)" -gt 5 ] || fail "the silo did not flow ($(wc -l <S/exits.csv) lines in exits.csv)"
+builds=$(sed -n 's/.*"neighbour_list_builds": \([0-9]*\).*/\1/p' S/summary.json)
+[ "${builds:-0}" -gt 3 ] || fail "the lists were re-sorted ${builds:-no} times: no re-sort to test"
 for np in 2 4; do
     GF_MPI_CHECK=1 mpi $np run -q "${TALL[@]}" "${FILE[@]}" --set run.duration=2 --set run.threads=1 -o "R$np"
     expect_rc 0 "$np ranks reading their regions (GF_MPI_CHECK=1)"
     same S "R$np"
-    ok "$np ranks, each reading its region of packing.file: every halo checked, the single process's run directory"
+    ok "$np ranks, each reading its region of packing.file and re-sorting it ($builds list builds): every halo checked, the single process's run directory"
 done
 
 GF_MPI_CHECK=1 mpi 4 run -q "${TALL[@]}" "${FILE[@]}" --set run.duration=1 --set run.threads=1 -o P
@@ -48,8 +51,10 @@ expect_rc 0 "resumed on 1 process"
 same S P
 ok "4 ranks reading their regions to t = 1, then 1 process to t = 2: the uninterrupted run"
 
-# The bench reads counters only: the ranks keep their regions to the end.
-mpi 4 bench --json --no-large --warmup 0.05 --window 0.05 --set run.threads=1 "${TALL[@]}" "${FILE[@]}"
+# The bench reads counters only: the ranks keep their regions to the end,
+# through their re-sorts.
+mpi 4 bench --json --no-large --warmup 0.5 --window 0.1 --set run.threads=1 "${TALL[@]}" "${FILE[@]}" \
+    --set run.reorder_interval=1000
 expect_rc 0 "bench on 4 ranks"
 held=$(python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); print(s["particles"], *[int(h) for h in s["rank_held_particles"]])' "$T/out") ||
     fail "no rank_held_particles in the bench's JSON: $(head -c 300 "$T/out")"
