@@ -72,19 +72,34 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
     return st;
 }
 
+#ifdef GF_MPI
+// Whether any rank holds its window only (window.c): every rank learns it.
+static bool gf_sim_any_part(const gf_sim *sim)
+{
+    int part = sim->part, any = part;
+    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return any != 0;
+}
+
+// A rank holding its window, maybe before any phase: the state is partial
+// over the slabs the engine makes (NULL when it has none: not over slabs).
+static const gf_slabs *gf_sim_partial(gf_sim *sim, gf_status *st)
+{
+    const gf_slabs *s = gf_dom_slabs_made(sim, st);
+    if (*st == GF_OK && !s) *st = gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
+    if (*st == GF_OK) *st = gf_mpi_slabs_partial(s);
+    return *st == GF_OK ? s : NULL;
+}
+#endif
+
 // MPI ranks over slabs (the domain engine) hold their regions only, as of
 // the last phase: before anything reads the rest, every rank's state is made
 // whole again (par_mpi_slabs.c; nothing to do otherwise).
 static gf_status gf_sim_whole(gf_sim *sim)
 {
 #ifdef GF_MPI
-    if (sim->part) { // its window only, maybe before any phase: over the slabs the engine makes
-        gf_status st;
-        const gf_slabs *s = gf_dom_slabs_made(sim, &st);
-        if (st != GF_OK) return st;
-        if (!s) return gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
-        if ((st = gf_mpi_slabs_partial(s)) != GF_OK) return st;
-    }
+    gf_status st = GF_OK;
+    if (sim->part && !gf_sim_partial(sim, &st)) return st;
     return gf_mpi_whole(sim);
 #else
     (void)sim;
@@ -99,15 +114,9 @@ static gf_status gf_sim_whole(gf_sim *sim)
 static gf_status gf_sim_gather(gf_sim *sim)
 {
 #ifdef GF_MPI
-    int part = sim->part, any = part;
-    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    if (!any) return gf_sim_whole(sim);
-    gf_status st;
-    const gf_slabs *s = gf_dom_slabs_made(sim, &st);
-    if (st != GF_OK) return st;
-    if (!s) return gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
-    if ((st = gf_mpi_slabs_partial(s)) != GF_OK) return st;
-    return gf_mpi_gather0(sim);
+    if (!gf_sim_any_part(sim)) return gf_sim_whole(sim);
+    gf_status st = GF_OK;
+    return gf_sim_partial(sim, &st) ? gf_mpi_gather0(sim) : st;
 #else
     return gf_sim_whole(sim);
 #endif
@@ -118,11 +127,9 @@ static gf_status gf_sim_gather(gf_sim *sim)
 // them (par_mpi_slabs.c gf_mpi_resort); otherwise the state is made whole.
 static gf_status gf_sim_resort(gf_sim *sim)
 {
-    gf_status st;
+    gf_status st = GF_OK;
 #ifdef GF_MPI
-    int part = sim->part, any = part;
-    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    if (any) {
+    if (gf_sim_any_part(sim)) {
         const gf_slabs *s = gf_dom_slabs_made(sim, &st);
         if (st != GF_OK) return st;
         if (s && s->axis == 2) return gf_mpi_resort(sim, s);
