@@ -119,6 +119,7 @@ static void packing_types_give_the_bidisperse_packing(void **state)
     assert_true(r.silo.rank_exchange_bytes_per_phase[0] == 0.0);
     assert_true(r.silo.rank_region_particles[0] > 0 && r.silo.rank_region_particles[0] <= (double)r.silo.particles);
     assert_true(r.silo.rank_slab_particles[0] == r.silo.rank_region_particles[0]);
+    assert_true(r.silo.rank_held_particles[0] == (double)r.silo.particles); // one process holds every particle
     // Without packing.types every type is imported.
     c = mixture_config(path, "");
     s = (seen){0};
@@ -135,7 +136,8 @@ static void report_as_json(void **state)
                          .peak_rss_bytes = 4000};
     r.silo = (gf_bench_spot){.particles = 2, .threads = 1, .spot_us = 1.25, .sps_all = 4e5, .sps_one = 4e5, .ranks = 2,
                              .rank_peak_rss_bytes = {3000, 5000}, .rank_exchange_bytes_per_phase = {0, 1234.4},
-                             .rank_region_particles = {2, 1}, .rank_slab_particles = {1, 1}};
+                             .rank_region_particles = {2, 1}, .rank_slab_particles = {1, 1},
+                             .rank_held_particles = {2, 1}};
     r.lga = (gf_bench_lga){.site_updates_per_second = 1.5e7, .sites = 50000, .iterations = 1000};
     char *buf = NULL;
     size_t len = 0;
@@ -150,6 +152,7 @@ static void report_as_json(void **state)
                        "\"peak_rss_bytes_per_particle\": 2000.0, \"peak_rss_bytes\": 4000, \"ranks\": 2, "
                        "\"rank_peak_rss_bytes\": [3000, 5000], \"rank_exchange_bytes_per_phase\": [0, 1234], "
                        "\"rank_region_particles\": [2, 1], \"rank_slab_particles\": [1, 1], "
+                       "\"rank_held_particles\": [2, 1], "
                        "\"projected_drain_seconds\": 0, \"pack_seconds\": 0.00, "
                        "\"warmup_seconds\": 0.00, \"lga_site_updates_per_second\": 15000000, \"lga_sites\": 50000, "
                        "\"lga_iterations\": 1000}\n";

@@ -51,6 +51,12 @@ typedef struct gf_bench_spot {
     double rank_exchange_bytes_per_phase[GF_BENCH_RANKS];
     double rank_region_particles[GF_BENCH_RANKS];
     double rank_slab_particles[GF_BENCH_RANKS];
+    /// Particle records it held when the silo was done (a non-zero id): one
+    /// process, every particle; an MPI rank of the domain engine that read
+    /// packing.file keeping its region (issue 23), that region's, with a
+    /// margin and the particles its neighbours sent it; every particle once a
+    /// gather made its state whole.
+    double rank_held_particles[GF_BENCH_RANKS];
 } gf_bench_spot;
 
 /// The lattice-gas automaton's speed: the paper's channel (the lga.* keys of

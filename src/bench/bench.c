@@ -14,6 +14,9 @@
 #include "granflow/defs.h"
 #include "granflow/lga.h"
 #include "spot/sim_internal.h"
+
+// Per rank: peak resident set, particles in its region and slab, particle records held.
+#define GF_BENCH_FIGURES 4
 #ifdef GF_MPI
 #include "spot/par_mpi.h"
 #endif
@@ -85,7 +88,8 @@ static void gf_bench_ranks(gf_bench_spot *b, const gf_sim *sim)
 {
     uint64_t region = 0, owned = 0;
     gf_dom_region_particles(sim, &region, &owned);
-    const double mine[3] = {gf_bench_peak_rss(), (double)region, (double)owned};
+    const double rss = gf_bench_peak_rss(); // (before the count below reads the pages never written)
+    const double mine[GF_BENCH_FIGURES] = {rss, (double)region, (double)owned, (double)gf_sim_held_particles(sim)};
 #ifdef GF_MPI
     enum { F = GF_MPI_FIGURES + 2 };
     double all[GF_BENCH_RANKS * F];
@@ -94,6 +98,7 @@ static void gf_bench_ranks(gf_bench_spot *b, const gf_sim *sim)
         b->rank_peak_rss_bytes[r] = all[r * F];
         b->rank_region_particles[r] = all[r * F + 1];
         b->rank_slab_particles[r] = all[r * F + 2];
+        b->rank_held_particles[r] = all[r * F + 3];
         b->rank_exchange_bytes_per_phase[r] = all[r * F + GF_MPI_FIGURES];
     }
 #else
@@ -101,6 +106,7 @@ static void gf_bench_ranks(gf_bench_spot *b, const gf_sim *sim)
     b->rank_peak_rss_bytes[0] = mine[0];
     b->rank_region_particles[0] = mine[1];
     b->rank_slab_particles[0] = mine[2];
+    b->rank_held_particles[0] = mine[3];
     b->rank_exchange_bytes_per_phase[0] = 0;
 #endif
 }
@@ -115,6 +121,7 @@ static gf_status gf_bench_silo(const gf_config *cfg, const gf_bench_opts *o, gf_
     gf_status st = gf_sim_create_from_config(cfg, &(gf_packing_opts){.stop = o->stop}, &sim); // gf_packing_for_config, as a run
     if (st != GF_OK) return st;
     out->particles = gf_sim_get_stats(sim).particles_initial;
+    sim->keep_part = true; // (a rank that read its region keeps to it: only counters are read)
     out->pack_s = gf_clock_now() - t0;
     gf_engine_defs ed;
     gf_config_engine_defs(cfg, &ed);

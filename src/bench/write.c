@@ -93,6 +93,9 @@ static void gf_bench_json(FILE *out, const gf_bench_report *r)
     gf_json_array_begin(&j, "rank_slab_particles");
     for (int k = 0; k < nr; k++) gf_json_fixed(&j, NULL, s->rank_slab_particles[k], 0);
     gf_json_end(&j);
+    gf_json_array_begin(&j, "rank_held_particles");
+    for (int k = 0; k < nr; k++) gf_json_fixed(&j, NULL, s->rank_held_particles[k], 0);
+    gf_json_end(&j);
     gf_json_fixed(&j, "projected_drain_seconds", s->drain_s, 0);
     gf_json_fixed(&j, "pack_seconds", s->pack_s, 2);
     gf_json_fixed(&j, "warmup_seconds", s->warm_s, 2);
@@ -157,11 +160,12 @@ static void gf_bench_text(FILE *out, const gf_bench_report *r)
     fprintf(out, "  memory   %8.1f bytes per particle allocated by the engine; peak RSS %.1f bytes per particle\n",
             s->bytes_per_particle, r->peak_rss_bytes / (double)s->particles);
     if (s->ranks > 1) {
-        fprintf(out, "  ranks    %8d: peak RSS (MB), bytes sent per phase, particles in region / slab, rank by rank:",
+        fprintf(out, "  ranks    %8d: peak RSS (MB), bytes sent per phase, particles in region / slab / held, rank by rank:",
                 s->ranks);
         for (int k = 0; k < s->ranks && k < GF_BENCH_RANKS; k++)
-            fprintf(out, " %.1f, %.0f, %.0f / %.0f;", s->rank_peak_rss_bytes[k] / 1e6, s->rank_exchange_bytes_per_phase[k],
-                    s->rank_region_particles[k], s->rank_slab_particles[k]);
+            fprintf(out, " %.1f, %.0f, %.0f / %.0f / %.0f;", s->rank_peak_rss_bytes[k] / 1e6,
+                    s->rank_exchange_bytes_per_phase[k], s->rank_region_particles[k], s->rank_slab_particles[k],
+                    s->rank_held_particles[k]);
         fprintf(out, "\n");
     }
     gf_bench_blocks_text(out, "papers' silo", &s->prof);

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
+#define _DEFAULT_SOURCE // MAP_ANONYMOUS
 #include "core/alloc.h"
 
 #include "granflow/core.h"
 
 #include <errno.h>
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 // The only file of src/ that calls the C library's allocator (aligned_alloc
 // and free behind the default hook below); tests/check_hooks.sh keeps it so.
@@ -81,6 +84,39 @@ void *gf_realloc(void *p, size_t old_size, size_t new_size)
         gf_free(p, old_size);
     }
     return q;
+}
+
+// ---- untouched pages (gf_alloc_pages) ---------------------------------------
+
+// Blocks from this size on are mapped whole (fresh zero pages, not touched);
+// below it a page or two more or less resident does not matter.
+#define GF_PAGES_MIN ((size_t)1 << 20)
+
+// Whether a block of `bytes` is mapped: decided alike at allocation and at
+// release (gf_set_allocator is set before anything is allocated).
+static bool gf_pages_mapped(size_t bytes) { return bytes >= GF_PAGES_MIN && gf_alloc_hook == gf_default_alloc; }
+
+void *gf_alloc_pages(size_t n, size_t size)
+{
+    if (size != 0 && n > SIZE_MAX / size) return NULL;
+    const size_t bytes = n * size;
+    if (!gf_pages_mapped(bytes)) return gf_alloc(bytes);
+    void *p = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return NULL;
+    atomic_fetch_add(&gf_bytes, bytes);
+    return p;
+}
+
+void gf_free_pages(void *p, size_t n, size_t size)
+{
+    if (!p) return;
+    const size_t bytes = n * size;
+    if (!gf_pages_mapped(bytes)) {
+        gf_free(p, bytes);
+        return;
+    }
+    atomic_fetch_sub(&gf_bytes, bytes);
+    munmap(p, bytes);
 }
 
 size_t gf_bytes_allocated(void) { return atomic_load(&gf_bytes); }

@@ -12,7 +12,7 @@
 #define GF_GRID_CELLS_PER_PARTICLE 64.0
 #define GF_GRID_CELLS_FREE 1048576.0
 
-gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np)
+gf_status gf_grid_shape(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np)
 {
     memset(g, 0, sizeof *g);
     int n[3];
@@ -41,26 +41,44 @@ gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], doubl
     g->nz = n[2];
     g->ncell = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
     g->np = np;
-    g->count = GF_NEW(uint32_t, g->ncell);
-    g->slot = GF_NEW(uint32_t, g->ncell * GF_CELL_CAP);
-    g->top = GF_NEW(int32_t, (size_t)n[0] * (size_t)n[1]);
-    g->cell_of = GF_NEW(uint32_t, np ? np : 1);
-    g->slot_of = GF_NEW(uint32_t, np ? np : 1);
+    g->i0 = 0;
+    g->i1 = np;
+    return GF_OK;
+}
+
+gf_status gf_grid_init_part(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np, size_t i0,
+                            size_t i1)
+{
+    gf_status st = gf_grid_shape(g, lo, hi, h, np);
+    if (st != GF_OK) return st;
+    g->i0 = i0 < np ? i0 : np;
+    g->i1 = i1 < np ? (i1 > g->i0 ? i1 : g->i0) : np;
+    g->count = GF_NEW_PAGES(uint32_t, g->ncell);
+    g->slot = GF_NEW_PAGES(uint32_t, g->ncell * GF_CELL_CAP);
+    g->top = GF_NEW(int32_t, (size_t)g->nx * (size_t)g->ny);
+    g->cell_of = GF_NEW_PAGES(uint32_t, np ? np : 1);
+    g->slot_of = GF_NEW_PAGES(uint32_t, np ? np : 1);
     if (!g->count || !g->slot || !g->top || !g->cell_of || !g->slot_of) {
+        size_t cells = g->ncell;
         gf_grid_free(g);
-        return gf_error_set(GF_ERR_NOMEM, "out of memory for a %zu-cell grid", (size_t)n[0] * n[1] * n[2]);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for a %zu-cell grid", cells);
     }
     gf_grid_clear(g);
     return GF_OK;
 }
 
+gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np)
+{
+    return gf_grid_init_part(g, lo, hi, h, np, 0, np);
+}
+
 void gf_grid_free(gf_grid *g)
 {
-    GF_DELETE(g->count, g->ncell);
-    GF_DELETE(g->slot, g->ncell * GF_CELL_CAP);
+    GF_DELETE_PAGES(g->count, g->ncell);
+    GF_DELETE_PAGES(g->slot, g->ncell * GF_CELL_CAP);
     GF_DELETE(g->top, (size_t)g->nx * (size_t)g->ny);
-    GF_DELETE(g->cell_of, g->np ? g->np : 1);
-    GF_DELETE(g->slot_of, g->np ? g->np : 1);
+    GF_DELETE_PAGES(g->cell_of, g->np ? g->np : 1);
+    GF_DELETE_PAGES(g->slot_of, g->np ? g->np : 1);
     memset(g, 0, sizeof *g);
 }
 
@@ -68,7 +86,7 @@ void gf_grid_clear(gf_grid *g)
 {
     memset(g->count, 0, sizeof(uint32_t) * g->ncell);
     for (size_t c = 0; c < (size_t)g->nx * (size_t)g->ny; c++) g->top[c] = -1;
-    for (size_t i = 0; i < g->np; i++) g->cell_of[i] = GF_NO_CELL;
+    for (size_t i = g->i0; i < g->i1; i++) g->cell_of[i] = GF_NO_CELL;
 }
 
 gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c)

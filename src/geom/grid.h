@@ -28,12 +28,22 @@ typedef struct gf_grid {
     int32_t *top;        ///< per column (cx + nx cy): highest non-empty cz, -1 if none
     bool lazy_top;       ///< top[] not kept by insert/remove (parallel phases): gf_grid_recompute_top after
     size_t np;           ///< capacity of the per-particle arrays
+    size_t i0, i1;       ///< the particles gf_grid_clear resets, [i0, i1): all but on an MPI rank
+                         ///< holding its region only (spot/window.c), whose other pages stay untouched
     uint32_t *cell_of;   ///< per particle: its cell, GF_NO_CELL when not in the grid
     uint32_t *slot_of;   ///< per particle: its position k in that cell
 } gf_grid;
 
 /// Grid covering [lo, hi] with cells of edge ~h, for particle indices < np.
 gf_status gf_grid_init(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np);
+/// gf_grid_init whose clearing (gf_grid_clear) resets the particles [i0, i1)
+/// only: the pages of the others' records are never touched (spot/window.c).
+gf_status gf_grid_init_part(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np, size_t i0,
+                            size_t i1);
+/// The grid's geometry alone (origin, cell size, cells per axis, with the
+/// checks of gf_grid_init), nothing allocated: which cell layer a point
+/// falls in, before the grid is made.
+gf_status gf_grid_shape(gf_grid *g, const double lo[3], const double hi[3], double h, size_t np);
 void gf_grid_free(gf_grid *g);
 /// Empties every cell.
 void gf_grid_clear(gf_grid *g);

@@ -41,6 +41,15 @@ gf_status gf_packing_read_frames_in(const char *path, double unit, gf_packing_fr
 /// length unit, converted to d as gf_packing_read_frames_in does.
 gf_status gf_packing_read_in(const char *path, gf_packing_format format, double unit, gf_packing *out);
 
+/// Whether a row read (position and radius in d) is kept: 1 keeps it.
+typedef int (*gf_packing_keep_fn)(void *ctx, const double xyz[3], double r);
+/// gf_packing_read_in (format from the name) keeping only the rows `keep`
+/// keeps, in file order; the others are read for their position and radius
+/// only and cost no memory (a rank's region of a large packing, issue 23).
+/// Without an id column, ids still number every row. A file whose rows are
+/// all dropped reads as an empty packing.
+gf_status gf_packing_read_where(const char *path, double unit, gf_packing_keep_fn keep, void *ctx, gf_packing *out);
+
 /// gf_packing_read_frames that also reads granflow's `pass` column (a
 /// positive integer, else GF_ERR_FORMAT naming file and line) into f->pass.
 /// Only the snapshot reader asks for it: the series loaders ignore a DEM

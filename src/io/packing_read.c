@@ -141,6 +141,9 @@ typedef struct gf_reader {
     int32_t *pass;            // its values in the frame being converted
     size_t pass_cap;
     double unit;              // the file's length unit is this many d: lengths read are divided by it (0: 1)
+    gf_packing_keep_fn keep;  // non-NULL: only the rows it keeps are appended (gf_packing_read_where)
+    void *keep_ctx;
+    size_t rows;              // rows of the frame converted so far, kept or not
 } gf_reader;
 
 static gf_status gf_read_bad_number(const gf_textscan *ts, const char *col, const char *tok,
@@ -176,7 +179,12 @@ static gf_status gf_read_row(gf_reader *rd, const gf_columns *c, char **tok, con
         if (c->radius < 0) r *= 0.5;
         if (rd->unit > 0) r /= rd->unit; // a radius without a column is 0.5 d whatever the unit
     }
-    int64_t id = (int64_t)rd->out->n + 1;
+    // Without an id column, id k is the k-th row, whichever rows are kept.
+    int64_t id = (int64_t)rd->rows + 1;
+    rd->rows++;
+    // A row not kept is not checked further (its id is not in the table:
+    // a rank reading its region of a packing checks the ids of that region).
+    if (rd->keep && !rd->keep(rd->keep_ctx, v, r)) return GF_OK;
     if (c->id >= 0) {
         long long t;
         if (gf_textscan_int(tok[c->id], &t) != 0)
@@ -462,8 +470,9 @@ static gf_status gf_lmp_atom_lines(gf_reader *rd, const gf_lmp_atoms *a, int con
 static gf_status gf_read_begin_frame(gf_reader *rd, long long n, int trusted)
 {
     size_t hint = (size_t)n;
-    if (!trusted && hint > GF_READ_MAX_HINT) hint = GF_READ_MAX_HINT;
+    if ((!trusted || rd->keep) && hint > GF_READ_MAX_HINT) hint = GF_READ_MAX_HINT;
     rd->out->n = 0;
+    rd->rows = 0;
     gf_status st = gf_packing_reserve(rd->out, hint);
     if (st != GF_OK) return st;
     return gf_idset_reset(&rd->ids, hint);
@@ -692,7 +701,7 @@ static gf_status gf_read_xyz(gf_reader *rd)
                 return gf_error_set(GF_ERR_FORMAT,
                                     "%s:%ld: expected the atom count of a new frame after the %zu "
                                     "atoms announced on line %ld (more atom lines than the count?)",
-                                    ts->path, ts->line, rd->out->n, count_line);
+                                    ts->path, ts->line, rd->rows, count_line);
             return gf_error_set(GF_ERR_FORMAT,
                                 "%s:%ld: expected the number of atoms, found '%.40s'", ts->path,
                                 ts->line, n ? tok[0] : "");
@@ -742,7 +751,7 @@ static gf_status gf_read_xyz(gf_reader *rd)
     }
     if (nframes == 0)
         return gf_error_set(GF_ERR_FORMAT, "%s: no particles in file (it is empty)", ts->path);
-    if (rd->out->n == 0)
+    if (rd->rows == 0)
         return gf_error_set(GF_ERR_FORMAT,
                             "%s:%ld: no particles in file (the last frame has 0 atoms)", ts->path,
                             count_line);
@@ -828,7 +837,7 @@ static gf_status gf_read_csv(gf_reader *rd)
     }
     if (!have_header)
         return gf_error_set(GF_ERR_FORMAT, "%s: no particles in file (it is empty)", ts->path);
-    if (rd->out->n == 0)
+    if (rd->rows == 0)
         return gf_error_set(GF_ERR_FORMAT, "%s:%ld: no particles in file (only a header)", ts->path,
                             header_line);
     return GF_OK;
@@ -838,7 +847,7 @@ static gf_status gf_read_csv(gf_reader *rd)
 
 // gf_packing_read, noting in *line (when find_id > 0) the line of particle find_id.
 static gf_status gf_packing_read_finding(const char *path, gf_packing_format format, double unit, gf_packing *out,
-                                         int64_t find_id, long *line)
+                                         int64_t find_id, long *line, gf_packing_keep_fn keep, void *keep_ctx)
 {
     if (!out) return gf_error_set(GF_ERR_PARAM, "gf_packing_read: no output packing");
     if (!path || !*path) {
@@ -856,7 +865,7 @@ static gf_status gf_packing_read_finding(const char *path, gf_packing_format for
     }
     // Build into a private packing so that `out` never holds half a result.
     gf_packing tmp = {0};
-    gf_reader rd = {.out = &tmp, .find_id = find_id, .unit = unit};
+    gf_reader rd = {.out = &tmp, .find_id = find_id, .unit = unit, .keep = keep, .keep_ctx = keep_ctx};
     gf_status st = gf_textscan_open(&rd.ts, path);
     if (st == GF_OK) {
         switch (format) {
@@ -879,21 +888,28 @@ static gf_status gf_packing_read_finding(const char *path, gf_packing_format for
 
 gf_status gf_packing_read(const char *path, gf_packing_format format, gf_packing *out)
 {
-    return gf_packing_read_finding(path, format, 1.0, out, 0, NULL);
+    return gf_packing_read_finding(path, format, 1.0, out, 0, NULL, NULL, NULL);
 }
 
 gf_status gf_packing_read_in(const char *path, gf_packing_format format, double unit, gf_packing *out)
 {
     if (!(unit > 0) || !isfinite(unit))
         return gf_error_set(GF_ERR_PARAM, "%s: length unit %g: must be a positive number", path ? path : "?", unit);
-    return gf_packing_read_finding(path, format, unit, out, 0, NULL);
+    return gf_packing_read_finding(path, format, unit, out, 0, NULL, NULL, NULL);
+}
+
+gf_status gf_packing_read_where(const char *path, double unit, gf_packing_keep_fn keep, void *ctx, gf_packing *out)
+{
+    if (!(unit > 0) || !isfinite(unit))
+        return gf_error_set(GF_ERR_PARAM, "%s: length unit %g: must be a positive number", path ? path : "?", unit);
+    return gf_packing_read_finding(path, GF_FORMAT_AUTO, unit, out, 0, NULL, keep, ctx);
 }
 
 long gf_packing_line_of(const char *path, int64_t id)
 {
     gf_packing pk = {0};
     long line = 0;
-    if (gf_packing_read_finding(path, GF_FORMAT_AUTO, 1.0, &pk, id, &line) != GF_OK) line = 0;
+    if (gf_packing_read_finding(path, GF_FORMAT_AUTO, 1.0, &pk, id, &line, NULL, NULL) != GF_OK) line = 0;
     gf_packing_free(&pk);
     return line;
 }

@@ -12,6 +12,7 @@
 #include "granflow/defs.h"
 #include "granflow/packing.h"
 #include "io/packing_frames.h"
+#include "packing/import.h"
 #include "core/textscan.h"
 
 /// The last frame of a LAMMPS dump, with whether it had a `type` column.
@@ -32,11 +33,6 @@ static gf_status gf_import_keep_last(void *ctx, const gf_packing_frame *f, gf_pa
     return GF_OK;
 }
 
-// Radii the engine takes, d (its unit is the mean diameter): the cell grid
-// (GF_CELL_SIZE 1.5) finds every contact of radii up to 0.75, and the
-// neighbour lists (GF_NL_CAP) hold the neighbours of radii down to 0.25.
-#define GF_IMPORT_RMIN 0.25
-#define GF_IMPORT_RMAX 0.75
 
 static int gf_cmp_centre(const void *a, const void *b, void *ctx)
 {
@@ -65,7 +61,7 @@ static void gf_sort_centres(size_t *a, size_t *tmp, size_t n, const gf_packing *
 // What the engine cannot simulate: radii outside its range, and two
 // particles on one centre (relax() has no direction to part them along, so
 // they would stay together for the whole run).
-static gf_status gf_import_check(const gf_config *cfg, const gf_packing *p)
+gf_status gf_packing_import_check(const gf_config *cfg, const gf_packing *p)
 {
     gf_packing_defs pd;
     gf_config_packing_defs(cfg, &pd);
@@ -166,7 +162,7 @@ gf_status gf_packing_import(const gf_config *cfg, gf_packing *out, gf_packing_im
     }
     pk.n = keep;
     if (rep) *rep = r;
-    if (keep > 0 && (st = gf_import_check(cfg, &pk)) != GF_OK) {
+    if (keep > 0 && (st = gf_packing_import_check(cfg, &pk)) != GF_OK) {
         gf_packing_free(&pk);
         return st;
     }

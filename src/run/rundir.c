@@ -31,6 +31,8 @@
 #include "run/mesh_copy.h"
 #include "spot/sim_internal.h"
 #ifdef GF_MPI
+#include <mpi.h>
+
 #include "spot/par_mpi.h"
 #endif
 
@@ -233,7 +235,9 @@ static gf_status gf_write_snapshot_files(gf_rundir *rd, const gf_sim *sim, uint6
 static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, double time)
 {
     gf_rundir *rd = ctx;
-    gf_status st = gf_sim_particles(sim, &rd->scratch);
+    // (The other MPI ranks write nothing: they need not hold the particles,
+    // and ranks that read their regions do not, issue 23.)
+    gf_status st = rd->opts->replica ? GF_OK : gf_sim_particles(sim, &rd->scratch);
     if (st == GF_OK && !rd->opts->replica) st = gf_write_snapshot_files(rd, sim, index, time);
     if (st != GF_OK) return st;
     // A silo that no longer drains would write snapshots of the same heap
@@ -241,7 +245,7 @@ static gf_status gf_on_snapshot(void *ctx, const gf_sim *sim, uint64_t index, do
     size_t nexit;
     const gf_exit *e = gf_sim_exits(sim, &nexit);
     double last = nexit ? fmax(e[nexit - 1].time, rd->flow_t0) : rd->flow_t0;
-    if (rd->d.stall_time > 0 && rd->scratch.n > 0 && time - last >= rd->d.stall_time) {
+    if (rd->d.stall_time > 0 && gf_sim_get_stats(sim).particles_remaining > 0 && time - last >= rd->d.stall_time) {
         rd->stalled = true;
         return gf_error_set(GF_ERR_STATE, "stalled"); // ends gf_sim_run; gf_run_dir tells why
     }
@@ -386,6 +390,7 @@ static gf_status gf_make_room(gf_rundir *rd, const gf_sim *sim)
                     rd->dir, have, total, snaps);
         }
     }
+    if (rd->opts->replica) return GF_OK; // (rank 0 writes the checkpoint)
     rd->reserve_size = (size_t)bound;
     rd->reserve = gf_alloc(rd->reserve_size);
     if (!rd->reserve)
@@ -410,12 +415,18 @@ static void gf_on_progress(void *ctx, const gf_sim *sim)
 
 // container.vtp (ParaView, meshio) and container.vtk (OVITO, legacy
 // readers): the walls up to a diameter above the packing.
-static gf_status gf_write_container(gf_rundir *rd, const gf_sim *sim)
+// The walls' height: a diameter above the highest particle this process holds.
+static gf_status gf_container_top(gf_rundir *rd, const gf_sim *sim, double *top)
 {
     gf_status st = gf_sim_particles(sim, &rd->scratch);
-    if (st != GF_OK) return st;
-    double top = 1.0;
-    for (size_t i = 0; i < rd->scratch.n; i++) top = fmax(top, rd->scratch.z[i] + rd->scratch.r[i] + 1.0);
+    *top = 1.0;
+    for (size_t i = 0; st == GF_OK && i < rd->scratch.n; i++) *top = fmax(*top, rd->scratch.z[i] + rd->scratch.r[i] + 1.0);
+    return st;
+}
+
+static gf_status gf_write_container(gf_rundir *rd, double top)
+{
+    gf_status st;
     gf_container box = gf_container_make(rd->cfg);
     gf_mesh m;
     if ((st = gf_container_mesh(&box, top, 96, &m)) != GF_OK) return st;
@@ -517,22 +528,38 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
         // On MPI ranks rank 0 packs and sends the packing; a stop on any rank
         // stops all of them there together (each packing its own, a rank
         // stopped meanwhile left the others waiting for it for ever).
-        st = gf_mpi_rank() == 0 ? gf_make_packing(&cfg, opts, &pk) : GF_OK;
-        st = gf_mpi_share_packing(st, &pk, opts->stop);
-        if (st == GF_ERR_INTERRUPTED)
-            gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+        // The domain engine with a packing.file: every rank reads it keeping
+        // its own region (issue 23: a rank holds only its region).
+        const bool windowed = gf_mpi_windowed(&cfg);
+        if (windowed) {
+            st = gf_mpi_sim_create_part(&cfg, &sim);
+        } else {
+            st = gf_mpi_rank() == 0 ? gf_make_packing(&cfg, opts, &pk) : GF_OK;
+            st = gf_mpi_share_packing(st, &pk, opts->stop);
+            if (st == GF_ERR_INTERRUPTED)
+                gf_error_set(st, "interrupted while building the packing; nothing was written to %s", opts->dir);
+        }
+        if (st == GF_OK && !windowed) st = gf_sim_create(&cfg, &pk, &sim);
 #else
         st = gf_make_packing(&cfg, opts, &pk);
-#endif
         if (st == GF_OK) st = gf_sim_create(&cfg, &pk, &sim);
+#endif
         gf_packing_free(&pk);
     }
     // config.ini must hold the configuration: refused before the directory is
     // made (issue 26: a packing.file with a line break left an empty one).
     if (st == GF_OK) st = gf_config_check_writable(&cfg);
     if (st == GF_OK) st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && !opts->resume && !opts->replica && (rd.d.format & GF_OUTPUT_VTK))
-        st = gf_write_container(&rd, sim);
+    if (st == GF_OK && !opts->resume && (rd.d.format & GF_OUTPUT_VTK)) {
+        double top;
+        st = gf_container_top(&rd, sim, &top);
+#ifdef GF_MPI
+        // Ranks that read their regions of packing.file hold their own
+        // particles only: the highest of every rank's (each takes part).
+        if (gf_mpi_size() > 1) MPI_Allreduce(MPI_IN_PLACE, &top, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+#endif
+        if (st == GF_OK && !opts->replica) st = gf_write_container(&rd, top);
+    }
     if (st == GF_OK && opts->resume && !opts->replica && (rd.d.format & GF_OUTPUT_VTK)) st = gf_find_vtus(&rd);
     if (st != GF_OK) {
         if (rd.exits) fclose(rd.exits);
@@ -655,7 +682,9 @@ gf_status gf_sim_write_run_dir(const gf_sim *sim, const char *dir, int force)
         return gf_error_set(GF_ERR_EXISTS, "%s already holds a run (%s exists): clear it, force, or use another directory",
                             rd.dir, path);
     gf_status st = gf_prepare_dir(&rd, sim);
-    if (st == GF_OK && (rd.d.format & GF_OUTPUT_VTK)) st = gf_write_container(&rd, sim);
+    double top;
+    if (st == GF_OK && (rd.d.format & GF_OUTPUT_VTK) && (st = gf_container_top(&rd, sim, &top)) == GF_OK)
+        st = gf_write_container(&rd, top);
     // The snapshot of now, numbered on the snapshot grid as gf_run_dir numbers
     // them, so that a resumed run's next snapshots follow it.
     const double t = gf_sim_get_stats(sim).time, dsnap = rd.d.snapshot_interval;

@@ -12,6 +12,9 @@
 #include "geom/container.h"
 #include "granflow/defs.h"
 #include "granflow/packing.h"
+#ifdef GF_MPI
+#include "spot/par_mpi.h"
+#endif
 
 gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts *opts, gf_sim **out)
 {
@@ -20,6 +23,10 @@ gf_status gf_sim_create_from_config(const gf_config *cfg, const gf_packing_opts 
     gf_config c = *cfg;
     gf_status st = gf_config_validate(&c);
     if (st != GF_OK) return st;
+#ifdef GF_MPI
+    // MPI ranks of the domain engine read packing.file keeping their regions.
+    if (gf_mpi_windowed(&c)) return gf_mpi_sim_create_part(&c, out);
+#endif
     gf_packing pk = {0};
     gf_packing_import_report rep;
     st = gf_packing_for_config(&c, opts, &pk, &rep);

@@ -159,25 +159,33 @@ static gf_status gf_dom_axis(int n, double need, double size, int S, double h, i
     return GF_OK;
 }
 
-#ifdef GF_MPI
 // MPI ranks: the domains cut into one slab a rank along the axis with the
-// most domains (the tallest; z on a tie), each sector run by its slab's rank.
-// The halo: a reach and a cell diagonal, in whole layers.
-static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q, const int n[3])
+// most domains (the tallest; z on a tie). The halo: a reach and a cell
+// diagonal, in whole layers. (No MPI here: window.c asks before the grid is made.)
+static gf_status gf_dom_slabs_of(const gf_sim *sim, const gf_grid *g, const int nb[3], const int nc[3],
+                                 const int bs[3], int R, gf_slabs *out)
 {
-    const gf_grid *g = &sim->grid;
     int axis = 2, D = 1;
     for (int a = 0; a < 3; a++) {
-        int d = (q->nb[a] + q->nc[a] - 1) / q->nc[a];
-        if (q->nc[a] > 1 && d >= D) {
+        int d = (nb[a] + nc[a] - 1) / nc[a];
+        if (nc[a] > 1 && d >= D) {
             axis = a;
             D = d;
         }
     }
-    const int per = q->nc[axis] * q->bs[axis];
+    const int n[3] = {g->nx, g->ny, g->nz};
+    const int per = nc[axis] * bs[axis];
     const int halo = (int)ceil((gf_par_reach(sim) + sqrt(3.0) * g->h) / g->h);
-    gf_status st = gf_slabs_make(&q->slabs, axis, n[axis], g->nx, g->ny, D, per, gf_mpi_size(), halo);
+    return gf_slabs_make(out, axis, n[axis], g->nx, g->ny, D, per, R, halo);
+}
+
+#ifdef GF_MPI
+// Each sector run by its slab's rank.
+static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q)
+{
+    gf_status st = gf_dom_slabs_of(sim, &sim->grid, q->nb, q->nc, q->bs, gf_mpi_size(), &q->slabs);
     if (st != GF_OK) return st;
+    const int axis = q->slabs.axis;
     q->owner = GF_NEW(int, q->nblock);
     if (!q->owner) return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
     for (size_t b = 0; b < q->nblock; b++) {
@@ -189,6 +197,30 @@ static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q, const int n[3])
     return GF_OK;
 }
 #endif
+
+gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int *lo, int *hi)
+{
+    const gf_grid *g = &sim->grid;
+    const int n[3] = {g->nx, g->ny, g->nz};
+    int bs[3], nb[3], nc[3];
+    double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
+    *lo = 0;
+    *hi = g->nz;
+    for (int a = 0; a < 3; a++) {
+        gf_status st = gf_dom_axis(n[a], need, sim->d.domain_size, (int)sim->d.sectors, g->h, &bs[a], &nb[a], &nc[a]);
+        if (st != GF_OK) return st;
+    }
+    gf_slabs s;
+    gf_status st = gf_dom_slabs_of(sim, g, nb, nc, bs, R, &s);
+    if (st != GF_OK) return st;
+    if (s.axis == 2 && me >= 0 && me < R) {
+        *lo = s.rlo[me] - margin > 0 ? s.rlo[me] - margin : 0;
+        *hi = s.rhi[me] + margin < g->nz ? s.rhi[me] + margin : g->nz;
+        if (s.rlo[me] >= s.rhi[me]) *lo = *hi = 0; // a rank with no slab holds nothing
+    }
+    gf_slabs_free(&s);
+    return GF_OK;
+}
 
 static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
 {
@@ -219,7 +251,7 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
     gf_status st = gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
 #ifdef GF_MPI
-    if (st == GF_OK && gf_mpi_size() > 1) st = gf_dom_slabs(sim, q, n);
+    if (st == GF_OK && gf_mpi_size() > 1) st = gf_dom_slabs(sim, q);
 #endif
     return st;
 }
@@ -642,6 +674,14 @@ void gf_dom_region_particles(const gf_sim *sim, uint64_t *region, uint64_t *owne
         *region += in ? g->count[c] : 0;
         *owned += own ? g->count[c] : 0;
     }
+}
+
+const gf_slabs *gf_dom_slabs_made(gf_sim *sim, gf_status *st)
+{
+    *st = GF_OK;
+    if (sim->d.mode != GF_MODE_FIXED || sim->d.order != GF_ORDER_DOMAINS) return NULL;
+    if ((*st = gf_dom_make(sim)) != GF_OK) return NULL;
+    return sim->dom->owner ? &sim->dom->slabs : NULL;
 }
 
 gf_status gf_dom_test_drop_crossing(gf_sim *sim)

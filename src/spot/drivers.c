@@ -4,6 +4,9 @@
 // or spatial order, the last in parallel.c), gf_sim_step and gf_sim_run with
 // their snapshot and checkpoint hooks. The top of the engine: calls the
 // spatial step (parallel.c) and the kernel (walk.c), nothing calls back.
+#ifdef GF_MPI
+#include <mpi.h>
+#endif
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,17 +72,71 @@ static gf_status gf_sim_fixed_step(gf_sim *sim)
     return st;
 }
 
+#ifdef GF_MPI
+// Whether any rank holds its window only (window.c): every rank learns it.
+static bool gf_sim_any_part(const gf_sim *sim)
+{
+    int part = sim->part, any = part;
+    if (gf_mpi_size() > 1) MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return any != 0;
+}
+
+// A rank holding its window, maybe before any phase: the state is partial
+// over the slabs the engine makes (NULL when it has none: not over slabs).
+static const gf_slabs *gf_sim_partial(gf_sim *sim, gf_status *st)
+{
+    const gf_slabs *s = gf_dom_slabs_made(sim, st);
+    if (*st == GF_OK && !s) *st = gf_error_set(GF_ERR_STATE, "a rank holds its region only, but the engine has no slabs");
+    if (*st == GF_OK) *st = gf_mpi_slabs_partial(s);
+    return *st == GF_OK ? s : NULL;
+}
+#endif
+
 // MPI ranks over slabs (the domain engine) hold their regions only, as of
 // the last phase: before anything reads the rest, every rank's state is made
 // whole again (par_mpi_slabs.c; nothing to do otherwise).
 static gf_status gf_sim_whole(gf_sim *sim)
 {
 #ifdef GF_MPI
+    gf_status st = GF_OK;
+    if (sim->part && !gf_sim_partial(sim, &st)) return st;
     return gf_mpi_whole(sim);
 #else
     (void)sim;
     return GF_OK;
 #endif
+}
+
+// Before a snapshot, a checkpoint or the end of gf_sim_run, which rank 0
+// alone writes: ranks that read only their regions of packing.file
+// (window.c) gather the state on rank 0 and keep their regions (issue 23);
+// otherwise as gf_sim_whole.
+static gf_status gf_sim_gather(gf_sim *sim)
+{
+#ifdef GF_MPI
+    if (!gf_sim_any_part(sim)) return gf_sim_whole(sim);
+    gf_status st = GF_OK;
+    return gf_sim_partial(sim, &st) ? gf_mpi_gather0(sim) : st;
+#else
+    return gf_sim_whole(sim);
+#endif
+}
+
+// The full re-sort (every run.reorder_interval): it moves every particle.
+// Ranks that hold their regions along z re-sort their windows and keep
+// them (par_mpi_slabs.c gf_mpi_resort); otherwise the state is made whole.
+static gf_status gf_sim_resort(gf_sim *sim)
+{
+    gf_status st = GF_OK;
+#ifdef GF_MPI
+    if (gf_sim_any_part(sim)) {
+        const gf_slabs *s = gf_dom_slabs_made(sim, &st);
+        if (st != GF_OK) return st;
+        if (s && s->axis == 2) return gf_mpi_resort(sim, s);
+    }
+#endif
+    if ((st = gf_sim_whole(sim)) != GF_OK) return st;
+    return gf_nlist_build(sim, true);
 }
 
 // Work done, in the units of run.reorder_interval: events, or spot moves in
@@ -118,8 +175,7 @@ static gf_status gf_sim_event(gf_sim *sim)
 {
     gf_status st;
     if (gf_sim_work(sim) - sim->nl_built_at >= (uint64_t)sim->d.reorder_interval) {
-        if ((st = gf_sim_whole(sim)) != GF_OK) return st; // the re-sort moves every particle
-        if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+        if ((st = gf_sim_resort(sim)) != GF_OK) return st;
         sim->nl_built_at = gf_sim_work(sim);
     }
     st = gf_sim_action(sim);
@@ -170,8 +226,10 @@ gf_status gf_sim_run(gf_sim *sim, double until, const gf_sim_hooks *hooks)
 {
     gf_status st = gf_sim_run_loop(sim, until, hooks);
     // What the caller reads next (a checkpoint after a stop, the summary)
-    // is the whole state. (An error ends the job: mpi_app aborts it.)
-    gf_status sw = st == GF_OK || st == GF_ERR_INTERRUPTED ? gf_sim_whole(sim) : GF_OK;
+    // is the whole state, unless it reads counters only (the bench: its
+    // ranks' peak resident sets are those of their regions). (An error
+    // ends the job: mpi_app aborts it.)
+    gf_status sw = (st == GF_OK || st == GF_ERR_INTERRUPTED) && !sim->keep_part ? gf_sim_gather(sim) : GF_OK;
     return sw != GF_OK ? sw : st;
 }
 
@@ -196,15 +254,17 @@ static gf_status gf_sim_run_loop(gf_sim *sim, double until, const gf_sim_hooks *
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED; // many snapshots may be due at once
             if (ts > sim->t_reached) sim->t_reached = ts;
             // (whole on every rank, whether it writes or not: a collective)
-            if ((st = gf_sim_whole(sim)) != GF_OK ||
-                (hooks->snapshot && (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
+            // (no hook, nothing reads the state: the bench's ranks keep their regions)
+            if (hooks->snapshot && ((st = gf_sim_gather(sim)) != GF_OK ||
+                                    (st = hooks->snapshot(hooks->ctx, sim, sim->next_snap, ts)) != GF_OK))
                 return st;
             sim->next_snap++;
         }
         while (dck > 0 && sim->next_ckpt <= tn && sim->next_ckpt <= until) {
             if (gf_sim_stopping(hooks)) return GF_ERR_INTERRUPTED;
             if (sim->next_ckpt > sim->t_reached) sim->t_reached = sim->next_ckpt;
-            if ((st = gf_sim_whole(sim)) != GF_OK || (hooks->checkpoint && (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
+            if (hooks->checkpoint &&
+                ((st = gf_sim_gather(sim)) != GF_OK || (st = hooks->checkpoint(hooks->ctx, sim)) != GF_OK))
                 return st;
             // Due times that no longer advance (an interval below the rounding
             // of the time; gf_config_validate refuses those) skip ahead.

@@ -128,6 +128,9 @@ void gf_mpi_records_apply(gf_sim *sim, const unsigned char *o, uint8_t *dead, vo
                 sim->alive[r.i] = (uint8_t)r.alive;
                 sim->p[r.i] = r.p;
                 sim->p0[r.i] = r.p0;
+                sim->id[r.i] = r.id;
+                sim->layer[r.i] = r.layer;
+                sim->hist[r.i] = r.hist;
                 break;
             }
             case GF_TOUCH_MOVED: {

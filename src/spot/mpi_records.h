@@ -16,12 +16,25 @@
 
 #include "spot/sim_internal.h"
 
-/// A particle's whole record.
+/// A particle's whole record: with its id, layer tag and history, which a
+/// rank that read only its region of the packing (window.c) has not for a
+/// particle entering that region from beyond it.
 typedef struct gf_mpi_part {
     uint32_t i, cell, slot, alive;
     gf_pos p;
     gf_ref p0;
+    int64_t id;
+    int32_t layer, pad_;
+    gf_hist hist;
 } gf_mpi_part;
+
+/// Particle i's whole record.
+static inline gf_mpi_part gf_mpi_part_of(const gf_sim *sim, uint32_t i)
+{
+    const gf_grid *g = &sim->grid;
+    return (gf_mpi_part){i, g->cell_of[i], g->slot_of[i], sim->alive[i], sim->p[i], sim->p0[i],
+                         sim->id[i], sim->layer[i], 0, sim->hist[i]};
+}
 
 /// A cell's record, followed by its GF_CELL_CAP slots.
 typedef struct gf_mpi_cell {

@@ -15,15 +15,16 @@
 #include "geom/celllist.h"
 #include "spot/sim_internal.h"
 
-// Permutes every per-particle array so that entry k takes old entry order[k].
-static gf_status gf_nlist_permute(gf_sim *sim, const uint32_t *order, size_t m)
+// Permutes every per-particle array of the particles from `base` on so that
+// entry base + k takes old entry base + order[k].
+static gf_status gf_nlist_permute(gf_sim *sim, size_t base, const uint32_t *order, size_t m)
 {
 #define GF_PERMUTE(T, field)                                   \
     do {                                                       \
         T *tmp = GF_NEW(T, m ? m : 1);                         \
         if (!tmp) return gf_error_set(GF_ERR_NOMEM, "out of memory re-sorting particles"); \
-        for (size_t k = 0; k < m; k++) tmp[k] = sim->field[order[k]]; \
-        memcpy(sim->field, tmp, sizeof(T) * m);                \
+        for (size_t k = 0; k < m; k++) tmp[k] = sim->field[base + order[k]]; \
+        memcpy(sim->field + base, tmp, sizeof(T) * m);         \
         GF_DELETE(tmp, m ? m : 1);                             \
     } while (0)
     GF_PERMUTE(gf_pos, p);
@@ -32,24 +33,30 @@ static gf_status gf_nlist_permute(gf_sim *sim, const uint32_t *order, size_t m)
     GF_PERMUTE(int32_t, layer);
     GF_PERMUTE(gf_hist, hist);
 #undef GF_PERMUTE
-    for (size_t k = 0; k < m; k++) sim->alive[k] = 1;
+    for (size_t k = 0; k < m; k++) sim->alive[base + k] = 1;
+    if (sim->part) return GF_OK; // (a window of whole cell layers: nothing exited yet, nothing dropped)
     for (size_t k = m; k < sim->n; k++) sim->alive[k] = 0;
     sim->n = m;
     return GF_OK;
 }
 
-// Live particles sorted by grid cell (stable), exited ones dropped.
+// Live particles sorted by grid cell (stable), exited ones dropped. A rank
+// holding its window (sim->part) sorts the window: it holds every particle
+// of a range of whole cell layers, in the file's order, from the index the
+// particles of the layers below take, so its sort is the global sort's.
 static gf_status gf_nlist_reorder(gf_sim *sim)
 {
     gf_grid *g = &sim->grid;
-    size_t n = sim->n;
+    const size_t base = sim->part ? sim->win_lo : 0, n = (sim->part ? sim->win_hi : sim->n) - base;
     gf_celllist cl = {0};
     gf_status st = gf_celllist_keys(&cl, g->ncell, n);
     if (st == GF_OK) {
-        for (size_t i = 0; i < n; i++)
-            cl.cell[i] = sim->alive[i] ? gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z) : GF_CELLLIST_OUT;
+        for (size_t k = 0; k < n; k++) {
+            size_t i = base + k;
+            cl.cell[k] = sim->alive[i] ? gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z) : GF_CELLLIST_OUT;
+        }
         gf_celllist_sort(&cl, n);
-        st = gf_nlist_permute(sim, cl.idx, cl.nidx);
+        st = gf_nlist_permute(sim, base, cl.idx, cl.nidx);
     }
     gf_celllist_free(&cl);
     return st;
@@ -84,7 +91,11 @@ static inline uint32_t *gf_nlist_row(const gf_sim *sim, uint32_t i) { return sim
 gf_status gf_nlist_slots(gf_sim *sim)
 {
     double rmin = INFINITY, rmax = 0.0;
-    for (size_t i = 0; i < sim->n; i++) {
+    if (sim->part) { // the whole packing's (window.c), not the window's
+        rmin = sim->rmin_all;
+        rmax = sim->rmax;
+    }
+    for (size_t i = 0; i < sim->n && !sim->part; i++) {
         if (!sim->alive[i]) continue;
         rmin = fmin(rmin, sim->p[i].r);
         rmax = fmax(rmax, sim->p[i].r);
@@ -189,15 +200,18 @@ gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i)
 gf_status gf_nlist_build(gf_sim *sim, bool reorder)
 {
     gf_status st;
+    // A rank holding its window builds the window's rows (those of its region
+    // are whole: the window has a margin of the lists' reach beyond it).
+    const size_t lo = sim->part ? sim->win_lo : 0, hi = sim->part ? sim->win_hi : sim->n;
     if (reorder) {
-        for (size_t i = 0; i < sim->n; i++) sim->p0[i].h = (float)GF_SKIN;
+        for (size_t i = lo; i < hi; i++) sim->p0[i].h = (float)GF_SKIN;
         if ((st = gf_nlist_reorder(sim)) != GF_OK) return st;
     }
     gf_grid *g = &sim->grid;
     if (reorder) {
         // New indices: refill the grid in index order and restart the schedule.
         gf_grid_clear(g);
-        for (size_t i = 0; i < sim->n; i++) {
+        for (size_t i = lo; i < hi; i++) {
             if (!sim->alive[i]) continue;
             st = gf_grid_insert(g, (uint32_t)i, gf_grid_cell(g, sim->p[i].x, sim->p[i].y, sim->p[i].z));
             if (st != GF_OK) return st;
@@ -210,18 +224,22 @@ gf_status gf_nlist_build(gf_sim *sim, bool reorder)
     sim->hmax = 0.0;
     double r = -1.0;
     bool mono = true;
-    for (size_t i = 0; i < sim->n; i++) {
+    for (size_t i = lo; i < hi; i++) {
         if (!sim->alive[i]) continue;
         if (sim->p0[i].h > sim->hmax) sim->hmax = sim->p0[i].h;
         if (r < 0.0) r = sim->p[i].r;
         mono = mono && sim->p[i].r == r;
     }
+    if (sim->part) { // every particle's radii (every skin is GF_SKIN after a window's build)
+        mono = sim->rmin_all == sim->rmax_all;
+        r = sim->rmax_all;
+    }
     sim->contact2 = mono && r > 0.0 ? 4.0 * r * r : 0.0;
     if (!sim->nl) {
-        sim->nl = GF_NEW(uint32_t, sim->cap << sim->nl_shift);
+        sim->nl = GF_NEW_PAGES(uint32_t, sim->cap << sim->nl_shift);
         if (!sim->nl) return gf_error_set(GF_ERR_NOMEM, "out of memory for neighbour lists");
     }
-    for (size_t i = 0; i < sim->n; i++) {
+    for (size_t i = lo; i < hi; i++) {
         if (!sim->alive[i] || !sim->use_nlist) {
             sim->nl[i << sim->nl_shift] = 0;
             continue;

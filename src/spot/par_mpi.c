@@ -236,7 +236,14 @@ gf_status gf_mpi_agree(const gf_sim *sim)
     h = gf_mpi_hash(h, &sim->fstep, sizeof sim->fstep);
     h = gf_mpi_hash(h, &sim->next_snap, sizeof sim->next_snap);
     h = gf_mpi_hash(h, &sim->rng.s, sizeof sim->rng.s);
-    h = gf_mpi_hash_particles(h, sim);
+    // (Ranks holding their regions only differ there: GF_MPI_CHECK compares
+    // the overlaps of their regions after every phase. What each read of
+    // the whole file agrees: the count above, the grid's top, the radii.)
+    h = gf_mpi_hash(h, &sim->grid_ztop, sizeof sim->grid_ztop);
+    h = gf_mpi_hash(h, &sim->rmax, sizeof sim->rmax);
+    int part = sim->part, any = part;
+    MPI_Allreduce(&part, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (!any) h = gf_mpi_hash_particles(h, sim);
     h = gf_mpi_hash_spots(h, sim);
     h = gf_mpi_hash(h, sim->exits, sim->nexit * sizeof *sim->exits);
     uint64_t h0 = h;
@@ -319,7 +326,7 @@ void gf_mpi_record_write(const gf_sim *sim, int k, uint32_t v, const uint8_t *de
     const gf_grid *g = &sim->grid;
     switch (k) {
     case GF_TOUCH_PARTICLE: {
-        gf_mpi_part r = {v, g->cell_of[v], g->slot_of[v], sim->alive[v], sim->p[v], sim->p0[v]};
+        gf_mpi_part r = gf_mpi_part_of(sim, v);
         memcpy(o, &r, sizeof r);
         break;
     }

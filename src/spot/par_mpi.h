@@ -107,6 +107,20 @@ gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *colto
 /// every rank, so that all hold the single process's state again. Nothing to
 /// do when no slab phase ran since. A collective (every rank decides alike).
 gf_status gf_mpi_whole(gf_sim *sim);
+/// gf_mpi_whole for rank 0 alone (snapshots, checkpoints and the end of a
+/// run of ranks that read their regions: rank 0 writes them): every other
+/// rank sends it the cells it owns and their particles, in messages of a
+/// few MB, and keeps its own region only. The state stays partial on the
+/// others (the next gf_mpi_whole still gathers it). A collective.
+gf_status gf_mpi_gather0(gf_sim *sim);
+/// The neighbour-list re-sort of ranks holding their windows (slabs along
+/// z): each rank gets its margin layers from their owners, then re-sorts its
+/// window as one process re-sorts the whole (gf_window_resort), keeping only
+/// its window. A collective.
+gf_status gf_mpi_resort(gf_sim *sim, const gf_slabs *s);
+/// A rank holding only its window (sim->part) before any slab phase: the
+/// state is partial over these slabs, so the next gf_mpi_whole gathers it.
+gf_status gf_mpi_slabs_partial(const gf_slabs *s);
 /// Tests only: whether GF_MPI_TEST_BREAK names this break of the slabs'
 /// exchange ("moved": moved positions kept from the neighbours; "entry":
 /// particles entering a region not sent whole), which GF_MPI_CHECK must catch.
@@ -118,7 +132,7 @@ void gf_mpi_slabs_release(void);
 /// per phase and phases exchanged, for the first `cap` ranks (`all` holds
 /// cap (GF_MPI_FIGURES + 2) doubles on every rank); returns the number of
 /// ranks. A collective.
-#define GF_MPI_FIGURES 3
+#define GF_MPI_FIGURES 4
 int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap);
 /// Which of a colour phase's n blocks (heaviest first, load[k] moves each)
 /// this rank runs: each block in turn goes to the rank with the fewest moves
@@ -132,6 +146,14 @@ void gf_mpi_assign(const uint32_t *load, size_t n, uint64_t *scratch, uint8_t *m
 /// a stop asked on any rank meanwhile (*stop) stops all of them here,
 /// together: GF_ERR_INTERRUPTED on every rank. A collective: every rank calls it.
 gf_status gf_mpi_share_packing(gf_status st, struct gf_packing *pk, volatile sig_atomic_t *stop);
+/// Whether the ranks read packing.file each keeping its region
+/// (gf_mpi_sim_create_part): more than one rank, the domain engine, a
+/// packing.file and no packing.types.
+bool gf_mpi_windowed(const gf_config *cfg);
+/// Every rank's sim of its region of packing.file (gf_sim_create_part); a
+/// failure on any rank is every rank's, with the first failing rank's
+/// message. A collective.
+gf_status gf_mpi_sim_create_part(const gf_config *cfg, gf_sim **out);
 #else
 #define gf_mpi_release() ((void)0)
 #endif

@@ -12,8 +12,10 @@
 // that rank's record of it is old. The state outside a rank's region goes
 // stale; gf_mpi_whole makes it whole again before anything reads it.
 //
-// Memory is still replicated: every rank allocates every particle (the
-// division of the memory is the step after this one, docs/performance.md).
+// A rank that read only its region of packing.file (window.c) holds only
+// that region's records until gf_mpi_whole gathers the others' (every rank's
+// arrays are allocated whole, their pages outside the region never written:
+// docs/performance.md).
 #include <mpi.h>
 #include <inttypes.h>
 #include <limits.h>
@@ -279,7 +281,7 @@ static uint64_t gf_slab_hash(const gf_sim *sim, const gf_slabs *s, int a, int b)
         const uint32_t *sl = g->slot + c * GF_CELL_CAP;
         for (uint32_t k = 0; k < g->count[c]; k++) {
             uint32_t i = sl[k];
-            gf_mpi_part r = {i, g->cell_of[i], g->slot_of[i], sim->alive[i], sim->p[i], sim->p0[i]};
+            gf_mpi_part r = gf_mpi_part_of(sim, i);
             h = gf_mpi_hash(h, &r, sizeof r);
             if (row) h = gf_mpi_hash(h, sim->nl + ((size_t)i << sim->nl_shift), row);
         }
@@ -363,6 +365,14 @@ gf_status gf_mpi_column_tops(const gf_sim *sim, const gf_slabs *s, double *colto
     return GF_OK;
 }
 
+gf_status gf_mpi_slabs_partial(const gf_slabs *s)
+{
+    if (!gf_slab_arrays(gf_mpi_size())) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+    gf_slab_st.slabs = s;
+    gf_slab_st.dirty = true;
+    return GF_OK;
+}
+
 gf_status gf_mpi_whole(gf_sim *sim)
 {
     if (!gf_slab_st.dirty) return GF_OK;
@@ -438,8 +448,211 @@ gf_status gf_mpi_whole(gf_sim *sim)
     t->wait += MPI_Wtime() - t0;
     t->wholes++;
     if (st != GF_OK) return st;
+    // Every rank holds every particle again (a rank that read its region
+    // only now holds the rest: its window is the whole).
+    sim->part = false;
+    sim->win_lo = 0;
+    sim->win_hi = sim->n;
+    sim->grid.i0 = 0;
+    sim->grid.i1 = sim->grid.np;
     gf_grid_recompute_top(&sim->grid);
     return gf_mpi_checking() ? gf_mpi_check(sim, NULL, NULL, 0) : GF_OK;
+}
+
+// The message of this rank's owned cells from c on and their particles
+// (whole, with their rows), up to about `most` bytes (at least one cell);
+// *c is left at the first cell not sent. An empty message (no cell) ends a
+// rank's part of the gather to rank 0.
+// Layers [a0, a1) and [b0, b1), of those this rank owns.
+typedef struct gf_slab_pick {
+    int a0, a1, b0, b1;
+} gf_slab_pick;
+
+static inline bool gf_slab_picked(const gf_slabs *s, int me, const gf_slab_pick *k, int L)
+{
+    return L >= s->lo[me] && L < s->hi[me] && ((L >= k->a0 && L < k->a1) || (L >= k->b0 && L < k->b1));
+}
+
+static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, const gf_slab_pick *pick, size_t *c,
+                               size_t most, gf_slab_buf *m)
+{
+    const gf_grid *g = &sim->grid;
+    size_t limit[GF_TOUCH_KINDS], rec[GF_TOUCH_KINDS];
+    gf_mpi_records_kinds(sim, 0, 0, limit, rec);
+    const bool rows = limit[GF_TOUCH_ROW] > 0;
+    const size_t per = rec[GF_TOUCH_PARTICLE] + (rows ? rec[GF_TOUCH_ROW] : 0);
+    gf_mpi_head h = {{0}};
+    size_t need = sizeof h, end = *c;
+    for (; end < g->ncell; end++) {
+        if (!gf_slab_picked(s, me, pick, gf_slabs_layer(s, (uint32_t)end))) continue;
+        const size_t more = rec[GF_TOUCH_CELL] + g->count[end] * per;
+        if (h.v[1 + GF_TOUCH_CELL] > 0 && need + more > most) break;
+        h.v[1 + GF_TOUCH_CELL]++;
+        h.v[1 + GF_TOUCH_PARTICLE] += g->count[end];
+        need += more;
+    }
+    if (rows) h.v[1 + GF_TOUCH_ROW] = h.v[1 + GF_TOUCH_PARTICLE];
+    if (need > INT_MAX || !gf_mpi_room((void **)&m->b, &m->cap, need, 1))
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI gather of the state (%zu bytes)", need);
+    h.v[0] = (uint32_t)need;
+    memcpy(m->b, &h, sizeof h);
+    unsigned char *o = m->b + sizeof h;
+    unsigned char *orow = o + h.v[1 + GF_TOUCH_PARTICLE] * rec[GF_TOUCH_PARTICLE];
+    unsigned char *ocell = orow + h.v[1 + GF_TOUCH_ROW] * rec[GF_TOUCH_ROW];
+    for (size_t k = *c; k < end; k++) {
+        if (!gf_slab_picked(s, me, pick, gf_slabs_layer(s, (uint32_t)k))) continue;
+        gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)k, NULL, NULL, 0, ocell);
+        ocell += rec[GF_TOUCH_CELL];
+        for (uint32_t j = 0; j < g->count[k]; j++) {
+            uint32_t i = g->slot[k * GF_CELL_CAP + j];
+            gf_mpi_record_write(sim, GF_TOUCH_PARTICLE, i, NULL, NULL, 0, o);
+            o += rec[GF_TOUCH_PARTICLE];
+            if (!rows) continue;
+            gf_mpi_record_write(sim, GF_TOUCH_ROW, i, NULL, NULL, 0, orow);
+            orow += rec[GF_TOUCH_ROW];
+        }
+    }
+    m->len = need;
+    *c = end;
+    return GF_OK;
+}
+
+gf_status gf_mpi_gather0(gf_sim *sim)
+{
+    if (!gf_slab_st.dirty) return GF_OK;
+    enum { GF_GATHER_TAG = 2325 };
+    // Messages of ~4 MB: a rank's buffer, kept from gather to gather, stays
+    // small beside its region (its whole slab at once was ~0.9 of it).
+    const size_t most = (size_t)4 << 20;
+    const gf_slabs *s = gf_slab_st.slabs;
+    const int R = gf_mpi_size(), me = gf_mpi_rank();
+    gf_mpi_tallies *t = gf_mpi_tally();
+    double t0 = MPI_Wtime();
+    gf_status st = GF_OK;
+    if (me != 0) {
+        gf_slab_buf *m = &gf_slab_st.out[me];
+        size_t c = 0;
+        for (bool last = false; !last;) {
+            // (Out of memory fails this rank; mpi_app aborts the job.)
+            const gf_slab_pick all = {0, s->n, 0, 0};
+            if ((st = gf_slab_chunk(sim, s, me, &all, &c, most, m)) != GF_OK) return st;
+            uint32_t cells;
+            memcpy(&cells, m->b + sizeof(uint32_t) * (1 + GF_TOUCH_CELL), sizeof cells);
+            last = cells == 0;
+            MPI_Send(m->b, (int)m->len, MPI_BYTE, 0, GF_GATHER_TAG, MPI_COMM_WORLD);
+            t->sent += m->len;
+        }
+    } else {
+        gf_slab_buf *in = &gf_slab_st.in[me];
+        for (int r = 1; r < R; r++)
+            for (bool last = false; !last;) {
+                MPI_Status ms;
+                int len = 0;
+                MPI_Probe(r, GF_GATHER_TAG, MPI_COMM_WORLD, &ms);
+                MPI_Get_count(&ms, MPI_BYTE, &len);
+                if (len < 0 || !gf_mpi_room((void **)&in->b, &in->cap, (size_t)len + 1, 1))
+                    return gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI gather of the state (%d bytes)", len);
+                MPI_Recv(in->b, len, MPI_BYTE, r, GF_GATHER_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                if (st != GF_OK) continue;
+                if ((size_t)len < sizeof(gf_mpi_head)) {
+                    st = gf_error_set(GF_ERR_STATE, "MPI gather: rank %d sent %d bytes", r, len);
+                    break;
+                }
+                uint32_t cells;
+                memcpy(&cells, in->b + sizeof(uint32_t) * (1 + GF_TOUCH_CELL), sizeof cells);
+                last = cells == 0;
+                if ((st = gf_mpi_records_check(sim, in->b, (size_t)len, 0, 0, r)) != GF_OK) break;
+                gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
+                gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
+                t->applied += (size_t)len;
+            }
+        if (st == GF_OK) {
+            // Rank 0 holds every particle now; the others still their regions.
+            sim->part = false;
+            sim->win_lo = 0;
+            sim->win_hi = sim->n;
+            sim->grid.i0 = 0;
+            sim->grid.i1 = sim->grid.np;
+            gf_grid_recompute_top(&sim->grid);
+        }
+    }
+    t->wait += MPI_Wtime() - t0;
+    t->wholes++;
+    return st;
+}
+
+gf_status gf_mpi_resort(gf_sim *sim, const gf_slabs *s)
+{
+    enum { GF_MARGIN_TAG = 2326 };
+    const int R = gf_mpi_size(), me = gf_mpi_rank();
+    const gf_grid *g = &sim->grid;
+    const int m = gf_window_margin(sim);
+    const size_t layer = (size_t)g->nx * (size_t)g->ny;
+    if (!gf_slab_arrays(R)) return gf_error_set(GF_ERR_NOMEM, "out of memory for MPI");
+    gf_status st = GF_OK;
+    // Each partner's margin (the layers of its window beyond its region)
+    // from the ranks that own them, whole: its window is then exact.
+    int nreq = 0;
+    for (int r = 0; r < R && st == GF_OK; r++) {
+        if (!gf_slabs_partners(s, me, r)) continue;
+        const gf_slab_pick pick = {s->rlo[r] - m, s->rlo[r], s->rhi[r], s->rhi[r] + m};
+        size_t c = 0;
+        if ((st = gf_slab_chunk(sim, s, me, &pick, &c, SIZE_MAX, &gf_slab_st.out[r])) != GF_OK) break;
+        MPI_Isend(gf_slab_st.out[r].b, (int)gf_slab_st.out[r].len, MPI_BYTE, r, GF_MARGIN_TAG, MPI_COMM_WORLD,
+                  &gf_slab_st.req[nreq++]);
+    }
+    gf_mpi_tallies *t = gf_mpi_tally();
+    for (int r = 0; r < R; r++) {
+        if (!gf_slabs_partners(s, me, r)) continue;
+        MPI_Status ms;
+        int len = 0;
+        MPI_Probe(r, GF_MARGIN_TAG, MPI_COMM_WORLD, &ms);
+        MPI_Get_count(&ms, MPI_BYTE, &len);
+        gf_slab_buf *in = &gf_slab_st.in[r];
+        if (len < 0 || !gf_mpi_room((void **)&in->b, &in->cap, (size_t)len + 1, 1)) {
+            st = gf_error_set(GF_ERR_NOMEM, "out of memory for the re-sort's margins (%d bytes)", len);
+            len = 0;
+        }
+        MPI_Recv(len ? in->b : NULL, len, MPI_BYTE, r, GF_MARGIN_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (st != GF_OK || (st = gf_mpi_records_check(sim, in->b, (size_t)len, 0, 0, r)) != GF_OK) continue;
+        gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
+        gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
+    }
+    MPI_Waitall(nreq, gf_slab_st.req, MPI_STATUSES_IGNORE);
+    // (An error here is this rank's: mpi_app aborts the job.)
+    if (st != GF_OK) return st;
+    // The particles in the cells each rank owns, and their radii: one
+    // process's index of the first particle of a cell is the count below it.
+    int wlo = s->rlo[me] - m > 0 ? s->rlo[me] - m : 0, whi = s->rhi[me] + m < s->n ? s->rhi[me] + m : s->n;
+    if (s->rlo[me] >= s->rhi[me]) wlo = whi = 0;
+    uint64_t own = 0, below = 0;
+    double r2[2] = {INFINITY, INFINITY}; // the smallest radius, and the largest negated
+    for (size_t c = (size_t)wlo * layer; c < (size_t)whi * layer; c++) {
+        const int L = (int)(c / layer);
+        if (L < s->lo[me]) below += g->count[c];
+        if (L < s->lo[me] || L >= s->hi[me]) continue;
+        own += g->count[c];
+        for (uint32_t k = 0; k < g->count[c]; k++) {
+            const double r = sim->p[g->slot[c * GF_CELL_CAP + k]].r;
+            r2[0] = fmin(r2[0], r);
+            r2[1] = fmin(r2[1], -r);
+        }
+    }
+    uint64_t *owns = GF_NEW(uint64_t, (size_t)R);
+    if (!owns) return gf_error_set(GF_ERR_NOMEM, "out of memory for the re-sort");
+    MPI_Allgather(&own, 1, MPI_UINT64_T, owns, 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, r2, 2, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    uint64_t total = 0, first = 0;
+    for (int r = 0; r < R; r++) {
+        if (r < me) first += owns[r];
+        total += owns[r];
+    }
+    GF_DELETE(owns, (size_t)R);
+    if (total != sim->n_alive)
+        return gf_error_set(GF_ERR_STATE, "re-sort: the ranks' cells hold %" PRIu64 " particles, %zu are in the container",
+                            total, sim->n_alive);
+    return gf_window_resort(sim, (size_t)wlo * layer, (size_t)whi * layer, (size_t)(first - below), (size_t)total,
+                            r2[0], -r2[1]);
 }
 
 int gf_mpi_rank_figures(const double mine[GF_MPI_FIGURES], double *all, int cap)

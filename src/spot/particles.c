@@ -18,13 +18,13 @@
 gf_status gf_sim_alloc_particles(gf_sim *sim, size_t n)
 {
     sim->cap = n;
-    sim->p = GF_NEW(gf_pos, n);
-    sim->p0 = GF_NEW(gf_ref, n);
-    sim->id = GF_NEW(int64_t, n);
-    sim->layer = GF_NEW(int32_t, n);
-    sim->alive = GF_NEW(uint8_t, n);
-    sim->mark = GF_NEW(uint32_t, n);
-    sim->hist = GF_NEW(gf_hist, n);
+    sim->p = GF_NEW_PAGES(gf_pos, n);
+    sim->p0 = GF_NEW_PAGES(gf_ref, n);
+    sim->id = GF_NEW_PAGES(int64_t, n);
+    sim->layer = GF_NEW_PAGES(int32_t, n);
+    sim->alive = GF_NEW_PAGES(uint8_t, n);
+    sim->mark = GF_NEW_PAGES(uint32_t, n);
+    sim->hist = GF_NEW_PAGES(gf_hist, n);
     if (!sim->p || !sim->p0 || !sim->id || !sim->layer || !sim->alive || !sim->mark || !sim->hist)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu particles", n);
     return GF_OK;

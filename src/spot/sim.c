@@ -41,6 +41,11 @@ gf_status gf_sim_alloc_scratch(gf_sim *sim)
     return st;
 }
 
+void gf_sim_grid_bounds(const gf_sim *sim, double lo[3], double hi[3])
+{
+    gf_container_bounds(&sim->box, sim->grid_ztop, lo, hi);
+}
+
 gf_status gf_sim_make_grid(gf_sim *sim)
 {
     if (sim->grid_ztop == 0.0) {
@@ -53,8 +58,9 @@ gf_status gf_sim_make_grid(gf_sim *sim)
         if (sim->d.recirculate) sim->grid_ztop += 0.5 * top + 8.0;
     }
     double lo[3], hi[3];
-    gf_container_bounds(&sim->box, sim->grid_ztop, lo, hi);
-    return gf_grid_init(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap);
+    gf_sim_grid_bounds(sim, lo, hi);
+    return sim->part ? gf_grid_init_part(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap, sim->win_lo, sim->win_hi)
+                     : gf_grid_init(&sim->grid, lo, hi, GF_CELL_SIZE, sim->cap);
 }
 
 gf_status gf_sim_make_stress(gf_sim *sim)
@@ -84,16 +90,16 @@ gf_status gf_sim_write_stress(const gf_sim *sim, const char *dir)
 static void gf_sim_free_all(gf_sim *sim)
 {
     gf_stress_free(&sim->stress);
-    GF_DELETE(sim->p, sim->cap);
-    GF_DELETE(sim->p0, sim->cap);
-    GF_DELETE(sim->id, sim->cap);
-    GF_DELETE(sim->layer, sim->cap);
-    GF_DELETE(sim->alive, sim->cap);
-    GF_DELETE(sim->mark, sim->cap);
-    GF_DELETE(sim->hist, sim->cap);
+    GF_DELETE_PAGES(sim->p, sim->cap);
+    GF_DELETE_PAGES(sim->p0, sim->cap);
+    GF_DELETE_PAGES(sim->id, sim->cap);
+    GF_DELETE_PAGES(sim->layer, sim->cap);
+    GF_DELETE_PAGES(sim->alive, sim->cap);
+    GF_DELETE_PAGES(sim->mark, sim->cap);
+    GF_DELETE_PAGES(sim->hist, sim->cap);
     GF_DELETE(sim->reins, sim->reins_cap);
     GF_DELETE(sim->exits, sim->exit_cap);
-    GF_DELETE(sim->nl, sim->cap << sim->nl_shift);
+    GF_DELETE_PAGES(sim->nl, sim->cap << sim->nl_shift);
     GF_DELETE(sim->sx, sim->ns_cap);
     GF_DELETE(sim->sy, sim->ns_cap);
     GF_DELETE(sim->sz, sim->ns_cap);
@@ -144,17 +150,55 @@ gf_status gf_sim_create(const gf_config *cfg, const gf_packing *packing, gf_sim 
         if (st == GF_ERR_PARAM) st = gf_packing_blame_highest(packing, &sim->cfg, st);
         goto fail;
     }
-    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) goto fail;
-    if ((st = gf_sim_make_stress(sim)) != GF_OK) goto fail;
-    if ((st = gf_nlist_build(sim, true)) != GF_OK) goto fail;
-    gf_rng_seed(&sim->rng, sim->d.seed, 0x5350u /* "SP": the spot stream */);
-    sim->st.particles_initial = sim->n_initial;
-    sim->next_ckpt = sim->d.checkpoint_interval;
+    if ((st = gf_sim_finish(sim)) != GF_OK) goto fail;
     *out = sim;
     return GF_OK;
 fail:
     gf_sim_free_all(sim);
     return st;
+}
+
+gf_status gf_sim_finish(gf_sim *sim)
+{
+    gf_status st;
+    if ((st = gf_sim_alloc_scratch(sim)) != GF_OK) return st;
+    if ((st = gf_sim_make_stress(sim)) != GF_OK) return st;
+    if ((st = gf_nlist_build(sim, true)) != GF_OK) return st;
+    gf_rng_seed(&sim->rng, sim->d.seed, 0x5350u /* "SP": the spot stream */);
+    sim->st.particles_initial = sim->n_initial;
+    sim->next_ckpt = sim->d.checkpoint_interval;
+    return GF_OK;
+}
+
+gf_sim *gf_sim_new(const gf_config *cfg, gf_status *st)
+{
+    gf_sim *sim = gf_alloc(sizeof *sim);
+    if (!sim) {
+        *st = gf_error_set(GF_ERR_NOMEM, "out of memory");
+        return NULL;
+    }
+    sim->cfg = *cfg;
+    *st = gf_config_validate(&sim->cfg);
+    if (*st == GF_OK) *st = gf_sim_check_config(&sim->cfg);
+    if (*st != GF_OK) {
+        gf_sim_free_all(sim);
+        return NULL;
+    }
+    gf_sim_derive(sim);
+    return sim;
+}
+
+void gf_sim_discard(gf_sim *sim)
+{
+    if (sim) gf_sim_free_all(sim);
+}
+
+uint64_t gf_sim_held_particles(const gf_sim *sim)
+{
+    // (Reading a page never written maps the zero page: nothing becomes resident.)
+    uint64_t held = 0;
+    for (size_t i = 0; i < sim->n; i++) held += sim->id[i] != 0;
+    return held;
 }
 
 gf_sim_stats gf_sim_get_stats(const gf_sim *sim)

@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "geom/container.h"
 #include "geom/grid.h"
+#include "spot/slabs.h"
 #include "granflow/defs.h"
 #include "granflow/sim.h"
 #include "spot/sfr.h"
@@ -119,6 +120,17 @@ struct gf_sim {
     gf_hist *hist;    ///< cold: where the current pass began, and its number
     size_t n_alive, n_initial;
     double rmax;      ///< largest radius
+    // An MPI rank of the domain engine that read only its region of
+    // packing.file (window.c, issue 23 item 3): it holds the records of the
+    // particles [win_lo, win_hi) (its region, a margin, and what its
+    // neighbours send it), the others' pages were never written; loops over
+    // the particles outside the phases keep to the window. False once a
+    // gather made the state whole (par_mpi_slabs.c) and in one process.
+    bool part;
+    size_t win_lo, win_hi;
+    double rmin_all;  ///< part: the smallest radius of the particles in the container (creation, re-sort)
+    double rmax_all;  ///< part: the largest
+    bool keep_part;   ///< part: gf_sim_run leaves the state as it is at its end (the bench reads counters only)
     double contact2;  ///< (2 r)^2 when every live particle has radius r, else 0 (derived at every list build)
 
     gf_grid grid;
@@ -336,6 +348,41 @@ gf_status gf_spot_move(gf_sim *sim, size_t k);
 void gf_sim_derive(gf_sim *sim);
 /// Grid over the container and the packing's current extent.
 gf_status gf_sim_make_grid(gf_sim *sim);
+/// The end of a sim's creation, its particles placed and its grid made:
+/// workers, stress field, neighbour lists (re-sorted), random stream.
+gf_status gf_sim_finish(gf_sim *sim);
+/// A sim with its config checked and derived, no particles yet (NULL and
+/// *st on failure); gf_sim_discard frees one that failed to be made.
+gf_sim *gf_sim_new(const gf_config *cfg, gf_status *st);
+void gf_sim_discard(gf_sim *sim);
+/// The grid's bounds (the container's, up to sim->grid_ztop).
+void gf_sim_grid_bounds(const gf_sim *sim, double lo[3], double hi[3]);
+/// Rank `me` of R of the domain engine: the sim of packing.file holding
+/// only the particles of its region and a margin (window.c); GF_ERR_PARAM
+/// when the config has no packing.file or asks for packing.types (then the
+/// whole packing is read, as one process does).
+gf_status gf_sim_create_part(const gf_config *cfg, int R, int me, gf_sim **out);
+/// The cell layers along z of rank me's region of R ranks (the domain
+/// engine's slabs, slabs.h) and a margin of `margin` layers each side,
+/// [*lo, *hi): all layers when the slabs are not cut along z (domains.c).
+gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int *lo, int *hi);
+/// The margin of a rank's window beyond its region, in cell layers: the
+/// reach of a neighbour-list search (window.c).
+int gf_window_margin(const gf_sim *sim);
+/// A rank's re-sort of its window (window.c; the whole-state re-sort is
+/// gf_nlist_build(sim, true)): the particles in cells [c0, c1), whose
+/// records and cells must be exact here, take the indices [base, base + k)
+/// one process's stable re-sort by cell gives them (k of them; `base` the
+/// particles in the cells below c0, `n` in all, rmin and rmax their radii's
+/// extremes); then its grid and neighbour rows are redone there.
+gf_status gf_window_resort(gf_sim *sim, size_t c0, size_t c1, size_t base, size_t n, double rmin, double rmax);
+/// Makes the domain engine's decomposition if not yet made and returns its
+/// slabs (NULL: one process or not the domain engine).
+const gf_slabs *gf_dom_slabs_made(gf_sim *sim, gf_status *st);
+/// Particle records this process holds (a non-zero id): every particle in
+/// one process; an MPI rank that read its region only, that region's and
+/// the ones its neighbours sent it, until a gather made the state whole.
+uint64_t gf_sim_held_particles(const gf_sim *sim);
 
 /// With spot.flow_rule = sfr: solves the container's stress field up to the
 /// packing's top (docs/stress.md) and the walk's constants; nothing otherwise.

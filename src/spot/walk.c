@@ -22,7 +22,8 @@ gf_status gf_work_init(const gf_sim *sim, gf_work *w)
     // the ball of r_e + 1 at most (gf_gather checks), and never more than all.
     // Spheres smaller than the papers' pack more centres per d^3: by (0.5 / r_min)^3.
     double r = sim->re + 1.0, rmin = 0.5;
-    for (size_t i = 0; i < sim->n; i++)
+    if (sim->part && sim->rmin_all < rmin) rmin = sim->rmin_all; // (a rank's window: the whole packing's)
+    for (size_t i = 0; i < sim->n && !sim->part; i++)
         if (sim->alive[i] && sim->p[i].r < rmin) rmin = sim->p[i].r;
     double dens = GF_GATHER_DENSITY * pow(0.5 / rmin, 3.0);
     size_t cap = (size_t)ceil(dens * 4.0 / 3.0 * 3.14159265358979 * r * r * r) + GF_CELL_CAP;
