@@ -15,8 +15,9 @@
 /// What granflow dem cannot do under run.recirculate = on (run.max_passes,
 /// a central column), as GF_ERR_PARAM naming the key and where it was set.
 gf_status gf_dem_recirc_check(const gf_config *c);
-/// Room above the settled packing's top the reinsertion slab needs, d.
-double gf_dem_recirc_headroom(void);
+/// Room above a packing whose top is at `top` the reinsertion slab needs, d
+/// (the slab and the packing's rise as it dilates in flow).
+double gf_dem_recirc_headroom(double top);
 /// in.drain's drainage with reinsertion (after the base and before the end).
 void gf_dem_recirc_drain(FILE *f, const gf_config *c, const gf_dem_plan *plan, double rmax, long seed);
 /// DIR/exits.csv (the format of a spot run's: id,time,x,y,pass,entry_time,

@@ -226,7 +226,7 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
         double top = 0.0;
         for (size_t i = 0; i < pk.n; i++) top = fmax(top, pk.z[i] + pk.r[i]);
         // Recirculation puts particles back in a slab above the top: room for it.
-        plan.box_zhi = top + 2.0 + (ed.recirculate ? gf_dem_recirc_headroom() : 0.0);
+        plan.box_zhi = top + 2.0 + (ed.recirculate ? gf_dem_recirc_headroom(top) : 0.0);
     }
     double rmax = 0.5; // fix pour's diameter one 1.0
     for (size_t i = 0; i < pk.n; i++) rmax = i ? fmax(rmax, pk.r[i]) : pk.r[i];
