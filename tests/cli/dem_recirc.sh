@@ -114,6 +114,15 @@ expect_rc 0 "compare rc spot"
 grep -q 'flow rate Q' out || fail "compare: no flow rate row"
 ok "calibrate (its spot runs recirculate: $re put back), the spot run, compare"
 
+# Without exits.csv (a killed granflow) the exits cannot be read off the
+# snapshots of a recirculating run: an error, not a short outflow.
+mv rc/exits.csv rc/exits.keep
+gf analyze rc --no-plots -o an2
+expect_rc 3 "analyze a recirculating DEM run without exits.csv"
+expect_err "run.recirculate = on but no exits.csv" "analyze a recirculating DEM run without exits.csv"
+mv rc/exits.keep rc/exits.csv
+ok "a recirculating DEM run without exits.csv: exit 3 saying why"
+
 # --drain-only again: exits.csv and reinserted.txt are the new drain's.
 echo "999999 0 0 0 -3 -1 0 0 9" >> rc/reinserted.txt
 gf dem -q "${BOX[@]}" --set run.recirculate=on -o rc --drain-only
