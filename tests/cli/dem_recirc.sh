@@ -2,7 +2,7 @@
 # granflow dem with run.recirculate = on (issue 27): a real LAMMPS run of 300
 # spheres in an 8 x 6 box, 4 tau of drainage with every particle that falls
 # through the orifice put back on top (~10 s on one core), then a cylinder
-# with zone reinsertion. Checks: the count is 300 in every snapshot; no
+# with zone reinsertion (3 tau). Checks: the count is 300 in every snapshot; no
 # particle leaves the box but through the orifice; every re-inserted
 # particle is clear of every other one where it is put (its position from
 # reinserted.txt against the snapshot of that very step); exits.csv has a
@@ -136,7 +136,7 @@ ok "--drain-only starts the records afresh"
 gf dem -q --set container.shape=cylinder --set container.radius=4 --set container.hopper_angle=60 \
     --set container.outlet_diameter=3 --set container.outlet_length=1 --set packing.particles=300 \
     --set dem.fill_method=generate --set dem.settle_time=2 --set dem.settle_ke=1e-3 --set dem.mpi_ranks=1 \
-    --set run.recirculate=on --set run.reinsert=zone --set run.reinsert_rmax=2 --set run.duration=4 \
+    --set run.recirculate=on --set run.reinsert=zone --set run.reinsert_rmax=2 --set run.duration=3 \
     --set output.snapshot_interval=0.5 -o cyl --run
 expect_rc 0 "granflow dem --run of a recirculating cylinder"
 counts=$(for f in cyl/snapshots/*.dump; do sed -n 6p "$f"; done | sort -u | tr '\n' ' ')
