@@ -102,8 +102,12 @@ int gf_cmd_dem(int argc, char **argv)
     if (show.tty && show.last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
     if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL); // the message names interrupted.txt
     if (st != GF_OK) return gf_cli_fail("dem", st);
-    if (!cli.quiet)
-        fprintf(stderr, "granflow dem: done: %s/packing.dump (settled packing), %s/snapshots/ (the drainage)\n", cli.out,
-                cli.out);
+    if (!cli.quiet) {
+        char exits[4096];
+        snprintf(exits, sizeof exits, "%s/exits.csv", cli.out);
+        bool recirc = access(exits, F_OK) == 0; // run.recirculate: the particles put back (docs/dem.md)
+        fprintf(stderr, "granflow dem: done: %s/packing.dump (settled packing), %s/snapshots/ (the drainage)%s%s\n",
+                cli.out, cli.out, recirc ? ", " : "", recirc ? exits : "");
+    }
     return GF_EXIT_OK;
 }

@@ -38,6 +38,7 @@ typedef struct gf_dem_plan {
     int64_t snapshot_steps; ///< steps between drain dumps
     int64_t drain_steps;    ///< steps of the drainage (run.duration / dem.timestep)
     double pour_time;       ///< fill_method pour: longest pour, tau (0 for generate)
+    int64_t reinsert_steps; ///< run.recirculate = on: steps between the reinsertions (0: particles leave)
 } gf_dem_plan;
 
 /// Writes the LAMMPS inputs of a DEM run of the container of `cfg` into `dir`
@@ -45,7 +46,9 @@ typedef struct gf_dem_plan {
 /// in `fill.data`, settle under gravity on a closed base, write `packing.dump`
 /// and `settled.restart`), `in.drain` (open the orifice, drain for
 /// run.duration, dump `snapshots/snap_NNNNNNNNN.dump` every
-/// output.snapshot_interval with ITEM: TIME), and `config.ini` (the effective
+/// output.snapshot_interval with ITEM: TIME; with run.recirculate = on the
+/// particles that fell through the orifice are put back on top instead of
+/// deleted, each recorded in `reinserted.txt`: docs/dem.md), and `config.ini` (the effective
 /// configuration, which `calibrate`, `compare` and `analyze` read back).
 /// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
 /// law on the flat side walls and the base. `plan` may be NULL. The packing

@@ -3,8 +3,30 @@
 #ifndef GF_DEM_INTERNAL_H
 #define GF_DEM_INTERNAL_H
 
+#include <stdio.h>
+
 #include "granflow/core.h"
 #include "granflow/dem.h"
+
+// ---- recirculation (lammps_recirculate.c, reinserted.c; issue 27 item 4) --------
+
+/// The reinsertion file LAMMPS appends to, in the run directory.
+#define GF_DEM_REINSERTED "reinserted.txt"
+/// What granflow dem cannot do under run.recirculate = on (run.max_passes,
+/// a central column), as GF_ERR_PARAM naming the key and where it was set.
+gf_status gf_dem_recirc_check(const gf_config *c);
+/// Room above a packing whose top is at `top` the reinsertion slab needs, d
+/// (the slab and the packing's rise as it dilates in flow).
+double gf_dem_recirc_headroom(double top);
+/// in.drain's drainage with reinsertion (after the base and before the end).
+void gf_dem_recirc_drain(FILE *f, const gf_config *c, const gf_dem_plan *plan, double rmax, long seed);
+/// DIR/exits.csv (the format of a spot run's: id,time,x,y,pass,entry_time,
+/// entry_r) from DIR/reinserted.txt, the initial entry radii from
+/// DIR/packing.dump. GF_OK and nothing written when the file is absent.
+gf_status gf_dem_write_exits(const char *dir);
+/// How long ago a particle now h below the exit plane and falling at u (> 0
+/// down) crossed it in free fall (g = 1): the exit time of a reinsertion.
+double gf_dem_fall_time(double h, double u);
 
 /// Weighted least-squares line Var(z) = level + slope (z - zm) through the
 /// heights the DEM measured precisely enough (gf_dem_flowstats_measured with

@@ -18,6 +18,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fs.h"
+#include "dem/dem_internal.h"
 #include "granflow/defs.h"
 #include "granflow/dem.h"
 #include "geom/container.h"
@@ -32,6 +33,7 @@
 #define GF_DEM_POUR_FRACTION 0.3 // packing fraction of each fix pour batch
 #define GF_DEM_POUR_GAP 4.0     // the pour region starts this far above the expected fill, d
 #define GF_DEM_CHUNK 1.0        // LAMMPS runs in chunks of this many tau between checks
+#define GF_DEM_REINSERT_EVERY 0.1 // run.recirculate: tau between reinsertions (a particle falls < 0.5 d meanwhile)
 
 /// The contact law's arguments, as pair_style and fix wall/gran take them.
 static void gf_dem_contact(const gf_dem_defs *dd, char *buf, size_t n)
@@ -182,8 +184,11 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
         if (gf_config_where(c, "container.shape", where, sizeof where) != GF_OK) snprintf(where, sizeof where, "?");
         return gf_error_set(st, "%s: %s", where, why);
     }
+    if ((st = gf_dem_recirc_check(c)) != GF_OK) return st;
     gf_dem_defs dd;
     gf_config_dem_defs(c, &dd);
+    gf_engine_defs ed;
+    gf_config_engine_defs(c, &ed);
     if (dd.fill == GF_DEM_POUR && (st = gf_container_lammps_pour(&box, NULL, 0.0, 0.0, 0.0)) != GF_OK)
         return st;
     // The column's cross-section, above any funnel.
@@ -205,6 +210,7 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     plan.snapshot_steps = gf_dem_steps(&dd, dd.snapshot_interval);
     plan.drain_steps = gf_dem_steps(&dd, dd.duration);
     plan.rim_beads = gf_dem_beads(NULL, c);
+    plan.reinsert_steps = ed.recirculate ? gf_dem_steps(&dd, GF_DEM_REINSERT_EVERY) : 0;
 
     // Pour: batches of GF_DEM_POUR_FRACTION filling a region of height hp
     // above the fill; each batch falls hp before the next (fix pour's rule).
@@ -219,8 +225,11 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     } else {
         double top = 0.0;
         for (size_t i = 0; i < pk.n; i++) top = fmax(top, pk.z[i] + pk.r[i]);
-        plan.box_zhi = top + 2.0;
+        // Recirculation puts particles back in a slab above the top: room for it.
+        plan.box_zhi = top + 2.0 + (ed.recirculate ? gf_dem_recirc_headroom(top) : 0.0);
     }
+    double rmax = 0.5; // fix pour's diameter one 1.0
+    for (size_t i = 0; i < pk.n; i++) rmax = i ? fmax(rmax, pk.r[i]) : pk.r[i];
 
     if ((st = gf_config_check_writable(c)) != GF_OK) goto done; // config.ini goes in last: check it first
     if ((st = gf_fs_mkdirs(dir)) != GF_OK) goto done;
@@ -305,19 +314,23 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     gf_dem_physics(f, c, "drain", plan.box_zlo, plan.box_zhi);
     fprintf(f, "reset_timestep 0\n");
     gf_container_lammps_base(&box, f, law, plan.box_zlo);
-    fprintf(f,
-            "# particles that fell %g d below the base through the hole leave\n"
-            "region gone block INF INF INF INF INF %.10g units box\n"
-            "fix gone flow evaporate %lld %lld gone %ld\n"
-            "# snapshots every %g tau, in the format granflow reads (ITEM: TIME in tau)\n"
-            "dump snap flow custom %lld snapshots/snap_*.dump id x y z radius\n"
-            "dump_modify snap pad 9 sort id time yes\n"
-            "print \"granflow-phase drain ${nflow} %.6g\"\n"
-            "run %lld\n"
-            "print \"granflow-phase done ${nflow} 0\"\n",
-            GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(&dd, 0.01),
-            (long long)(plan.particles + 1), gf_dem_seed(&dd, 2), dd.snapshot_interval,
-            (long long)plan.snapshot_steps, dd.duration, (long long)plan.drain_steps);
+    if (ed.recirculate) {
+        gf_dem_recirc_drain(f, c, &plan, rmax, gf_dem_seed(&dd, 3));
+    } else {
+        fprintf(f,
+                "# particles that fell %g d below the base through the hole leave\n"
+                "region gone block INF INF INF INF INF %.10g units box\n"
+                "fix gone flow evaporate %lld %lld gone %ld\n"
+                "# snapshots every %g tau, in the format granflow reads (ITEM: TIME in tau)\n"
+                "dump snap flow custom %lld snapshots/snap_*.dump id x y z radius\n"
+                "dump_modify snap pad 9 sort id time yes\n"
+                "print \"granflow-phase drain ${nflow} %.6g\"\n"
+                "run %lld\n"
+                "print \"granflow-phase done ${nflow} 0\"\n",
+                GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(&dd, 0.01),
+                (long long)(plan.particles + 1), gf_dem_seed(&dd, 2), dd.snapshot_interval,
+                (long long)plan.snapshot_steps, dd.duration, (long long)plan.drain_steps);
+    }
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;
 
     // config.ini: the container and keys, for calibrate/compare/analyze.

@@ -22,6 +22,7 @@
 #include "core/atomic_file.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "dem/dem_internal.h"
 #include "dem/lammps_guard.h"
 #include "dem/lammps_output.h"
 #include "granflow/dem.h"
@@ -300,9 +301,26 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         if (access(path, R_OK) != 0)
             return gf_error_set(GF_ERR_IO, "%s: %s (no LAMMPS inputs there: write them first)", path, strerror(errno));
         const time_t since = time(NULL);
+        if (k == 1) { // a recirculating drain's records (the drain writes them again; a stale one would mislead)
+            const char *names[2] = {"exits.csv", GF_DEM_REINSERTED};
+            for (int j = 0; j < 2; j++) {
+                snprintf(path, sizeof path, "%s/%s", dir, names[j]);
+                if (unlink(path) != 0 && errno != ENOENT)
+                    return gf_error_set(GF_ERR_IO, "%s: cannot remove the previous drain's: %s", path, strerror(errno));
+            }
+        }
         gf_status st = gf_dem_run_one(dir, scripts[k], lmp, use_mpi ? mpirun : NULL, ranks, &r);
         if (st == GF_ERR_INTERRUPTED) gf_dem_mark_interrupted(dir, k == 0, &r, since);
         if (st == GF_OK) st = gf_dem_check_outputs(dir, k == 0, since);
+        // run.recirculate: exits.csv from what LAMMPS put back, also when it
+        // was stopped (the snapshots kept are read with them).
+        if (k == 1 && (st == GF_OK || st == GF_ERR_INTERRUPTED)) {
+            char msg[1024];
+            snprintf(msg, sizeof msg, "%s", gf_last_error());
+            gf_status se = gf_dem_write_exits(dir);
+            if (se != GF_OK && st == GF_OK) return se;
+            if (st != GF_OK) gf_error_set(st, "%s", msg); // keep the stop's message
+        }
         if (st != GF_OK) return st;
     }
     char mark[GF_PATH_MAX + 32];

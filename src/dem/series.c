@@ -258,7 +258,19 @@ gf_status gf_dem_series_load(const char *path, const gf_dem_source *src, gf_seri
     if (r.have_type && (st = gf_dem_retag(out)) != GF_OK) goto fail;
     out->n_initial = out->nframes ? out->frames[0].pk.n : 0;
     // No exits.csv (LAMMPS writes none): the exits are read off the frames,
-    // after the particles below the exit plane were dropped from them.
+    // after the particles below the exit plane were dropped from them. Not
+    // those of a recirculating run: a particle put back between two frames
+    // never leaves one, so the outflow would come out short without a word.
+    gf_rundir_defs rdd;
+    gf_config_rundir_defs(&cfg, &rdd);
+    if (!out->has_exits && rdd.recirculate) {
+        st = gf_error_set(GF_ERR_FORMAT,
+                          "%s: run.recirculate = on but no exits.csv: the exits of a recirculating run cannot be "
+                          "read off its snapshots (granflow dem writes exits.csv from reinserted.txt when LAMMPS "
+                          "ends or is stopped; after a kill, drain again with granflow dem ... --drain-only)",
+                          path);
+        goto fail;
+    }
     if (!out->has_exits && (st = gf_series_derive_exits(out)) != GF_OK) goto fail;
     if (rep) *rep = r;
     return GF_OK;
