@@ -1,0 +1,666 @@
+// SPDX-License-Identifier: MIT
+// The sweep engine (run.order = sweep): a data-parallel windowed spot
+// engine. The domain engine (domains.c) keeps every pair of conflicting
+// moves exact, and the column over the orifice, which every spot climbs,
+// bounds its speedup whatever the schedule (docs/performance.md). The 2009
+// paper allows reordering moves (Sec. 2.1) and relaxing the whole packing
+// at intervals (Sec. 5, method 3); this engine goes further and lets every
+// move of a window read the packing as it was when the window began:
+//
+// 1. insertions: Poisson(lambda W) spots at uniform times (as domains.c);
+// 2. walk: every spot makes its moves of the window [t, t + W) (exponential
+//    waits at rate mu, a stream per (seed, spot, move time)), its walk,
+//    removal test and ball count (free-surface bias, influence weighting)
+//    reading the window-start particles; each move is recorded (time,
+//    centre, displacement u with gf_spot_apply's factors, mirror centres).
+//    Parallel over chunks of spots;
+// 3. displace: every particle within r_s of a recorded move's centre moves
+//    by that move's u (times S(x), Sec. 4), summed over the moves in a fixed
+//    order (by cell of the centre, then record order), read from window-start
+//    positions; the particles within r_e of any move are the window's active
+//    set. A gather over particles: parallel over chunks of cells;
+// 4. relax: parallel.sweeps Jacobi sweeps over the active set with the rule
+//    of relax() (SPEC 1.3: alpha delta / 2 each for two active particles,
+//    alpha delta for an active one against a fixed one, alpha (r - gap) from
+//    a wall), each reading the positions of the sweep's start;
+// 5. bookkeeping (one thread, in chunk order): exits (each timed by the last
+//    move that reached the particle), cells, neighbour lists.
+//
+// Determinism: every sum runs in an order fixed by the state (cells, slots,
+// rows, chunks of a fixed size), the records of the spot chunks are joined in
+// chunk order and the window's exits sorted by (time, id): the result depends
+// on the seed and the keys, never on run.threads.
+//
+// Profiling (gf_sim_set_par_profiling): the CPU time of every chunk of every
+// parallel block is taken, and the serial bookkeeping apart; the projected
+// makespan on P workers is, per block, the LPT schedule of its chunks, plus
+// the serial time.
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/alloc.h"
+#include "core/clock.h"
+#include "core/error.h"
+#include "geom/celllist.h"
+#include "spot/sim_internal.h"
+
+/// Spots per walk chunk and grid cells per gather chunk: the units of work
+/// (and of the profile), independent of the thread count.
+#define GF_SWEEP_SPOT_CHUNK 4
+#define GF_SWEEP_CELL_CHUNK 16
+/// Worker counts the speedup is projected for (as the other engines').
+static const int gf_sweep_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
+
+/// One recorded move.
+typedef struct gf_sweep_move {
+    double t;    ///< its time
+    double c[3]; ///< its ball's centre
+    double u[3]; ///< what it gives each particle within r_s (weighting included)
+    int nmir;    ///< mirror centres (walls = reflect, Sec. 4)
+    double mir[GF_WALL_HITS][3];
+} gf_sweep_move;
+
+/// A chunk of spots (walk) or of cells (gather, sweeps): its output and time.
+typedef struct gf_sweep_chunk {
+    gf_sweep_move *mv; ///< walk: its spots' moves, in spot then time order
+    size_t nmv, mv_cap;
+    uint32_t *list;    ///< gather, sweeps: the particles it moved, in cell and slot order
+    size_t nlist, list_cap;
+    gf_sim_stats st;
+    gf_status status;
+    double seconds;
+} gf_sweep_chunk;
+
+typedef struct gf_sweep {
+    int threads;
+    size_t nspot_chunk, spot_chunk_cap;
+    gf_sweep_chunk *spot; ///< walk chunks
+    size_t ncell_chunk;
+    gf_sweep_chunk *cell; ///< gather and sweep chunks
+    gf_sweep_move *mv;    ///< the window's moves, joined in chunk order
+    size_t nmv, mv_cap;
+    gf_celllist bycell;   ///< moves by the grid cell of their centre
+    uint32_t **cand;      ///< per thread: the moves near a cell
+    size_t *cand_cap;
+    size_t cap;           ///< particles the per-particle arrays hold
+    double (*disp)[3];    ///< per particle: the sweep's displacement
+    uint8_t *active;      ///< per particle: within r_e of a move of the window
+    double *tlast;        ///< per particle: time of the last move that reached it
+    uint8_t *dead;
+    size_t dead_cap;
+    double *coltop;
+    size_t ncol;
+    gf_work w;            ///< the bookkeeping's worker (timed exits)
+    double *secs;         ///< profiling scratch
+    size_t secs_cap;
+    bool profiling;
+    gf_par_profile prof;
+} gf_sweep;
+
+static void gf_sweep_chunk_free(gf_sweep_chunk *c)
+{
+    GF_DELETE(c->mv, c->mv_cap);
+    GF_DELETE(c->list, c->list_cap);
+    *c = (gf_sweep_chunk){0};
+}
+
+static void gf_sweep_threads_free(gf_sweep *q)
+{
+    for (int t = 0; t < q->threads; t++) GF_DELETE(q->cand[t], q->cand_cap[t]);
+    GF_DELETE(q->cand, q->threads);
+    GF_DELETE(q->cand_cap, q->threads);
+    q->cand = NULL;
+    q->cand_cap = NULL;
+    q->threads = 0;
+}
+
+void gf_sweep_free(gf_sim *sim)
+{
+    gf_sweep *q = sim->sweep;
+    if (!q) return;
+    gf_sweep_threads_free(q);
+    for (size_t k = 0; k < q->spot_chunk_cap; k++) gf_sweep_chunk_free(&q->spot[k]);
+    GF_DELETE(q->spot, q->spot_chunk_cap);
+    for (size_t k = 0; k < q->ncell_chunk; k++) gf_sweep_chunk_free(&q->cell[k]);
+    GF_DELETE(q->cell, q->ncell_chunk);
+    GF_DELETE(q->mv, q->mv_cap);
+    gf_celllist_free(&q->bycell);
+    gf_free(q->disp, sizeof(double[3]) * q->cap);
+    GF_DELETE(q->active, q->cap);
+    GF_DELETE(q->tlast, q->cap);
+    GF_DELETE(q->dead, q->dead_cap);
+    GF_DELETE(q->coltop, q->ncol);
+    GF_DELETE(q->secs, q->secs_cap);
+    gf_work_free(&q->w);
+    gf_free(q, sizeof *q);
+    sim->sweep = NULL;
+}
+
+// An array of elements of `size` bytes, *cap of them, grown to hold `need`:
+// the (possibly moved) array, or NULL when out of memory (the old one kept).
+static void *gf_sweep_grow(void *v, size_t *cap, size_t need, size_t size)
+{
+    if (need == 0) need = 1; // (never NULL on success)
+    if (need <= *cap) return v;
+    size_t cap2 = need + need / 2 + 16;
+    void *p = gf_realloc(v, *cap * size, cap2 * size);
+    if (p) *cap = cap2;
+    return p;
+}
+
+static gf_status gf_sweep_make(gf_sim *sim)
+{
+    const int threads = gf_par_threads(&sim->d);
+    gf_sweep *q = sim->sweep;
+    if (!q) {
+        q = gf_alloc(sizeof *q);
+        if (!q) return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+        *q = (gf_sweep){0};
+        sim->sweep = q;
+        const gf_grid *g = &sim->grid;
+        q->ncol = (size_t)g->nx * (size_t)g->ny;
+        q->coltop = GF_NEW(double, q->ncol);
+        q->ncell_chunk = (g->ncell + GF_SWEEP_CELL_CHUNK - 1) / GF_SWEEP_CELL_CHUNK;
+        q->cell = GF_NEW(gf_sweep_chunk, q->ncell_chunk);
+        gf_status st = q->coltop && q->cell ? GF_OK : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+        if (q->cell)
+            for (size_t k = 0; k < q->ncell_chunk; k++) q->cell[k] = (gf_sweep_chunk){0};
+        if (st == GF_OK) st = gf_work_init(sim, &q->w);
+        if (st != GF_OK) {
+            gf_sweep_free(sim);
+            return st;
+        }
+        q->w.timed = true;
+        q->w.st = &sim->st;
+    }
+    if (sim->cap > q->cap) { // the per-particle arrays, for every index the sim may use
+        gf_free(q->disp, sizeof(double[3]) * q->cap);
+        GF_DELETE(q->active, q->cap);
+        GF_DELETE(q->tlast, q->cap);
+        q->cap = sim->cap;
+        q->disp = gf_alloc(sizeof(double[3]) * q->cap);
+        q->active = GF_NEW(uint8_t, q->cap);
+        q->tlast = GF_NEW(double, q->cap);
+        if (!q->disp || !q->active || !q->tlast) {
+            gf_sweep_free(sim);
+            return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+        }
+        memset(q->active, 0, q->cap);
+    }
+    if (q->threads == threads) return GF_OK;
+    gf_sweep_threads_free(q);
+    q->cand = GF_NEW(uint32_t *, threads);
+    q->cand_cap = GF_NEW(size_t, threads);
+    if (!q->cand || !q->cand_cap) {
+        gf_sweep_free(sim);
+        return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+    }
+    q->threads = threads;
+    return GF_OK;
+}
+
+// The stream of one move of spot k: (seed, its birth number, its move time).
+static void gf_sweep_seed(const gf_sim *sim, size_t k, gf_rng *r)
+{
+    uint64_t bits;
+    memcpy(&bits, &sim->snext[k], sizeof bits);
+    gf_rng_seed(r, sim->d.seed ^ 0x7377656570ull /* "sweep" */, (sim->sbirth[k] * 0x9e3779b97f4a7c15ull) ^ bits);
+}
+
+// Walk chunk c: its spots' moves up to t_end, recorded; positions read from
+// the window's start (nothing here writes a particle).
+static void gf_sweep_walk(gf_sim *sim, gf_sweep *q, size_t c, double t_end)
+{
+    gf_sweep_chunk *ch = &q->spot[c];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const gf_engine_defs *ed = &sim->d;
+    gf_rng rng;
+    gf_work w = {.rng = &rng, .coltop = q->coltop, .st = &ch->st};
+    const double f = sim->ball_frac;
+    const size_t end = (c + 1) * GF_SWEEP_SPOT_CHUNK < sim->ns ? (c + 1) * GF_SWEEP_SPOT_CHUNK : sim->ns;
+    for (size_t k = c * GF_SWEEP_SPOT_CHUNK; k < end; k++) {
+        double s[3] = {sim->sx[k], sim->sy[k], sim->sz[k]};
+        while (sim->snext[k] <= t_end) {
+            gf_sweep_seed(sim, k, &rng);
+            double n[3];
+            if (!gf_spot_walk(sim, &w, s, n)) {
+                q->dead[k] = 1;
+                break;
+            }
+            double v[3] = {n[0] - s[0], n[1] - s[1], n[2] - s[2]};
+            gf_sweep_move m = {.t = sim->snext[k]};
+            for (int a = 0; a < 3; a++) {
+                m.c[a] = s[a] + f * v[a];
+                m.u[a] = -v[a] * sim->inv_w;
+            }
+            ch->st.spot_moves++;
+            size_t p_ball = gf_ball_count(sim, m.c, sim->rs);
+            if (p_ball == 0 && n[2] > 0.0) { // SPEC 1.3 removal: no particle in reach
+                q->dead[k] = 1;
+                break;
+            }
+            if (p_ball > 0) {
+                // Sec. 3 influence weighting, as gf_spot_apply (on the window's start).
+                if (ed->weighting && m.c[2] >= ed->weighting_zmin) {
+                    double wf = ed->weighting_bulk_count / fmax((double)p_ball, ed->weighting_min_count);
+                    for (int a = 0; a < 3; a++) m.u[a] *= wf;
+                }
+                m.nmir = ed->walls == GF_WALLS_REFLECT ? sim->box.ops->mirrors(&sim->box, m.c, sim->rs, m.mir) : 0;
+                gf_sweep_move *mv = gf_sweep_grow(ch->mv, &ch->mv_cap, ch->nmv + 1, sizeof *ch->mv);
+                if (!mv) {
+                    ch->status = GF_ERR_NOMEM;
+                    return;
+                }
+                ch->mv = mv;
+                ch->mv[ch->nmv++] = m;
+            }
+            s[0] = n[0];
+            s[1] = n[1];
+            s[2] = n[2];
+            sim->snext[k] += gf_rng_exp(&rng, ed->move_rate);
+        }
+        sim->sx[k] = s[0];
+        sim->sy[k] = s[1];
+        sim->sz[k] = s[2];
+    }
+    if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
+}
+
+// The moves whose centre lies in a grid cell within reach (r_e) of cell
+// (cx, cy, cz), in cell then record order, into cand; returns their number.
+static size_t gf_sweep_near(const gf_sim *sim, const gf_sweep *q, int cx, int cy, int cz, uint32_t *cand)
+{
+    const gf_grid *g = &sim->grid;
+    const int R = (int)ceil(sim->re * g->inv_h);
+    int lo[3] = {cx - R, cy - R, cz - R}, hi[3] = {cx + R, cy + R, cz + R};
+    const int n[3] = {g->nx, g->ny, g->nz};
+    for (int a = 0; a < 3; a++) {
+        if (lo[a] < 0) lo[a] = 0;
+        if (hi[a] > n[a] - 1) hi[a] = n[a] - 1;
+    }
+    size_t m = 0;
+    const gf_celllist *cl = &q->bycell;
+    for (int z = lo[2]; z <= hi[2]; z++)
+        for (int y = lo[1]; y <= hi[1]; y++) {
+            size_t row = ((size_t)z * (size_t)g->ny + (size_t)y) * (size_t)g->nx;
+            for (size_t e = cl->start[row + (size_t)lo[0]]; e < cl->start[row + (size_t)hi[0] + 1]; e++)
+                cand[m++] = cl->idx[e];
+        }
+    return m;
+}
+
+// Gather chunk c: each particle of its cells moves by the sum of the u of
+// the moves within r_s of it (window-start positions), in place (it reads
+// no other particle); marks the active set and lists what moved.
+static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
+{
+    gf_sweep_chunk *ch = &q->cell[c];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const gf_grid *g = &sim->grid;
+    gf_pos *restrict p = sim->p;
+    ch->nlist = 0;
+    const size_t end = (c + 1) * GF_SWEEP_CELL_CHUNK < g->ncell ? (c + 1) * GF_SWEEP_CELL_CHUNK : g->ncell;
+    const double rs2 = sim->rs2, re2 = sim->re2;
+    double dz = 0.0;
+    for (size_t cell = c * GF_SWEEP_CELL_CHUNK; cell < end; cell++) {
+        const uint32_t cnt = g->count[cell];
+        if (cnt == 0) continue;
+        const uint32_t *slot = g->slot + cell * GF_CELL_CAP;
+        const int cx = (int)(cell % (size_t)g->nx), cy = (int)(cell / (size_t)g->nx % (size_t)g->ny);
+        const int cz = (int)(cell / ((size_t)g->nx * (size_t)g->ny));
+        size_t nc = gf_sweep_near(sim, q, cx, cy, cz, q->cand[t]);
+        const uint32_t *cand = q->cand[t];
+        uint32_t *list = gf_sweep_grow(ch->list, &ch->list_cap, ch->nlist + cnt, sizeof *ch->list);
+        if (!list) {
+            ch->status = GF_ERR_NOMEM;
+            return;
+        }
+        ch->list = list;
+        for (uint32_t k = 0; k < cnt; k++) {
+            const uint32_t i = slot[k];
+            double ux = 0.0, uy = 0.0, uz = 0.0, tl = -INFINITY;
+            uint8_t act = 0;
+            for (size_t e = 0; e < nc; e++) {
+                const gf_sweep_move *m = &q->mv[cand[e]];
+                double dx = p[i].x - m->c[0], dy = p[i].y - m->c[1], dzz = p[i].z - m->c[2];
+                double d2 = dx * dx + dy * dy + dzz * dzz;
+                if (!(d2 < re2)) continue;
+                act = 1;
+                tl = fmax(tl, m->t);
+                if (!(d2 < rs2)) continue;
+                // S(x) = 1 + the mirrored balls that also reach it (Sec. 4).
+                double sx = 1.0;
+                for (int k2 = 0; k2 < m->nmir; k2++) {
+                    double ex = p[i].x - m->mir[k2][0], ey = p[i].y - m->mir[k2][1], ez = p[i].z - m->mir[k2][2];
+                    sx += ex * ex + ey * ey + ez * ez < rs2;
+                }
+                ux += sx * m->u[0];
+                uy += sx * m->u[1];
+                uz += sx * m->u[2];
+            }
+            q->active[i] = act;
+            q->tlast[i] = tl;
+            if (ux == 0.0 && uy == 0.0 && uz == 0.0) continue;
+            p[i].x += ux;
+            p[i].y += uy;
+            p[i].z += uz;
+            dz += uz;
+            ch->list[ch->nlist++] = i;
+        }
+    }
+    ch->st.spot_dz += dz;
+    if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
+}
+
+// Sweep chunk c: the relax() displacement of each active particle of its
+// cells from the positions at the sweep's start (written to disp, applied
+// after every chunk has read).
+static void gf_sweep_relax(gf_sim *sim, gf_sweep *q, size_t c)
+{
+    gf_sweep_chunk *ch = &q->cell[c];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const gf_grid *g = &sim->grid;
+    const gf_pos *restrict p = sim->p;
+    const uint8_t *restrict act = q->active;
+    const double alpha = sim->alpha, half = 0.5 * sim->alpha;
+    ch->nlist = 0;
+    const size_t end = (c + 1) * GF_SWEEP_CELL_CHUNK < g->ncell ? (c + 1) * GF_SWEEP_CELL_CHUNK : g->ncell;
+    for (size_t cell = c * GF_SWEEP_CELL_CHUNK; cell < end; cell++) {
+        const uint32_t cnt = g->count[cell];
+        if (cnt == 0) continue;
+        const uint32_t *slot = g->slot + cell * GF_CELL_CAP;
+        uint32_t *list = gf_sweep_grow(ch->list, &ch->list_cap, ch->nlist + cnt, sizeof *ch->list);
+        if (!list) {
+            ch->status = GF_ERR_NOMEM;
+            return;
+        }
+        ch->list = list;
+        for (uint32_t k = 0; k < cnt; k++) {
+            const uint32_t i = slot[k];
+            if (!act[i]) continue;
+            const uint32_t *row = sim->nl + ((size_t)i << sim->nl_shift);
+            const double xi = p[i].x, yi = p[i].y, zi = p[i].z, ri = p[i].r;
+            double ax = 0.0, ay = 0.0, az = 0.0;
+            for (uint32_t e = 1; e <= row[0]; e++) {
+                const uint32_t j = row[e];
+                double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
+                double s = ri + p[j].r, r2 = dx * dx + dy * dy + dz * dz;
+                if (!(r2 < s * s) || !(r2 > 0.0)) continue;
+                double r = sqrt(r2), f = (act[j] ? half : alpha) * (s - r) / r;
+                ax += f * dx;
+                ay += f * dy;
+                az += f * dz;
+            }
+            gf_container_push(&sim->box, xi, yi, zi, ri, alpha, &ax, &ay, &az);
+            if (ax == 0.0 && ay == 0.0 && az == 0.0) continue;
+            q->disp[i][0] = ax;
+            q->disp[i][1] = ay;
+            q->disp[i][2] = az;
+            ch->list[ch->nlist++] = i;
+        }
+    }
+    if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
+}
+
+// Sweep chunk c's displacements applied (after every chunk has read).
+static void gf_sweep_move_chunk(gf_sim *sim, gf_sweep *q, size_t c)
+{
+    gf_sweep_chunk *ch = &q->cell[c];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    double dz = 0.0;
+    for (size_t k = 0; k < ch->nlist; k++) {
+        uint32_t i = ch->list[k];
+        sim->p[i].x += q->disp[i][0];
+        sim->p[i].y += q->disp[i][1];
+        sim->p[i].z += q->disp[i][2];
+        dz += q->disp[i][2];
+    }
+    ch->st.relax_dz += dz;
+    if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
+}
+
+// One thread, in chunk order: exits (timed by the last move that reached
+// the particle), cells, then the lists of those past their skin.
+static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
+{
+    gf_grid *g = &sim->grid;
+    gf_work *w = &q->w;
+    for (size_t c = 0; c < q->ncell_chunk; c++) {
+        gf_sweep_chunk *ch = &q->cell[c];
+        size_t keep = 0;
+        for (size_t k = 0; k < ch->nlist; k++) {
+            uint32_t i = ch->list[k];
+            w->t = q->tlast[i];
+            if (gf_sim_exit_check(sim, w, i)) continue;
+            if (w->exit_failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
+            gf_status st = gf_grid_update(g, i, sim->p[i].x, sim->p[i].y, sim->p[i].z);
+            if (st != GF_OK) return st;
+            ch->list[keep++] = i;
+        }
+        ch->nlist = keep;
+    }
+    for (size_t c = 0; sim->use_nlist && c < q->ncell_chunk; c++) {
+        const gf_sweep_chunk *ch = &q->cell[c];
+        for (size_t k = 0; k < ch->nlist; k++) {
+            uint32_t i = ch->list[k];
+            const gf_pos *p = &sim->p[i];
+            const gf_ref *a = &sim->p0[i];
+            double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
+            if (dx * dx + dy * dy + dz * dz > lim * lim) {
+                gf_status st = gf_nlist_refresh(sim, i);
+                if (st != GF_OK) return st;
+            }
+        }
+    }
+    return GF_OK;
+}
+
+static int gf_sweep_cmp_desc(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
+
+// Profiling: one parallel block's chunk times, and the serial time since the last.
+static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, double serial)
+{
+    gf_par_profile *f = &q->prof;
+    if (n > q->secs_cap) {
+        GF_DELETE(q->secs, q->secs_cap);
+        q->secs = GF_NEW(double, n);
+        q->secs_cap = q->secs ? n : 0;
+        if (!q->secs) return;
+    }
+    double work = 0.0;
+    for (size_t k = 0; k < n; k++) {
+        q->secs[k] = ch[k].seconds;
+        work += ch[k].seconds;
+    }
+    qsort(q->secs, n, sizeof(double), gf_sweep_cmp_desc); // LPT: heaviest first
+    f->colour_phases++;
+    f->barriers++;
+    f->blocks_run += n;
+    f->work_seconds += work + serial;
+    f->serial_seconds += serial;
+    f->span_seconds += (n ? q->secs[0] : 0.0) + serial;
+    for (int i = 0; i < GF_PAR_NPROJ; i++)
+        f->makespan_seconds[i] += gf_par_makespan(q->secs, n, gf_sweep_proj_threads[i]) + serial;
+}
+
+static gf_status gf_sweep_status(const gf_sweep_chunk *ch, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (ch[k].status != GF_OK) return gf_error_set(ch[k].status, "out of memory in the sweep engine");
+    return GF_OK;
+}
+
+// The walk: chunks of spots, then their records joined and binned by cell.
+static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
+{
+    const size_t nchunk = (sim->ns + GF_SWEEP_SPOT_CHUNK - 1) / GF_SWEEP_SPOT_CHUNK;
+    if (nchunk > q->spot_chunk_cap) {
+        size_t cap = nchunk + nchunk / 2 + 16;
+        gf_sweep_chunk *v = gf_realloc(q->spot, q->spot_chunk_cap * sizeof *v, cap * sizeof *v);
+        if (!v) return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+        for (size_t k = q->spot_chunk_cap; k < cap; k++) v[k] = (gf_sweep_chunk){0};
+        q->spot = v;
+        q->spot_chunk_cap = cap;
+    }
+    if (sim->ns > q->dead_cap) {
+        GF_DELETE(q->dead, q->dead_cap);
+        q->dead_cap = sim->ns + sim->ns / 2 + 64;
+        q->dead = GF_NEW(uint8_t, q->dead_cap);
+        if (!q->dead) {
+            q->dead_cap = 0;
+            return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu spots", sim->ns);
+        }
+    }
+    memset(q->dead, 0, sim->ns);
+    q->nspot_chunk = nchunk;
+    for (size_t c = 0; c < nchunk; c++) {
+        q->spot[c].nmv = 0;
+        q->spot[c].st = (gf_sim_stats){0};
+        q->spot[c].status = GF_OK;
+        q->spot[c].seconds = 0.0;
+    }
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nchunk > 1)
+#endif
+    for (size_t c = 0; c < nchunk; c++) gf_sweep_walk(sim, q, c, t_end);
+    (void)threads;
+    gf_status st = gf_sweep_status(q->spot, nchunk);
+    if (st != GF_OK) return st;
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    size_t total = 0;
+    for (size_t c = 0; c < nchunk; c++) total += q->spot[c].nmv;
+    gf_sweep_move *mv = gf_sweep_grow(q->mv, &q->mv_cap, total, sizeof *q->mv);
+    if (!mv) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", total);
+    q->mv = mv;
+    q->nmv = 0;
+    for (size_t c = 0; c < nchunk; c++) {
+        gf_par_add(&sim->st, &q->spot[c].st);
+        if (q->spot[c].nmv) memcpy(q->mv + q->nmv, q->spot[c].mv, q->spot[c].nmv * sizeof *q->mv);
+        q->nmv += q->spot[c].nmv;
+    }
+    const gf_grid *g = &sim->grid;
+    if ((st = gf_celllist_keys(&q->bycell, g->ncell, q->nmv)) != GF_OK) return st;
+    for (size_t m = 0; m < q->nmv; m++) q->bycell.cell[m] = gf_grid_cell(g, q->mv[m].c[0], q->mv[m].c[1], q->mv[m].c[2]);
+    gf_celllist_sort(&q->bycell, q->nmv);
+    for (int t = 0; t < q->threads; t++) {
+        uint32_t *cand = gf_sweep_grow(q->cand[t], &q->cand_cap[t], q->nmv + 1, sizeof(uint32_t));
+        if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
+        q->cand[t] = cand;
+    }
+    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, gf_clock_thread_cpu() - t0);
+    return GF_OK;
+}
+
+// Runs a block over the cell chunks: 0 gather, 1 relax, 2 apply.
+static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
+{
+    const size_t n = q->ncell_chunk;
+    const int threads = q->threads;
+    for (size_t c = 0; c < n; c++) {
+        q->cell[c].status = GF_OK;
+        q->cell[c].seconds = 0.0;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1)
+#endif
+    for (size_t c = 0; c < n; c++) {
+#ifdef _OPENMP
+        const int t = omp_get_thread_num();
+#else
+        const int t = 0;
+#endif
+        if (what == 0)
+            gf_sweep_displace(sim, q, t, c);
+        else if (what == 1)
+            gf_sweep_relax(sim, q, c);
+        else
+            gf_sweep_move_chunk(sim, q, c);
+    }
+    (void)threads;
+}
+
+static gf_status gf_sweep_counters(gf_sim *sim, gf_sweep *q)
+{
+    for (size_t c = 0; c < q->ncell_chunk; c++) {
+        gf_par_add(&sim->st, &q->cell[c].st);
+        q->cell[c].st = (gf_sim_stats){0};
+    }
+    return gf_sweep_status(q->cell, q->ncell_chunk);
+}
+
+gf_status gf_sim_sweep_window(gf_sim *sim)
+{
+    gf_status st = gf_sweep_make(sim);
+    if (st != GF_OK) return st;
+    gf_sweep *q = sim->sweep;
+    const gf_engine_defs *c = &sim->d;
+    const double window = c->window, t_end = sim->t_pending;
+    sim->t = t_end;
+    sim->pending = false;
+    sim->fstep++;
+    sim->st.events++;
+    const size_t nexit0 = sim->nexit;
+    if ((st = gf_spots_insert_window(sim, t_end, window)) != GF_OK) return st;
+    gf_par_column_tops(sim, q->coltop, q->ncol);
+    sim->grid.lazy_top = true; // top[] is redone after the window
+    st = gf_sweep_walk_all(sim, q, t_end);
+    if (st == GF_OK && q->nmv > 0) {
+        double t1 = sim->timing ? gf_clock_now() : 0.0;
+        gf_sweep_cells(sim, q, 0);
+        if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+        double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+        if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
+        if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0);
+        if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t1;
+        const int64_t sweeps = sim->no_relax || c->method == GF_RELAX_NONE ? 0 : c->sweeps;
+        double t2 = gf_clock_now();
+        for (int64_t s = 0; s < sweeps && st == GF_OK; s++) {
+            gf_sweep_cells(sim, q, 1);
+            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+            gf_sweep_cells(sim, q, 2);
+            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+            t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+            if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
+            if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0);
+            sim->st.relax_calls++;
+        }
+        sim->st.relax_seconds += gf_clock_now() - t2;
+    }
+    sim->grid.lazy_top = false;
+    gf_grid_recompute_top(&sim->grid);
+    if (st != GF_OK) return st;
+    if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_exit_cmp_time_id);
+    gf_spots_compact(sim, q->dead);
+    if (q->profiling) q->prof.profiled_tau += window;
+    return GF_OK;
+}
+
+void gf_sweep_set_profiling(gf_sim *sim, int on)
+{
+    if (gf_sweep_make(sim) != GF_OK) return;
+    sim->sweep->profiling = on != 0;
+    sim->sweep->prof = (gf_par_profile){0};
+}
+
+gf_par_profile gf_sweep_profile(const gf_sim *sim)
+{
+    gf_par_profile f = {0};
+    const gf_sweep *q = sim->sweep;
+    if (!q) return f;
+    f = q->prof;
+    f.blocks = q->ncell_chunk;
+    f.colours = 1;
+    f.phases = 1;
+    f.window = sim->d.window;
+    for (int i = 0; i < GF_PAR_NPROJ; i++) f.proj_threads[i] = gf_sweep_proj_threads[i];
+    return f;
+}
