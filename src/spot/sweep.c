@@ -51,7 +51,7 @@
 /// Spots per walk chunk and grid cells per gather chunk: the units of work
 /// (and of the profile), independent of the thread count.
 #define GF_SWEEP_SPOT_CHUNK 4
-#define GF_SWEEP_CELL_CHUNK 16
+#define GF_SWEEP_CELL_CHUNK 4
 /// Worker counts the speedup is projected for (as the other engines').
 static const int gf_sweep_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
 
@@ -466,7 +466,7 @@ static int gf_sweep_cmp_desc(const void *a, const void *b)
 }
 
 // Profiling: one parallel block's chunk times, and the serial time since the last.
-static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, double serial)
+static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, double serial, int part)
 {
     gf_par_profile *f = &q->prof;
     if (n > q->secs_cap) {
@@ -485,6 +485,7 @@ static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, dou
     f->barriers++;
     f->blocks_run += n;
     f->work_seconds += work + serial;
+    if (part >= 0) f->part_seconds[part] += work;
     f->serial_seconds += serial;
     f->span_seconds += (n ? q->secs[0] : 0.0) + serial;
     for (int i = 0; i < GF_PAR_NPROJ; i++)
@@ -556,7 +557,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
         if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
         q->cand[t] = cand;
     }
-    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, gf_clock_thread_cpu() - t0);
+    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, gf_clock_thread_cpu() - t0, 0);
     return GF_OK;
 }
 
@@ -616,21 +617,21 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     if (st == GF_OK && q->nmv > 0) {
         double t1 = sim->timing ? gf_clock_now() : 0.0;
         gf_sweep_cells(sim, q, 0);
-        if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+        if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 1);
         double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
         if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-        if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0);
+        if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0, -1);
         if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t1;
         const int64_t sweeps = sim->no_relax || c->method == GF_RELAX_NONE ? 0 : c->sweeps;
         double t2 = gf_clock_now();
         for (int64_t s = 0; s < sweeps && st == GF_OK; s++) {
             gf_sweep_cells(sim, q, 1);
-            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 2);
             gf_sweep_cells(sim, q, 2);
-            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0);
+            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 2);
             t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
             if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-            if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0);
+            if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0, -1);
             sim->st.relax_calls++;
         }
         sim->st.relax_seconds += gf_clock_now() - t2;
