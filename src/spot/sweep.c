@@ -23,8 +23,10 @@
 //    of relax() (SPEC 1.3: alpha delta / 2 each for two active particles,
 //    alpha delta for an active one against a fixed one, alpha (r - gap) from
 //    a wall), each reading the positions of the sweep's start;
-// 5. bookkeeping (one thread, in chunk order): exits (each timed by the last
-//    move that reached the particle), cells, neighbour lists.
+// 5. bookkeeping: the chunks flag, side by side, the particles they moved
+//    below the exit plane, into another cell or past their skin; one thread
+//    then does, in chunk order, their exits (each timed by the last move that
+//    reached the particle), cells and neighbour lists.
 //
 // Determinism: every sum runs in an order fixed by the state (cells, slots,
 // rows, chunks of a fixed size), the records of the spot chunks are joined in
@@ -68,8 +70,11 @@ typedef struct gf_sweep_move {
 typedef struct gf_sweep_chunk {
     gf_sweep_move *mv; ///< walk: its spots' moves, in spot then time order
     size_t nmv, mv_cap;
-    uint32_t *list;    ///< gather, sweeps: the particles it moved, in cell and slot order
+    uint32_t *list;    ///< sweeps: the particles it is to move, in cell and slot order
     size_t nlist, list_cap;
+    uint32_t *todo;    ///< the particles it moved that the bookkeeping must see (below the exit
+                       ///< plane, into another cell, past their skin), in cell and slot order
+    size_t ntodo, todo_cap;
     gf_sim_stats st;
     gf_status status;
     double seconds;
@@ -105,6 +110,7 @@ static void gf_sweep_chunk_free(gf_sweep_chunk *c)
 {
     GF_DELETE(c->mv, c->mv_cap);
     GF_DELETE(c->list, c->list_cap);
+    GF_DELETE(c->todo, c->todo_cap);
     *c = (gf_sweep_chunk){0};
 }
 
@@ -272,6 +278,9 @@ static void gf_sweep_walk(gf_sim *sim, gf_sweep *q, size_t c, double t_end)
 
 // The moves whose centre lies in a grid cell within reach (r_e) of cell
 // (cx, cy, cz), in cell then record order, into cand; returns their number.
+// Those farther than r_e + h from the cell's centre are left out (no point
+// of the cell is within r_e of them), except around an edge cell, which
+// also holds the points clamped into it from beyond the grid.
 static size_t gf_sweep_near(const gf_sim *sim, const gf_sweep *q, int cx, int cy, int cz, uint32_t *cand)
 {
     const gf_grid *g = &sim->grid;
@@ -282,15 +291,35 @@ static size_t gf_sweep_near(const gf_sim *sim, const gf_sweep *q, int cx, int cy
         if (lo[a] < 0) lo[a] = 0;
         if (hi[a] > n[a] - 1) hi[a] = n[a] - 1;
     }
+    const bool edge = cx == 0 || cy == 0 || cz == 0 || cx == g->nx - 1 || cy == g->ny - 1 || cz == g->nz - 1;
+    const double ctr[3] = {g->ox + (cx + 0.5) * g->h, g->oy + (cy + 0.5) * g->h, g->oz + (cz + 0.5) * g->h};
+    const double far2 = (sim->re + g->h) * (sim->re + g->h);
     size_t m = 0;
     const gf_celllist *cl = &q->bycell;
     for (int z = lo[2]; z <= hi[2]; z++)
         for (int y = lo[1]; y <= hi[1]; y++) {
             size_t row = ((size_t)z * (size_t)g->ny + (size_t)y) * (size_t)g->nx;
-            for (size_t e = cl->start[row + (size_t)lo[0]]; e < cl->start[row + (size_t)hi[0] + 1]; e++)
-                cand[m++] = cl->idx[e];
+            for (size_t e = cl->start[row + (size_t)lo[0]]; e < cl->start[row + (size_t)hi[0] + 1]; e++) {
+                const double *c = q->mv[cl->idx[e]].c;
+                double dx = c[0] - ctr[0], dy = c[1] - ctr[1], dz = c[2] - ctr[2];
+                cand[m] = cl->idx[e];
+                m += edge || dx * dx + dy * dy + dz * dz < far2;
+            }
         }
     return m;
+}
+
+// Whether particle i, just moved, needs the one-thread bookkeeping: below
+// the exit plane, in another cell, or past its skin (a read-only test, so
+// the chunks make it side by side and the bookkeeping sees only these).
+static inline bool gf_sweep_needs_book(const gf_sim *sim, uint32_t i)
+{
+    const gf_pos *p = &sim->p[i];
+    if (p->z < sim->box.z_exit || gf_grid_cell(&sim->grid, p->x, p->y, p->z) != sim->grid.cell_of[i]) return true;
+    if (!sim->use_nlist) return false;
+    const gf_ref *a = &sim->p0[i];
+    double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
+    return dx * dx + dy * dy + dz * dz > lim * lim;
 }
 
 // Gather chunk c: each particle of its cells moves by the sum of the u of
@@ -302,7 +331,7 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     const gf_grid *g = &sim->grid;
     gf_pos *restrict p = sim->p;
-    ch->nlist = 0;
+    ch->ntodo = 0;
     const size_t end = (c + 1) * GF_SWEEP_CELL_CHUNK < g->ncell ? (c + 1) * GF_SWEEP_CELL_CHUNK : g->ncell;
     const double rs2 = sim->rs2, re2 = sim->re2;
     double dz = 0.0;
@@ -314,12 +343,12 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
         const int cz = (int)(cell / ((size_t)g->nx * (size_t)g->ny));
         size_t nc = gf_sweep_near(sim, q, cx, cy, cz, q->cand[t]);
         const uint32_t *cand = q->cand[t];
-        uint32_t *list = gf_sweep_grow(ch->list, &ch->list_cap, ch->nlist + cnt, sizeof *ch->list);
-        if (!list) {
+        uint32_t *todo = gf_sweep_grow(ch->todo, &ch->todo_cap, ch->ntodo + cnt, sizeof *ch->todo);
+        if (!todo) {
             ch->status = GF_ERR_NOMEM;
             return;
         }
-        ch->list = list;
+        ch->todo = todo;
         for (uint32_t k = 0; k < cnt; k++) {
             const uint32_t i = slot[k];
             double ux = 0.0, uy = 0.0, uz = 0.0, tl = -INFINITY;
@@ -349,7 +378,7 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
             p[i].y += uy;
             p[i].z += uz;
             dz += uz;
-            ch->list[ch->nlist++] = i;
+            if (gf_sweep_needs_book(sim, i)) ch->todo[ch->ntodo++] = i;
         }
     }
     ch->st.spot_dz += dz;
@@ -412,41 +441,48 @@ static void gf_sweep_move_chunk(gf_sim *sim, gf_sweep *q, size_t c)
     gf_sweep_chunk *ch = &q->cell[c];
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     double dz = 0.0;
+    ch->ntodo = 0;
+    uint32_t *todo = gf_sweep_grow(ch->todo, &ch->todo_cap, ch->nlist, sizeof *ch->todo);
+    if (!todo) {
+        ch->status = GF_ERR_NOMEM;
+        return;
+    }
+    ch->todo = todo;
     for (size_t k = 0; k < ch->nlist; k++) {
         uint32_t i = ch->list[k];
         sim->p[i].x += q->disp[i][0];
         sim->p[i].y += q->disp[i][1];
         sim->p[i].z += q->disp[i][2];
         dz += q->disp[i][2];
+        if (gf_sweep_needs_book(sim, i)) todo[ch->ntodo++] = i;
     }
     ch->st.relax_dz += dz;
     if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
 }
 
-// One thread, in chunk order: exits (timed by the last move that reached
-// the particle), cells, then the lists of those past their skin.
+// One thread, in chunk order, over the particles the chunks flagged: exits
+// (timed by the last move that reached the particle), cells, then the lists
+// of those past their skin.
 static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
 {
     gf_grid *g = &sim->grid;
     gf_work *w = &q->w;
     for (size_t c = 0; c < q->ncell_chunk; c++) {
-        gf_sweep_chunk *ch = &q->cell[c];
-        size_t keep = 0;
-        for (size_t k = 0; k < ch->nlist; k++) {
-            uint32_t i = ch->list[k];
+        const gf_sweep_chunk *ch = &q->cell[c];
+        for (size_t k = 0; k < ch->ntodo; k++) {
+            uint32_t i = ch->todo[k];
             w->t = q->tlast[i];
             if (gf_sim_exit_check(sim, w, i)) continue;
             if (w->exit_failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
             gf_status st = gf_grid_update(g, i, sim->p[i].x, sim->p[i].y, sim->p[i].z);
             if (st != GF_OK) return st;
-            ch->list[keep++] = i;
         }
-        ch->nlist = keep;
     }
     for (size_t c = 0; sim->use_nlist && c < q->ncell_chunk; c++) {
         const gf_sweep_chunk *ch = &q->cell[c];
-        for (size_t k = 0; k < ch->nlist; k++) {
-            uint32_t i = ch->list[k];
+        for (size_t k = 0; k < ch->ntodo; k++) {
+            uint32_t i = ch->todo[k];
+            if (!sim->alive[i]) continue;
             const gf_pos *p = &sim->p[i];
             const gf_ref *a = &sim->p0[i];
             double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
