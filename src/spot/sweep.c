@@ -57,19 +57,22 @@
 /// Worker counts the speedup is projected for (as the other engines').
 static const int gf_sweep_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
 
-/// One recorded move.
+/// One recorded move (64 bytes: the gather streams through them).
 typedef struct gf_sweep_move {
-    double t;    ///< its time
-    double c[3]; ///< its ball's centre
-    double u[3]; ///< what it gives each particle within r_s (weighting included)
-    int nmir;    ///< mirror centres (walls = reflect, Sec. 4)
-    double mir[GF_WALL_HITS][3];
+    double t;      ///< its time
+    double c[3];   ///< its ball's centre
+    double u[3];   ///< what it gives each particle within r_s (weighting included)
+    uint32_t mir;  ///< its mirror centres (walls = reflect, Sec. 4): mirs[mir, mir + nmir)
+    int32_t nmir;
 } gf_sweep_move;
 
 /// A chunk of spots (walk) or of cells (gather, sweeps): its output and time.
 typedef struct gf_sweep_chunk {
     gf_sweep_move *mv; ///< walk: its spots' moves, in spot then time order
     size_t nmv, mv_cap;
+    double (*mirs)[3]; ///< walk: their mirror centres
+    size_t nmirs, mirs_cap;
+    size_t at, mir_at; ///< walk: where its moves and mirrors go in the window's arrays
     uint32_t *list;    ///< sweeps: the particles it is to move, in cell and slot order
     size_t nlist, list_cap;
     uint32_t *todo;    ///< the particles it moved that the bookkeeping must see (below the exit
@@ -88,6 +91,8 @@ typedef struct gf_sweep {
     gf_sweep_chunk *cell; ///< gather and sweep chunks
     gf_sweep_move *mv;    ///< the window's moves, joined in chunk order
     size_t nmv, mv_cap;
+    double (*mirs)[3];    ///< their mirror centres
+    size_t nmirs, mirs_cap;
     gf_celllist bycell;   ///< moves by the grid cell of their centre
     uint32_t **cand;      ///< per thread: the moves near a cell
     size_t *cand_cap;
@@ -109,6 +114,7 @@ typedef struct gf_sweep {
 static void gf_sweep_chunk_free(gf_sweep_chunk *c)
 {
     GF_DELETE(c->mv, c->mv_cap);
+    gf_free(c->mirs, sizeof(double[3]) * c->mirs_cap);
     GF_DELETE(c->list, c->list_cap);
     GF_DELETE(c->todo, c->todo_cap);
     *c = (gf_sweep_chunk){0};
@@ -134,6 +140,7 @@ void gf_sweep_free(gf_sim *sim)
     for (size_t k = 0; k < q->ncell_chunk; k++) gf_sweep_chunk_free(&q->cell[k]);
     GF_DELETE(q->cell, q->ncell_chunk);
     GF_DELETE(q->mv, q->mv_cap);
+    gf_free(q->mirs, sizeof(double[3]) * q->mirs_cap);
     gf_celllist_free(&q->bycell);
     gf_free(q->disp, sizeof(double[3]) * q->cap);
     GF_DELETE(q->active, q->cap);
@@ -255,7 +262,19 @@ static void gf_sweep_walk(gf_sim *sim, gf_sweep *q, size_t c, double t_end)
                     double wf = ed->weighting_bulk_count / fmax((double)p_ball, ed->weighting_min_count);
                     for (int a = 0; a < 3; a++) m.u[a] *= wf;
                 }
-                m.nmir = ed->walls == GF_WALLS_REFLECT ? sim->box.ops->mirrors(&sim->box, m.c, sim->rs, m.mir) : 0;
+                if (ed->walls == GF_WALLS_REFLECT) {
+                    double mir[GF_WALL_HITS][3];
+                    m.nmir = sim->box.ops->mirrors(&sim->box, m.c, sim->rs, mir);
+                    double(*ms)[3] = gf_sweep_grow(ch->mirs, &ch->mirs_cap, ch->nmirs + (size_t)m.nmir, sizeof *ch->mirs);
+                    if (!ms) {
+                        ch->status = GF_ERR_NOMEM;
+                        return;
+                    }
+                    ch->mirs = ms;
+                    m.mir = (uint32_t)ch->nmirs;
+                    memcpy(ch->mirs + ch->nmirs, mir, sizeof(double[3]) * (size_t)m.nmir);
+                    ch->nmirs += (size_t)m.nmir;
+                }
                 gf_sweep_move *mv = gf_sweep_grow(ch->mv, &ch->mv_cap, ch->nmv + 1, sizeof *ch->mv);
                 if (!mv) {
                     ch->status = GF_ERR_NOMEM;
@@ -364,7 +383,8 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
                 // S(x) = 1 + the mirrored balls that also reach it (Sec. 4).
                 double sx = 1.0;
                 for (int k2 = 0; k2 < m->nmir; k2++) {
-                    double ex = p[i].x - m->mir[k2][0], ey = p[i].y - m->mir[k2][1], ez = p[i].z - m->mir[k2][2];
+                    const double *mc = q->mirs[m->mir + (uint32_t)k2];
+                    double ex = p[i].x - mc[0], ey = p[i].y - mc[1], ez = p[i].z - mc[2];
                     sx += ex * ex + ey * ey + ez * ez < rs2;
                 }
                 ux += sx * m->u[0];
@@ -560,6 +580,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     q->nspot_chunk = nchunk;
     for (size_t c = 0; c < nchunk; c++) {
         q->spot[c].nmv = 0;
+        q->spot[c].nmirs = 0;
         q->spot[c].st = (gf_sim_stats){0};
         q->spot[c].status = GF_OK;
         q->spot[c].seconds = 0.0;
@@ -572,28 +593,51 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     (void)threads;
     gf_status st = gf_sweep_status(q->spot, nchunk);
     if (st != GF_OK) return st;
+    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, 0.0, 0);
+    // The join: each chunk's moves copied to their place (side by side), then
+    // binned by the cell of their centre.
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-    size_t total = 0;
-    for (size_t c = 0; c < nchunk; c++) total += q->spot[c].nmv;
-    gf_sweep_move *mv = gf_sweep_grow(q->mv, &q->mv_cap, total, sizeof *q->mv);
-    if (!mv) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", total);
-    q->mv = mv;
-    q->nmv = 0;
+    size_t total = 0, mirs = 0;
     for (size_t c = 0; c < nchunk; c++) {
+        q->spot[c].at = total;
+        q->spot[c].mir_at = mirs;
+        total += q->spot[c].nmv;
+        mirs += q->spot[c].nmirs;
         gf_par_add(&sim->st, &q->spot[c].st);
-        if (q->spot[c].nmv) memcpy(q->mv + q->nmv, q->spot[c].mv, q->spot[c].nmv * sizeof *q->mv);
-        q->nmv += q->spot[c].nmv;
     }
+    gf_sweep_move *mv = gf_sweep_grow(q->mv, &q->mv_cap, total, sizeof *q->mv);
+    if (mv) q->mv = mv;
+    double(*ms)[3] = mv ? gf_sweep_grow(q->mirs, &q->mirs_cap, mirs, sizeof *q->mirs) : NULL;
+    if (ms) q->mirs = ms;
     const gf_grid *g = &sim->grid;
-    if ((st = gf_celllist_keys(&q->bycell, g->ncell, q->nmv)) != GF_OK) return st;
-    for (size_t m = 0; m < q->nmv; m++) q->bycell.cell[m] = gf_grid_cell(g, q->mv[m].c[0], q->mv[m].c[1], q->mv[m].c[2]);
+    if (!mv || !ms) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", total);
+    if ((st = gf_celllist_keys(&q->bycell, g->ncell, total)) != GF_OK) return st;
+    q->nmv = total;
+    q->nmirs = mirs;
+    double serial = q->profiling ? gf_clock_thread_cpu() - t0 : 0.0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && nchunk > 1)
+#endif
+    for (size_t c = 0; c < nchunk; c++) {
+        gf_sweep_chunk *ch = &q->spot[c];
+        double t1 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+        for (size_t k = 0; k < ch->nmv; k++) {
+            gf_sweep_move m = ch->mv[k];
+            m.mir += (uint32_t)ch->mir_at;
+            q->mv[ch->at + k] = m;
+            q->bycell.cell[ch->at + k] = gf_grid_cell(g, m.c[0], m.c[1], m.c[2]);
+        }
+        if (ch->nmirs) memcpy(q->mirs + ch->mir_at, ch->mirs, sizeof(double[3]) * ch->nmirs);
+        if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t1;
+    }
+    t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     gf_celllist_sort(&q->bycell, q->nmv);
     for (int t = 0; t < q->threads; t++) {
         uint32_t *cand = gf_sweep_grow(q->cand[t], &q->cand_cap[t], q->nmv + 1, sizeof(uint32_t));
         if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
         q->cand[t] = cand;
     }
-    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, gf_clock_thread_cpu() - t0, 0);
+    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, serial + gf_clock_thread_cpu() - t0, 0);
     return GF_OK;
 }
 
