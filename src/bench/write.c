@@ -46,6 +46,7 @@ static void gf_bench_blocks_json(gf_json *j, const char *prefix, const gf_par_pr
         gf_json_fixed(j, GF_KEY("walk_fraction"), gf_bench_ratio(f->part_seconds[0], f->work_seconds), 4);
         gf_json_fixed(j, GF_KEY("gather_fraction"), gf_bench_ratio(f->part_seconds[1], f->work_seconds), 4);
         gf_json_fixed(j, GF_KEY("sweeps_fraction"), gf_bench_ratio(f->part_seconds[2], f->work_seconds), 4);
+        gf_json_fixed(j, GF_KEY("lists_fraction"), gf_bench_ratio(f->part_seconds[3], f->work_seconds), 4);
     }
     for (int i = 0; i < GF_PAR_NPROJ; i++) {
         char name[48];

@@ -231,6 +231,11 @@ gf_status gf_nlist_slots(gf_sim *sim);
 /// pairs are redone (its row and its old and new neighbours' rows).
 gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i);
 
+/// Fills row i alone by the listing rule from the current references (the
+/// rows naming i are left as they are): the sweep engine's batched refresh,
+/// which rewrites those itself. Writes row i only.
+gf_status gf_nlist_find_row(gf_sim *sim, uint32_t i);
+
 /// Takes particle i out of every list (it has exited).
 void gf_nlist_drop(gf_sim *sim, uint32_t i);
 

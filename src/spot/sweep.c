@@ -54,6 +54,9 @@
 /// (and of the profile), independent of the thread count.
 #define GF_SWEEP_SPOT_CHUNK 4
 #define GF_SWEEP_CELL_CHUNK 4
+/// Crossers per search task and rows per merge task of a batch of list refreshes.
+#define GF_SWEEP_FIND_GROUP 4
+#define GF_SWEEP_MERGE_GROUP 32
 /// Worker counts the speedup is projected for (as the other engines').
 static const int gf_sweep_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
 
@@ -100,6 +103,20 @@ typedef struct gf_sweep {
     double (*disp)[3];    ///< per particle: the sweep's displacement
     uint8_t *active;      ///< per particle: within r_e of a move of the window
     double *tlast;        ///< per particle: time of the last move that reached it
+    uint8_t *crossing;    ///< per particle: 1 while it is among the batch's crossers
+    uint32_t *gain;       ///< per particle: 1 + its entry in aff[] while the batch rewrites its row, else 0
+    uint32_t *cross;      ///< the batch's crossers (past their skin), in chunk order
+    size_t cross_cap;
+    uint32_t (*pairs)[2]; ///< the batch's (row j, crosser i or UINT32_MAX) to add to or filter from j's row
+    size_t pairs_cap;
+    uint32_t *aff;        ///< the rows the batch rewrites, first seen first
+    size_t *aff_at;       ///< per aff entry: where its crossers start in adds[] (naff + 1 entries)
+    uint32_t *adds;       ///< the crossers each aff row gains, grouped by row
+    size_t aff_cap, aff_at_cap, adds_cap;
+    gf_status *find_st;   ///< per crosser: its row's search
+    size_t find_cap;
+    double *fsecs, *msecs; ///< profiling: the last batch's times per crosser's search and per row's merge
+    size_t fsecs_cap, msecs_cap, nf, nm;
     uint8_t *dead;
     size_t dead_cap;
     double *coltop;
@@ -145,6 +162,16 @@ void gf_sweep_free(gf_sim *sim)
     gf_free(q->disp, sizeof(double[3]) * q->cap);
     GF_DELETE(q->active, q->cap);
     GF_DELETE(q->tlast, q->cap);
+    GF_DELETE(q->crossing, q->cap);
+    GF_DELETE(q->gain, q->cap);
+    GF_DELETE(q->cross, q->cross_cap);
+    gf_free(q->pairs, sizeof *q->pairs * q->pairs_cap);
+    GF_DELETE(q->aff, q->aff_cap);
+    GF_DELETE(q->aff_at, q->aff_at_cap);
+    GF_DELETE(q->adds, q->adds_cap);
+    GF_DELETE(q->find_st, q->find_cap);
+    GF_DELETE(q->fsecs, q->fsecs_cap);
+    GF_DELETE(q->msecs, q->msecs_cap);
     GF_DELETE(q->dead, q->dead_cap);
     GF_DELETE(q->coltop, q->ncol);
     GF_DELETE(q->secs, q->secs_cap);
@@ -194,15 +221,21 @@ static gf_status gf_sweep_make(gf_sim *sim)
         gf_free(q->disp, sizeof(double[3]) * q->cap);
         GF_DELETE(q->active, q->cap);
         GF_DELETE(q->tlast, q->cap);
+        GF_DELETE(q->crossing, q->cap);
+        GF_DELETE(q->gain, q->cap);
         q->cap = sim->cap;
         q->disp = gf_alloc(sizeof(double[3]) * q->cap);
         q->active = GF_NEW(uint8_t, q->cap);
         q->tlast = GF_NEW(double, q->cap);
-        if (!q->disp || !q->active || !q->tlast) {
+        q->crossing = GF_NEW(uint8_t, q->cap);
+        q->gain = GF_NEW(uint32_t, q->cap);
+        if (!q->disp || !q->active || !q->tlast || !q->crossing || !q->gain) {
             gf_sweep_free(sim);
             return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         }
         memset(q->active, 0, q->cap);
+        memset(q->crossing, 0, q->cap);
+        memset(q->gain, 0, q->cap * sizeof *q->gain);
     }
     if (q->threads == threads) return GF_OK;
     gf_sweep_threads_free(q);
@@ -480,6 +513,161 @@ static void gf_sweep_move_chunk(gf_sim *sim, gf_sweep *q, size_t c)
     if (q->profiling) ch->seconds = gf_clock_thread_cpu() - t0;
 }
 
+// Grows a batch array `arr` (capacity *cap) to hold `need`, through the
+// function's `void *grown`; false when out of memory (the array kept).
+#define GF_SWEEP_ROOM(arr, cap, need) \
+    ((grown = gf_sweep_grow((arr), (cap), (need), sizeof *(arr))) != NULL ? ((arr) = grown, true) : false)
+
+// Row aff[a] rewritten: its crossers dropped, the crossers that list it now
+// (adds[aff_at[a], aff_at[a + 1])) merged in, in index order.
+static gf_status gf_sweep_row_merge(gf_sim *sim, gf_sweep *q, size_t a, size_t slots)
+{
+    uint32_t *row = sim->nl + ((size_t)q->aff[a] << sim->nl_shift);
+    uint32_t *add = q->adds + q->aff_at[a];
+    const size_t nadd = q->aff_at[a + 1] - q->aff_at[a];
+    for (size_t x = 1; x < nadd; x++) // (a handful: insertion sort)
+        for (size_t y = x; y > 0 && add[y - 1] > add[y]; y--) {
+            uint32_t t = add[y];
+            add[y] = add[y - 1];
+            add[y - 1] = t;
+        }
+    uint32_t keep[GF_NL_CAP_MAX];
+    size_t nk = 0;
+    for (uint32_t e = 1; e <= row[0]; e++)
+        if (!q->crossing[row[e]]) keep[nk++] = row[e];
+    if (nk + nadd > slots - 1) return GF_ERR_STATE;
+    size_t x = 0, y = 0, n = 0;
+    while (x < nk || y < nadd) row[1 + n++] = y == nadd || (x < nk && keep[x] < add[y]) ? keep[x++] : add[y++];
+    row[0] = (uint32_t)n;
+    return GF_OK;
+}
+
+// The neighbour-list refreshes of the particles the chunks flagged that went
+// past their skin, as a batch. A row lists exactly the live j with
+// |p0_i - p0_j| below the listing distance (nlist.c): a function of the
+// references alone, so the batch leaves the rows one gf_nlist_refresh after
+// another would: every crosser's reference is moved, its row found afresh
+// (side by side: each writes its own row), and every other row that named a
+// crosser or names one now drops the crossers and takes the ones that list
+// it (side by side, a row each). What stays on one thread is listing the
+// pairs and grouping them by row.
+static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
+{
+    const int threads = q->threads;
+    void *grown;
+    q->nf = q->nm = 0;
+    size_t nc = 0;
+    for (size_t c = 0; c < q->ncell_chunk; c++) {
+        const gf_sweep_chunk *ch = &q->cell[c];
+        for (size_t k = 0; k < ch->ntodo; k++) {
+            uint32_t i = ch->todo[k];
+            if (!sim->alive[i] || q->crossing[i]) continue;
+            const gf_pos *p = &sim->p[i];
+            const gf_ref *a = &sim->p0[i];
+            double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
+            if (!(dx * dx + dy * dy + dz * dz > lim * lim)) continue;
+            if (!GF_SWEEP_ROOM(q->cross, &q->cross_cap, nc + 1)) {
+                for (size_t k2 = 0; k2 < nc; k2++) q->crossing[q->cross[k2]] = 0;
+                return gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
+            }
+            q->cross[nc++] = i;
+            q->crossing[i] = 1;
+        }
+    }
+    if (nc == 0) return GF_OK;
+    const unsigned shift = sim->nl_shift;
+    const size_t slots = (size_t)1 << shift;
+    gf_status st = GF_OK;
+    // The rows that named a crosser (before), then those that will.
+    size_t np = 0;
+    if (!GF_SWEEP_ROOM(q->pairs, &q->pairs_cap, 2 * nc * slots) || !GF_SWEEP_ROOM(q->find_st, &q->find_cap, nc) ||
+        (q->profiling && !GF_SWEEP_ROOM(q->fsecs, &q->fsecs_cap, nc)))
+        st = gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
+    for (size_t k = 0; st == GF_OK && k < nc; k++) {
+        const uint32_t *row = sim->nl + ((size_t)q->cross[k] << shift);
+        for (uint32_t e = 1; e <= row[0]; e++)
+            if (!q->crossing[row[e]]) {
+                q->pairs[np][0] = row[e];
+                q->pairs[np++][1] = UINT32_MAX;
+            }
+    }
+    if (st == GF_OK) {
+        for (size_t k = 0; k < nc; k++) {
+            uint32_t i = q->cross[k];
+            sim->p0[i].x = (float)sim->p[i].x;
+            sim->p0[i].y = (float)sim->p[i].y;
+            sim->p0[i].z = (float)sim->p[i].z;
+        }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 2 * GF_SWEEP_FIND_GROUP)
+#endif
+        for (size_t g = 0; g < (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP; g++) {
+            double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+            for (size_t k = g * GF_SWEEP_FIND_GROUP; k < nc && k < (g + 1) * GF_SWEEP_FIND_GROUP; k++)
+                q->find_st[k] = gf_nlist_find_row(sim, q->cross[k]);
+            if (q->profiling) q->fsecs[g] = gf_clock_thread_cpu() - t0;
+        }
+        if (q->profiling) q->nf = (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP;
+        for (size_t k = 0; k < nc && st == GF_OK; k++)
+            if (q->find_st[k] != GF_OK) st = gf_nlist_find_row(sim, q->cross[k]); // (again, for its message)
+    }
+    for (size_t k = 0; st == GF_OK && k < nc; k++) {
+        const uint32_t *row = sim->nl + ((size_t)q->cross[k] << shift);
+        for (uint32_t e = 1; e <= row[0]; e++)
+            if (!q->crossing[row[e]]) {
+                q->pairs[np][0] = row[e];
+                q->pairs[np++][1] = q->cross[k];
+            }
+    }
+    // Grouped by row: the rows in the order first seen, each's crossers in pair order.
+    size_t naff = 0;
+    for (size_t e = 0; st == GF_OK && e < np; e++) {
+        uint32_t j = q->pairs[e][0];
+        if (q->gain[j] == 0) {
+            if (!GF_SWEEP_ROOM(q->aff, &q->aff_cap, naff + 1)) {
+                st = gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
+                break;
+            }
+            q->aff[naff++] = j;
+            q->gain[j] = (uint32_t)naff;
+        }
+    }
+    // Each row's crossers counted, placed (a counting sort by row), then
+    // each row rewritten: its crossers dropped, those that list it merged in.
+    if (st == GF_OK && (!GF_SWEEP_ROOM(q->aff_at, &q->aff_at_cap, naff + 1) ||
+                        !GF_SWEEP_ROOM(q->adds, &q->adds_cap, np) ||
+                        !GF_SWEEP_ROOM(q->find_st, &q->find_cap, naff) ||
+                        (q->profiling && !GF_SWEEP_ROOM(q->msecs, &q->msecs_cap, naff))))
+        st = gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
+    if (st == GF_OK) {
+        memset(q->aff_at, 0, (naff + 1) * sizeof *q->aff_at);
+        for (size_t e = 0; e < np; e++)
+            if (q->pairs[e][1] != UINT32_MAX) q->aff_at[q->gain[q->pairs[e][0]]]++;
+        for (size_t a = 0; a < naff; a++) q->aff_at[a + 1] += q->aff_at[a];
+        for (size_t e = 0; e < np; e++)
+            if (q->pairs[e][1] != UINT32_MAX) q->adds[q->aff_at[q->gain[q->pairs[e][0]] - 1]++] = q->pairs[e][1];
+        for (size_t a = naff; a > 0; a--) q->aff_at[a] = q->aff_at[a - 1];
+        q->aff_at[0] = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && naff > 2 * GF_SWEEP_MERGE_GROUP)
+#endif
+        for (size_t g = 0; g < (naff + GF_SWEEP_MERGE_GROUP - 1) / GF_SWEEP_MERGE_GROUP; g++) {
+            double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+            for (size_t a = g * GF_SWEEP_MERGE_GROUP; a < naff && a < (g + 1) * GF_SWEEP_MERGE_GROUP; a++)
+                q->find_st[a] = gf_sweep_row_merge(sim, q, a, slots);
+            if (q->profiling) q->msecs[g] = gf_clock_thread_cpu() - t0;
+        }
+        if (q->profiling) q->nm = (naff + GF_SWEEP_MERGE_GROUP - 1) / GF_SWEEP_MERGE_GROUP;
+        for (size_t a = 0; a < naff && st == GF_OK; a++)
+            if (q->find_st[a] != GF_OK)
+                st = gf_error_set(GF_ERR_STATE, "particle %lld has more than %zu neighbours within contact + skin: "
+                                  "the packing overlaps far too much", (long long)sim->id[q->aff[a]], slots - 1);
+    }
+    for (size_t a = 0; a < naff; a++) q->gain[q->aff[a]] = 0;
+    for (size_t k = 0; k < nc; k++) q->crossing[q->cross[k]] = 0;
+    return st;
+}
+
 // One thread, in chunk order, over the particles the chunks flagged: exits
 // (timed by the last move that reached the particle), cells, then the lists
 // of those past their skin.
@@ -498,21 +686,7 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
             if (st != GF_OK) return st;
         }
     }
-    for (size_t c = 0; sim->use_nlist && c < q->ncell_chunk; c++) {
-        const gf_sweep_chunk *ch = &q->cell[c];
-        for (size_t k = 0; k < ch->ntodo; k++) {
-            uint32_t i = ch->todo[k];
-            if (!sim->alive[i]) continue;
-            const gf_pos *p = &sim->p[i];
-            const gf_ref *a = &sim->p0[i];
-            double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
-            if (dx * dx + dy * dy + dz * dz > lim * lim) {
-                gf_status st = gf_nlist_refresh(sim, i);
-                if (st != GF_OK) return st;
-            }
-        }
-    }
-    return GF_OK;
+    return sim->use_nlist ? gf_sweep_refresh(sim, q) : GF_OK;
 }
 
 static int gf_sweep_cmp_desc(const void *a, const void *b)
@@ -521,8 +695,10 @@ static int gf_sweep_cmp_desc(const void *a, const void *b)
     return (x < y) - (x > y);
 }
 
-// Profiling: one parallel block's chunk times, and the serial time since the last.
-static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, double serial, int part)
+// Profiling: one parallel block's chunk times (ch[k].seconds, or secs[k]), and
+// the serial time since the last.
+static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, const double *secs, size_t n, double serial,
+                            int part)
 {
     gf_par_profile *f = &q->prof;
     if (n > q->secs_cap) {
@@ -533,8 +709,8 @@ static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, dou
     }
     double work = 0.0;
     for (size_t k = 0; k < n; k++) {
-        q->secs[k] = ch[k].seconds;
-        work += ch[k].seconds;
+        q->secs[k] = ch ? ch[k].seconds : secs[k];
+        work += q->secs[k];
     }
     qsort(q->secs, n, sizeof(double), gf_sweep_cmp_desc); // LPT: heaviest first
     f->colour_phases++;
@@ -546,6 +722,19 @@ static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, size_t n, dou
     f->span_seconds += (n ? q->secs[0] : 0.0) + serial;
     for (int i = 0; i < GF_PAR_NPROJ; i++)
         f->makespan_seconds[i] += gf_par_makespan(q->secs, n, gf_sweep_proj_threads[i]) + serial;
+}
+
+// Profiling a bookkeeping that took `total` CPU seconds on this thread (the
+// profiled runs have one): the list refreshes' two blocks, timed item by
+// item, and the rest as the one-thread part.
+static void gf_sweep_record_book(gf_sweep *q, double total)
+{
+    double items = 0.0;
+    for (size_t k = 0; k < q->nf; k++) items += q->fsecs[k];
+    for (size_t k = 0; k < q->nm; k++) items += q->msecs[k];
+    if (q->nf) gf_sweep_record(q, NULL, q->fsecs, q->nf, 0.0, 3);
+    if (q->nm) gf_sweep_record(q, NULL, q->msecs, q->nm, 0.0, 3);
+    gf_sweep_record(q, NULL, NULL, 0, fmax(total - items, 0.0), -1);
 }
 
 static gf_status gf_sweep_status(const gf_sweep_chunk *ch, size_t n)
@@ -593,7 +782,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     (void)threads;
     gf_status st = gf_sweep_status(q->spot, nchunk);
     if (st != GF_OK) return st;
-    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, 0.0, 0);
+    if (q->profiling) gf_sweep_record(q, q->spot, NULL, nchunk, 0.0, 0);
     // The join: each chunk's moves copied to their place (side by side), then
     // binned by the cell of their centre.
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
@@ -637,7 +826,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
         if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
         q->cand[t] = cand;
     }
-    if (q->profiling) gf_sweep_record(q, q->spot, nchunk, serial + gf_clock_thread_cpu() - t0, 0);
+    if (q->profiling) gf_sweep_record(q, q->spot, NULL, nchunk, serial + gf_clock_thread_cpu() - t0, 0);
     return GF_OK;
 }
 
@@ -697,21 +886,21 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     if (st == GF_OK && q->nmv > 0) {
         double t1 = sim->timing ? gf_clock_now() : 0.0;
         gf_sweep_cells(sim, q, 0);
-        if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 1);
+        if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 1);
         double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
         if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-        if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0, -1);
+        if (q->profiling) gf_sweep_record_book(q, gf_clock_thread_cpu() - t0);
         if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t1;
         const int64_t sweeps = sim->no_relax || c->method == GF_RELAX_NONE ? 0 : c->sweeps;
         double t2 = gf_clock_now();
         for (int64_t s = 0; s < sweeps && st == GF_OK; s++) {
             gf_sweep_cells(sim, q, 1);
-            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 2);
+            if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
             gf_sweep_cells(sim, q, 2);
-            if (q->profiling) gf_sweep_record(q, q->cell, q->ncell_chunk, 0.0, 2);
+            if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
             t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
             if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-            if (q->profiling) gf_sweep_record(q, NULL, 0, gf_clock_thread_cpu() - t0, -1);
+            if (q->profiling) gf_sweep_record_book(q, gf_clock_thread_cpu() - t0);
             sim->st.relax_calls++;
         }
         sim->st.relax_seconds += gf_clock_now() - t2;
