@@ -126,6 +126,7 @@ typedef struct gf_sweep {
     size_t secs_cap;
     bool profiling;
     double clock_cost;    ///< profiling: CPU seconds a reading of the clock adds to what it times
+    double serial_acc;    ///< profiling: the window's one-thread CPU seconds so far
     gf_par_profile prof;
 } gf_sweep;
 
@@ -135,6 +136,14 @@ typedef struct gf_sweep {
 static inline double gf_sweep_since(const gf_sweep *q, double t0)
 {
     return fmax(gf_clock_thread_cpu() - t0 - q->clock_cost, 0.0);
+}
+
+// Profiling: the start of a stretch of one-thread work, and its end (added
+// to the window's one-thread part).
+static inline double gf_sweep_tic(const gf_sweep *q) { return q->profiling ? gf_clock_thread_cpu() : 0.0; }
+static inline void gf_sweep_toc(gf_sweep *q, double t0)
+{
+    if (q->profiling) q->serial_acc += fmax(gf_clock_thread_cpu() - t0 - q->clock_cost, 0.0);
 }
 
 static void gf_sweep_chunk_free(gf_sweep_chunk *c)
@@ -565,6 +574,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     const int threads = q->threads;
     void *grown;
     q->nf = q->nm = 0;
+    double ts = gf_sweep_tic(q);
     size_t nc = 0;
     for (size_t c = 0; c < q->ncell_chunk; c++) {
         const gf_sweep_chunk *ch = &q->cell[c];
@@ -583,7 +593,10 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
             q->crossing[i] = 1;
         }
     }
-    if (nc == 0) return GF_OK;
+    if (nc == 0) {
+        gf_sweep_toc(q, ts);
+        return GF_OK;
+    }
     const unsigned shift = sim->nl_shift;
     const size_t slots = (size_t)1 << shift;
     gf_status st = GF_OK;
@@ -607,6 +620,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
             sim->p0[i].y = (float)sim->p[i].y;
             sim->p0[i].z = (float)sim->p[i].z;
         }
+        gf_sweep_toc(q, ts);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 2 * GF_SWEEP_FIND_GROUP)
 #endif
@@ -616,6 +630,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
                 q->find_st[k] = gf_nlist_find_row(sim, q->cross[k]);
             if (q->profiling) q->fsecs[g] = gf_sweep_since(q, t0);
         }
+        ts = gf_sweep_tic(q);
         if (q->profiling) q->nf = (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP;
         for (size_t k = 0; k < nc && st == GF_OK; k++)
             if (q->find_st[k] != GF_OK) st = gf_nlist_find_row(sim, q->cross[k]); // (again, for its message)
@@ -657,6 +672,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
             if (q->pairs[e][1] != UINT32_MAX) q->adds[q->aff_at[q->gain[q->pairs[e][0]] - 1]++] = q->pairs[e][1];
         for (size_t a = naff; a > 0; a--) q->aff_at[a] = q->aff_at[a - 1];
         q->aff_at[0] = 0;
+        gf_sweep_toc(q, ts);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && naff > 2 * GF_SWEEP_MERGE_GROUP)
 #endif
@@ -666,6 +682,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
                 q->find_st[a] = gf_sweep_row_merge(sim, q, a, slots);
             if (q->profiling) q->msecs[g] = gf_sweep_since(q, t0);
         }
+        ts = gf_sweep_tic(q);
         if (q->profiling) q->nm = (naff + GF_SWEEP_MERGE_GROUP - 1) / GF_SWEEP_MERGE_GROUP;
         for (size_t a = 0; a < naff && st == GF_OK; a++)
             if (q->find_st[a] != GF_OK)
@@ -674,6 +691,7 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     }
     for (size_t a = 0; a < naff; a++) q->gain[q->aff[a]] = 0;
     for (size_t k = 0; k < nc; k++) q->crossing[q->cross[k]] = 0;
+    gf_sweep_toc(q, ts);
     return st;
 }
 
@@ -684,6 +702,7 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
 {
     gf_grid *g = &sim->grid;
     gf_work *w = &q->w;
+    const double ts = gf_sweep_tic(q);
     for (size_t c = 0; c < q->ncell_chunk; c++) {
         const gf_sweep_chunk *ch = &q->cell[c];
         for (size_t k = 0; k < ch->ntodo; k++) {
@@ -695,6 +714,7 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
             if (st != GF_OK) return st;
         }
     }
+    gf_sweep_toc(q, ts);
     return sim->use_nlist ? gf_sweep_refresh(sim, q) : GF_OK;
 }
 
@@ -733,18 +753,12 @@ static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, const double 
         f->makespan_seconds[i] += gf_par_makespan(q->secs, n, gf_sweep_proj_threads[i]) + serial;
 }
 
-// Profiling a bookkeeping that took `total` CPU seconds on this thread (the
-// profiled runs have one): the list refreshes' two blocks, timed item by
-// item, and the rest as the one-thread part.
-static void gf_sweep_record_book(gf_sweep *q, double total)
+// Profiling a bookkeeping: the list refreshes' two blocks, timed by groups
+// (the rest of it is in the window's one-thread part).
+static void gf_sweep_record_book(gf_sweep *q)
 {
-    double items = 0.0;
-    for (size_t k = 0; k < q->nf; k++) items += q->fsecs[k];
-    for (size_t k = 0; k < q->nm; k++) items += q->msecs[k];
     if (q->nf) gf_sweep_record(q, NULL, q->fsecs, q->nf, 0.0, 3);
     if (q->nm) gf_sweep_record(q, NULL, q->msecs, q->nm, 0.0, 3);
-    // (less the readings of the items' clocks, one per item)
-    gf_sweep_record(q, NULL, NULL, 0, fmax(total - items - (double)(q->nf + q->nm) * q->clock_cost, 0.0), -1);
 }
 
 static gf_status gf_sweep_status(const gf_sweep_chunk *ch, size_t n)
@@ -795,7 +809,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     if (q->profiling) gf_sweep_record(q, q->spot, NULL, nchunk, 0.0, 0);
     // The join: each chunk's moves copied to their place (side by side), then
     // binned by the cell of their centre.
-    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    double ts = gf_sweep_tic(q);
     size_t total = 0, mirs = 0;
     for (size_t c = 0; c < nchunk; c++) {
         q->spot[c].at = total;
@@ -813,7 +827,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     if ((st = gf_celllist_keys(&q->bycell, g->ncell, total)) != GF_OK) return st;
     q->nmv = total;
     q->nmirs = mirs;
-    double serial = q->profiling ? gf_clock_thread_cpu() - t0 : 0.0;
+    gf_sweep_toc(q, ts);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && nchunk > 1)
 #endif
@@ -829,14 +843,15 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
         if (ch->nmirs) memcpy(q->mirs + ch->mir_at, ch->mirs, sizeof(double[3]) * ch->nmirs);
         if (q->profiling) ch->seconds = gf_sweep_since(q, t1);
     }
-    t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    ts = gf_sweep_tic(q);
     gf_celllist_sort(&q->bycell, q->nmv);
     for (int t = 0; t < q->threads; t++) {
         uint32_t *cand = gf_sweep_grow(q->cand[t], &q->cand_cap[t], q->nmv + 1, sizeof(uint32_t));
         if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
         q->cand[t] = cand;
     }
-    if (q->profiling) gf_sweep_record(q, q->spot, NULL, nchunk, serial + gf_clock_thread_cpu() - t0, 0);
+    gf_sweep_toc(q, ts);
+    if (q->profiling) gf_sweep_record(q, q->spot, NULL, nchunk, 0.0, 0);
     return GF_OK;
 }
 
@@ -882,6 +897,8 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     gf_status st = gf_sweep_make(sim);
     if (st != GF_OK) return st;
     gf_sweep *q = sim->sweep;
+    q->serial_acc = 0.0;
+    double ts = gf_sweep_tic(q);
     const gf_engine_defs *c = &sim->d;
     const double window = c->window, t_end = sim->t_pending;
     sim->t = t_end;
@@ -892,14 +909,17 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     if ((st = gf_spots_insert_window(sim, t_end, window)) != GF_OK) return st;
     gf_par_column_tops(sim, q->coltop, q->ncol);
     sim->grid.lazy_top = true; // top[] is redone after the window
+    gf_sweep_toc(q, ts);
     st = gf_sweep_walk_all(sim, q, t_end);
     if (st == GF_OK && q->nmv > 0) {
         double t1 = sim->timing ? gf_clock_now() : 0.0;
         gf_sweep_cells(sim, q, 0);
         if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 1);
-        double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-        if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-        if (q->profiling) gf_sweep_record_book(q, gf_clock_thread_cpu() - t0);
+        ts = gf_sweep_tic(q);
+        st = gf_sweep_counters(sim, q);
+        gf_sweep_toc(q, ts);
+        if (st == GF_OK) st = gf_sweep_book(sim, q);
+        if (q->profiling) gf_sweep_record_book(q);
         if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t1;
         const int64_t sweeps = sim->no_relax || c->method == GF_RELAX_NONE ? 0 : c->sweeps;
         double t2 = gf_clock_now();
@@ -908,19 +928,26 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
             if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
             gf_sweep_cells(sim, q, 2);
             if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
-            t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-            if ((st = gf_sweep_counters(sim, q)) == GF_OK) st = gf_sweep_book(sim, q);
-            if (q->profiling) gf_sweep_record_book(q, gf_clock_thread_cpu() - t0);
+            ts = gf_sweep_tic(q);
+            st = gf_sweep_counters(sim, q);
+            gf_sweep_toc(q, ts);
+            if (st == GF_OK) st = gf_sweep_book(sim, q);
+            if (q->profiling) gf_sweep_record_book(q);
             sim->st.relax_calls++;
         }
         sim->st.relax_seconds += gf_clock_now() - t2;
     }
+    ts = gf_sweep_tic(q);
     sim->grid.lazy_top = false;
     gf_grid_recompute_top(&sim->grid);
     if (st != GF_OK) return st;
     if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_exit_cmp_time_id);
     gf_spots_compact(sim, q->dead);
-    if (q->profiling) q->prof.profiled_tau += window;
+    gf_sweep_toc(q, ts);
+    if (q->profiling) {
+        gf_sweep_record(q, NULL, NULL, 0, q->serial_acc, -1);
+        q->prof.profiled_tau += window;
+    }
     return GF_OK;
 }
 
