@@ -26,17 +26,18 @@
 // 5. bookkeeping: the chunks flag, side by side, the particles they moved
 //    below the exit plane, into another cell or past their skin; one thread
 //    then does, in chunk order, their exits (each timed by the last move that
-//    reached the particle), cells and neighbour lists.
+//    reached the particle) and cell moves; the list refreshes run as a batch
+//    (gf_sweep_refresh), mostly side by side.
 //
 // Determinism: every sum runs in an order fixed by the state (cells, slots,
 // rows, chunks of a fixed size), the records of the spot chunks are joined in
 // chunk order and the window's exits sorted by (time, id): the result depends
 // on the seed and the keys, never on run.threads.
 //
-// Profiling (gf_sim_set_par_profiling): the CPU time of every chunk of every
-// parallel block is taken, and the serial bookkeeping apart; the projected
-// makespan on P workers is, per block, the LPT schedule of its chunks, plus
-// the serial time.
+// Profiling (gf_sim_set_par_profiling, on one thread): the CPU time of every
+// chunk of every parallel block, less the cost of reading the clock, and the
+// one-thread stretches timed one by one; the projected makespan on P workers
+// is, per block, the LPT schedule of its chunks, plus the one-thread time.
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
