@@ -21,7 +21,7 @@ static bool gf_cli_number(const char *cmd, const char *opt, const char *s, doubl
 }
 
 // Option codes of the long-only options (after every char).
-enum { GF_OPT_RESUME = 256, GF_OPT_JSON, GF_OPT_PARTICLES, GF_OPT_WARMUP, GF_OPT_WINDOW, GF_OPT_EVENT, GF_OPT_SPATIAL,
+enum { GF_OPT_RESUME = 256, GF_OPT_JSON, GF_OPT_PARTICLES, GF_OPT_WARMUP, GF_OPT_WINDOW, GF_OPT_EVENT, GF_OPT_SPATIAL, GF_OPT_SWEEP,
        GF_OPT_NO_LARGE, GF_OPT_LGA_ONLY, GF_OPT_RUN, GF_OPT_DRAIN_ONLY };
 
 // Every option of the commands that share gf_cli_parse; `cmds` lists those
@@ -41,6 +41,7 @@ static const struct gf_cli_opt {
     {{"window", required_argument, NULL, GF_OPT_WINDOW}, "bench"},
     {{"event", no_argument, NULL, GF_OPT_EVENT}, "bench"},
     {{"spatial", no_argument, NULL, GF_OPT_SPATIAL}, "bench"},
+    {{"sweep", no_argument, NULL, GF_OPT_SWEEP}, "bench"},
     {{"no-large", no_argument, NULL, GF_OPT_NO_LARGE}, "bench"},
     {{"lga-only", no_argument, NULL, GF_OPT_LGA_ONLY}, "bench"},
     {{"run", no_argument, NULL, GF_OPT_RUN}, "dem"},
@@ -122,6 +123,7 @@ int gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
             break;
         case GF_OPT_EVENT: cli->event = true; break;
         case GF_OPT_SPATIAL: cli->spatial = true; break;
+        case GF_OPT_SWEEP: cli->sweep = true; break;
         case GF_OPT_NO_LARGE: cli->no_large = true; break;
         case GF_OPT_LGA_ONLY: cli->lga_only = true; break;
         case GF_OPT_RUN: cli->dem_run = true; break;

@@ -27,7 +27,7 @@ typedef struct gf_cli {
     const char *sets[256];   ///< --set assignments, applied after the file
     int nsets;
     double bench_particles, bench_warmup, bench_window; ///< bench options (0 = default)
-    bool event, spatial, no_large, lga_only; ///< bench --event, --spatial, --no-large, --lga-only
+    bool event, spatial, sweep, no_large, lga_only; ///< bench --event, --spatial, --sweep, --no-large, --lga-only
     bool dem_run, drain_only;       ///< dem --run, --drain-only
 } gf_cli;
 

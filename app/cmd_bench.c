@@ -23,7 +23,7 @@ int gf_cmd_bench(int argc, char **argv)
 {
     // --lga-only: time only the lattice-gas automaton (no packing, no spots).
     // --event: the event-driven engine (one thread), --spatial: the spatial
-    // fixed step, instead of the domain engine. --no-large: skip the silo ten
+    // fixed step, --sweep: the sweep engine, instead of the domain engine. --no-large: skip the silo ten
     // times larger.
     gf_bench_opts o = gf_bench_opts_default();
     gf_cli cli;
@@ -32,6 +32,7 @@ int gf_cmd_bench(int argc, char **argv)
     o.lga_only = cli.lga_only;
     o.event = cli.event;
     o.spatial = cli.spatial;
+    o.sweep = cli.sweep;
     if (cli.no_large) o.large = false;
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;

@@ -49,7 +49,7 @@ int gf_mpi_app_check(const gf_config *cfg)
 {
     gf_engine_defs ed;
     gf_config_engine_defs(cfg, &ed);
-    if (gf_mpi_app_size() < 2 || ed.spatial) return 0;
+    if (gf_mpi_app_size() < 2 || (ed.spatial && ed.order != GF_ORDER_SWEEP)) return 0;
     if (gf_mpi_app_rank() == 0)
         fprintf(stderr, "granflow run: error: %d MPI ranks need run.mode = fixed and run.order = spatial or "
                         "domains (the engines split between ranks); run the others as one process\n",

@@ -45,8 +45,8 @@ static const struct gf_usage {
      "options:\n" GF_SET_LINE GF_HELP_LINE},
     {"bench",
      "usage: granflow bench [CONFIG] [--set KEY=VALUE]... [--json] [--particles N] [--warmup T]\n"
-     "                      [--window T] [--event | --spatial] [--no-large] [--lga-only]\n"
-     "Times the spot engine (the domain engine unless --event or --spatial) on the\n"
+     "                      [--window T] [--event | --spatial | --sweep] [--no-large] [--lga-only]\n"
+     "Times the spot engine (the domain engine unless --event, --spatial or --sweep) on the\n"
      "papers' silo in steady flow (spot(), relax(), whole steps on one thread and on\n"
      "all, memory per particle), the same silo ten times larger, and the lattice-gas\n"
      "automaton's site updates.\n"
@@ -58,6 +58,7 @@ static const struct gf_usage {
      "      --window T         tau of each timed window (default 1)\n"
      "      --event            the event-driven engine (one thread), not the domain engine\n"
      "      --spatial          the spatial fixed step, not the domain engine\n"
+     "      --sweep            the sweep engine (run.order = sweep), not the domain engine\n"
      "      --no-large         skip the silo ten times larger\n"
      "      --lga-only         time only the lattice-gas automaton\n" GF_HELP_LINE},
     {"analyze",

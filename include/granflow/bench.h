@@ -73,6 +73,7 @@ typedef struct gf_bench_opts {
     size_t particles;   ///< packing.particles of the silo; 0 (default): the config's
     bool event;         ///< the event-driven engine (one thread) instead of the domain engine (default false)
     bool spatial;       ///< the spatial fixed step instead of the domain engine (default false)
+    bool sweep;         ///< the sweep engine (run.order = sweep) instead of the domain engine (default false)
     bool large;         ///< also the silo ten times larger (default true)
     bool lga_only;      ///< only the lattice-gas automaton (default false)
     int64_t lga_iters;      ///< timed LGA iterations (default 1000)
@@ -92,7 +93,7 @@ GF_API gf_bench_opts gf_bench_opts_default(void);
 typedef struct gf_bench_report {
     bool lga_only;             ///< only `lga` holds figures
     bool large;                ///< `big` holds figures
-    const char *engine;        ///< "domains", "spatial" or "event"
+    const char *engine;        ///< "domains", "spatial", "sweep" or "event"
     double warmup, window;     ///< tau
     gf_bench_spot silo, big;   ///< the silo of the config, and the one ten times larger
     double peak_rss_bytes;     ///< peak resident set of the process after the silo, bytes

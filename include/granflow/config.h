@@ -47,6 +47,7 @@ typedef enum gf_run_order {
     GF_ORDER_NEWEST = 1, ///< newest spots first (method b)
     GF_ORDER_SPATIAL = 2, ///< slab by slab in a fixed colouring, slabs of one colour in parallel (run.threads)
     GF_ORDER_DOMAINS = 3, ///< domains of sectors, each sector's spots moved at their own rate for a window of time (2009 paper Sec. 2.1)
+    GF_ORDER_SWEEP = 4,   ///< windows: every spot's moves from the window's start, summed displacements, Jacobi relaxation sweeps
 } gf_run_order;
 
 /// What a spot does at a side wall (2009 paper Sec. 4).
@@ -206,6 +207,7 @@ typedef struct gf_config {
     double parallel_window;            ///< simulated time each sector runs per cycle, tau; default 0.1
     double parallel_domain_size;       ///< domain edge along a cut axis, d; 0 (default): the smallest that keeps sectors independent
     int64_t parallel_sectors;          ///< sectors per cut axis (2 as in SPPARKS, up to 4); default 2
+    int64_t parallel_sweeps;           ///< run.order = sweep: Jacobi relaxation sweeps per window; default 2
 
     // [output]
     double output_snapshot_interval;   ///< snapshot every this many tau; default 2

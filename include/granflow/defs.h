@@ -71,6 +71,7 @@ typedef struct gf_engine_defs {
     // parallel
     double window, domain_size;
     int64_t sectors;
+    int64_t sweeps; ///< run.order = sweep: relaxation sweeps per window
     // output
     double snapshot_interval;
 } gf_engine_defs;

@@ -172,6 +172,8 @@ typedef struct gf_par_profile {
     uint64_t barriers;      ///< phase barriers while profiling (barriers per tau = barriers / profiled_tau)
     double exchange_bytes;  ///< domain engine: modelled halo bytes sent, all blocks, while profiling
     uint64_t exchange_messages; ///< domain engine: modelled halo messages, all blocks, while profiling
+    double serial_seconds;  ///< sweep engine: the one-thread bookkeeping's time (in work and every makespan)
+    double part_seconds[4]; ///< sweep engine: work of the walk, the gather (spot displacements), the relaxation sweeps, the list refreshes
 } gf_par_profile;
 
 /// Starts (on != 0, counters reset) or stops profiling the spatial step's blocks.

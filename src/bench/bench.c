@@ -177,12 +177,12 @@ gf_status gf_bench(const gf_config *cfg_in, const gf_bench_opts *o, gf_bench_rep
     if (o->lga_iters < 1)
         return gf_error_set(GF_ERR_PARAM, "bench: %lld LGA iterations (at least 1)", (long long)o->lga_iters);
     *out = (gf_bench_report){.lga_only = o->lga_only, .large = o->large && !o->lga_only,
-                             .engine = o->event ? "event" : o->spatial ? "spatial" : "domains", .warmup = o->warmup, .window = o->window};
+                             .engine = o->event ? "event" : o->spatial ? "spatial" : o->sweep ? "sweep" : "domains", .warmup = o->warmup, .window = o->window};
     gf_config cfg = *cfg_in;
     if (o->lga_only) return gf_bench_lga_run(&cfg, o->lga_iters, o->stop, &out->lga);
     gf_status st = o->particles > 0 ? gf_bench_set(&cfg, "packing.particles", (double)o->particles) : GF_OK;
     if (st == GF_OK) st = gf_config_set_key(&cfg, "run.mode", o->event ? "event" : "fixed");
-    if (st == GF_OK && !o->event) st = gf_config_set_key(&cfg, "run.order", o->spatial ? "spatial" : "domains");
+    if (st == GF_OK && !o->event) st = gf_config_set_key(&cfg, "run.order", out->engine);
     if (st == GF_OK) st = gf_config_set_key(&cfg, "run.checkpoint_interval", "0");
     if (st == GF_OK) st = gf_bench_silo(&cfg, o, &out->silo);
     if (st != GF_OK) return st;

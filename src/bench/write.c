@@ -39,6 +39,15 @@ static void gf_bench_blocks_json(gf_json *j, const char *prefix, const gf_par_pr
         gf_json_fixed(j, GF_KEY("exchange_messages_per_phase_per_domain"),
                       gf_bench_ratio((double)f->exchange_messages, (double)f->blocks_run), 1);
     }
+    if (f->serial_seconds > 0) { // the sweep engine: its one-thread bookkeeping, in every makespan
+        gf_json_general(j, GF_KEY("parallel_window_tau"), f->window, 6);
+        gf_json_fixed(j, GF_KEY("barriers_per_tau"), gf_bench_ratio((double)f->barriers, f->profiled_tau), 1);
+        gf_json_fixed(j, GF_KEY("serial_fraction"), gf_bench_ratio(f->serial_seconds, f->work_seconds), 4);
+        gf_json_fixed(j, GF_KEY("walk_fraction"), gf_bench_ratio(f->part_seconds[0], f->work_seconds), 4);
+        gf_json_fixed(j, GF_KEY("gather_fraction"), gf_bench_ratio(f->part_seconds[1], f->work_seconds), 4);
+        gf_json_fixed(j, GF_KEY("sweeps_fraction"), gf_bench_ratio(f->part_seconds[2], f->work_seconds), 4);
+        gf_json_fixed(j, GF_KEY("lists_fraction"), gf_bench_ratio(f->part_seconds[3], f->work_seconds), 4);
+    }
     for (int i = 0; i < GF_PAR_NPROJ; i++) {
         char name[48];
         snprintf(name, sizeof name, "projected_speedup_%d", f->proj_threads[i]);

@@ -353,6 +353,13 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_config_msg_make(&m, cfg, "spot.flow_rule", "run.order");
         return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr needs %s = random or newest", m.lead, m.key[1]);
     }
+    if (cfg->run_mode == GF_MODE_FIXED && cfg->run_order == GF_ORDER_SWEEP && cfg->relax_method != GF_RELAX_FULL &&
+        cfg->relax_method != GF_RELAX_NONE) {
+        // Its relaxation is the window's sweeps over every particle its moves reached.
+        gf_config_msg_make(&m, cfg, "run.order", "relax.method");
+        return gf_error_set(GF_ERR_PARAM, "%s%s = sweep needs %s = full or none (the window's Jacobi sweeps are its "
+                            "relaxation)", m.lead, m.key[0], m.key[1]);
+    }
     // Output intervals: a bounded number per run (an interval below the
     // rounding of the time would never advance, and the run never end).
     st = gf_check_outputs(cfg, cfg->output_snapshot_interval, "output.snapshot_interval", "snapshots", "");

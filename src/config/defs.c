@@ -99,7 +99,8 @@ void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
     d->threads = gf_config_threads(cfg);
     d->threads_auto = cfg->run_threads <= 0;
     d->spatial = cfg->run_mode == GF_MODE_FIXED &&
-                 (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS);
+                 (cfg->run_order == GF_ORDER_SPATIAL || cfg->run_order == GF_ORDER_DOMAINS ||
+                  cfg->run_order == GF_ORDER_SWEEP);
     d->recirculate = cfg->run_recirculate != 0;
     d->max_passes = cfg->run_max_passes;
     d->reinsert = cfg->run_reinsert;
@@ -108,6 +109,7 @@ void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
     d->window = cfg->parallel_window;
     d->domain_size = cfg->parallel_domain_size;
     d->sectors = cfg->parallel_sectors;
+    d->sweeps = cfg->parallel_sweeps;
     d->snapshot_interval = cfg->output_snapshot_interval;
 }
 

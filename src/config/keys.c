@@ -30,7 +30,7 @@ static const char *const gf_keys_dem_fill_names[] = {"pour", "generate", NULL};
 static const char *const gf_keys_lga_scenario_names[] = {"pile", "channel", "silo", NULL};
 static const char *const gf_keys_lga_flow_names[] = {"mass", "funnel", NULL};
 static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
-static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", "domains", NULL};
+static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", "domains", "sweep", NULL};
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_flow_rule_names[] = {"diffusive", "sfr", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
@@ -183,9 +183,12 @@ const gf_key gf_keys[] = {
      .unit = "", .doc = "fixed mode: order of the moves in a step: random, newest first, spatial (blocks in a "
                         "fixed colouring, in random phases, run in parallel; results do not depend on run.threads), or "
                         "domains (each sector of every domain moves its spots at their own rate for parallel.window "
-                        "tau in turn; results depend on the parallel keys, not on run.threads)"},
+                        "tau in turn; results depend on the parallel keys, not on run.threads), or sweep (windows "
+                        "of parallel.window tau: every spot's moves read the window's start, their displacements "
+                        "are summed, then parallel.sweeps Jacobi relaxation sweeps; results depend on the parallel "
+                        "keys, not on run.threads)"},
     {"run", "threads", GF_KEY_INT64, GF_OFF(run_threads), .min = 0, .max = 4096, .def = "0", .unit = "",
-     .doc = "threads of the spatial and domain engines (run.order = spatial, domains); 0: every core"},
+     .doc = "threads of the parallel engines (run.order = spatial, domains, sweep); 0: every core"},
     {"run", "recirculate", GF_KEY_ENUM, GF_OFF(run_recirculate), .names = gf_keys_onoff_names, .def = "off",
      .unit = "", .doc = "put every particle that exits back on the free surface, its pass count + 1 (pebble-bed cycling)"},
     {"run", "max_passes", GF_KEY_INT64, GF_OFF(run_max_passes), .min = 0, .max = 1e9, .def = "0", .unit = "",
@@ -201,12 +204,16 @@ const gf_key gf_keys[] = {
     {"parallel", "window", GF_KEY_DOUBLE, GF_OFF(parallel_window), .min = 0, .max = 10, .min_open = true,
      .def = "0.02", .unit = "tau",
      .doc = "run.order = domains: simulated time each sector runs before the next (halos exchanged between); "
+            "run.order = sweep: the window whose moves all read its start; "
             "-> 0 recovers the event engine's statistics"},
     {"parallel", "domain_size", GF_KEY_DOUBLE, GF_OFF(parallel_domain_size), GF_NONNEG, .def = "0", .unit = "d",
      .doc = "run.order = domains: edge of a domain along each cut axis (0: the smallest that keeps same-index "
             "sectors of neighbouring domains independent)"},
     {"parallel", "sectors", GF_KEY_INT64, GF_OFF(parallel_sectors), .min = 2, .max = 4, .def = "2", .unit = "",
      .doc = "run.order = domains: sectors per cut axis (2 as in SPPARKS; more: thinner sectors, more phases)"},
+    {"parallel", "sweeps", GF_KEY_INT64, GF_OFF(parallel_sweeps), .min = 0, .max = 100, .def = "2", .unit = "",
+     .doc = "run.order = sweep: Jacobi relaxation sweeps per window over the particles within r_e of its moves "
+            "(0: none)"},
 
     {"output", "snapshot_interval", GF_KEY_DOUBLE, GF_OFF(output_snapshot_interval), GF_POSITIVE,
      .def = "2", .unit = "tau", .doc = "write a snapshot every this long; at most 10^5 per run.duration"},

@@ -176,7 +176,7 @@ static gf_status gf_ckpt_fill(const gf_sim *sim, gf_buf *b_out)
         gf_put(&b, sim->grid.slot + c * GF_CELL_CAP, sizeof(uint32_t) * sim->grid.count[c]);
     // The domain engine's spot clocks, last (a checkpoint of another engine
     // ends before them, as those of earlier versions do).
-    if (sim->d.order == GF_ORDER_DOMAINS) {
+    if (sim->d.order == GF_ORDER_DOMAINS || sim->d.order == GF_ORDER_SWEEP) {
         gf_put(&b, GF_CKPT_CLOCKS, 8);
         gf_put(&b, sim->snext, sizeof(double) * sim->ns);
     }
@@ -417,7 +417,7 @@ static void gf_ckpt_read_clocks(gf_sim *sim, gf_rd *r)
         gf_get(r, sim->snext, sizeof(double) * sim->ns);
         for (size_t k = 0; k < sim->ns; k++)
             if (!isfinite(sim->snext[k])) r->bad = true;
-    } else if (sim->d.order == GF_ORDER_DOMAINS) {
+    } else if (sim->d.order == GF_ORDER_DOMAINS || sim->d.order == GF_ORDER_SWEEP) {
         for (size_t k = 0; k < sim->ns; k++) sim->snext[k] = sim->t + gf_rng_exp(&sim->rng, sim->d.move_rate);
     }
 }

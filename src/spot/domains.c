@@ -419,13 +419,6 @@ static void gf_dom_sector(gf_sim *sim, gf_dom *q, int t, size_t b, double t_end)
     }
 }
 
-static int gf_dom_cmp_exit(const void *a, const void *b)
-{
-    const gf_exit *x = a, *y = b;
-    if (x->time != y->time) return (x->time > y->time) - (x->time < y->time);
-    return (x->id > y->id) - (x->id < y->id);
-}
-
 // The exits the workers found in a phase, appended to the sim's (sorted by
 // time and id at the end of the cycle).
 static gf_status gf_dom_merge_exits(gf_sim *sim, gf_dom *q)
@@ -449,22 +442,6 @@ static gf_status gf_dom_merge_exits(gf_sim *sim, gf_dom *q)
         sim->nexit += w->nexit;
         sim->n_alive -= w->nexit;
         w->nexit = 0;
-    }
-    return GF_OK;
-}
-
-// The insertions of the window (t_end - W, t_end]: Poisson(lambda W) spots,
-// each born at a uniform time in the window and first moving an exponential
-// time later (SPEC 1.3 insertion, as the event engine).
-static gf_status gf_dom_insert(gf_sim *sim, double t_end, double window)
-{
-    const gf_engine_defs *c = &sim->d;
-    uint64_t nins = gf_rng_poisson(&sim->rng, c->insertion_rate * window);
-    for (uint64_t k = 0; k < nins; k++) {
-        gf_status st = gf_spot_insert(sim);
-        if (st != GF_OK) return st;
-        double born = t_end - window * gf_rng_uniform(&sim->rng);
-        sim->snext[sim->ns - 1] = born + gf_rng_exp(&sim->rng, c->move_rate);
     }
     return GF_OK;
 }
@@ -607,7 +584,7 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     sim->fstep++;
     sim->st.events++;
     const size_t nexit0 = sim->nexit;
-    if ((st = gf_dom_insert(sim, t_end, window)) != GF_OK) return st;
+    if ((st = gf_spots_insert_window(sim, t_end, window)) != GF_OK) return st;
     if ((st = gf_dom_spots(q, sim->ns)) != GF_OK) return st;
     memset(q->dead, 0, sim->ns);
 #ifdef GF_MPI
@@ -633,7 +610,7 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     gf_grid_recompute_top(&sim->grid);
     for (size_t b = 0; b < q->nblock; b++) gf_par_add(&sim->st, &q->sec[b].st);
     if (st != GF_OK) return st;
-    if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_dom_cmp_exit);
+    if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_exit_cmp_time_id);
     gf_spots_compact(sim, q->dead);
     if (q->profiling) q->prof.profiled_tau += window;
     // Method 3 (Sec. 5): the whole packing every k / mu, at the end of the

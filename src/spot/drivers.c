@@ -153,6 +153,7 @@ static gf_status gf_sim_action(gf_sim *sim)
     if (sim->d.mode == GF_MODE_FIXED)
         return sim->d.order == GF_ORDER_SPATIAL   ? gf_sim_spatial_step(sim)
                : sim->d.order == GF_ORDER_DOMAINS ? gf_sim_domains_cycle(sim)
+               : sim->d.order == GF_ORDER_SWEEP   ? gf_sim_sweep_window(sim)
                                                         : gf_sim_fixed_step(sim);
     if (sim->d.method == GF_RELAX_GLOBAL) {
         double tg = gf_sim_global_time(sim);
@@ -188,7 +189,7 @@ static gf_status gf_sim_event(gf_sim *sim)
 static void gf_sim_draw_pending(gf_sim *sim)
 {
     if (sim->pending) return;
-    if (sim->d.mode == GF_MODE_FIXED && sim->d.order == GF_ORDER_DOMAINS) {
+    if (sim->d.mode == GF_MODE_FIXED && (sim->d.order == GF_ORDER_DOMAINS || sim->d.order == GF_ORDER_SWEEP)) {
         sim->t_pending = (double)(sim->fstep + 1) * sim->d.window; // cycles of one window
     } else if (sim->d.mode == GF_MODE_FIXED) {
         sim->t_pending = (double)(sim->fstep + 1) / sim->d.move_rate;

@@ -183,6 +183,8 @@ void gf_nlist_drop(gf_sim *sim, uint32_t i)
     row[0] = 0;
 }
 
+gf_status gf_nlist_find_row(gf_sim *sim, uint32_t i) { return gf_nlist_find(sim, i); }
+
 gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i)
 {
     gf_nlist_drop(sim, i);

@@ -461,6 +461,10 @@ void gf_sim_set_par_profiling(gf_sim *sim, int on)
         gf_dom_set_profiling(sim, on);
         return;
     }
+    if (sim->d.order == GF_ORDER_SWEEP) {
+        gf_sweep_set_profiling(sim, on);
+        return;
+    }
     if (gf_par_make(sim) != GF_OK) return;
     sim->par->profiling = on != 0;
     sim->par->prof = (gf_par_profile){0};
@@ -469,6 +473,7 @@ void gf_sim_set_par_profiling(gf_sim *sim, int on)
 gf_par_profile gf_sim_par_profile(const gf_sim *sim)
 {
     if (sim->d.order == GF_ORDER_DOMAINS) return gf_dom_profile(sim);
+    if (sim->d.order == GF_ORDER_SWEEP) return gf_sweep_profile(sim);
     gf_par_profile f = {0};
     const gf_par *q = sim->par;
     if (!q) return f;

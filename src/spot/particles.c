@@ -105,6 +105,13 @@ bool gf_sim_exit_slow(gf_sim *sim, gf_work *w, uint32_t i)
     return true;
 }
 
+int gf_exit_cmp_time_id(const void *a, const void *b)
+{
+    const gf_exit *x = a, *y = b;
+    if (x->time != y->time) return (x->time > y->time) - (x->time < y->time);
+    return (x->id > y->id) - (x->id < y->id);
+}
+
 gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved)
 {
     const uint32_t *inside = w->inside;

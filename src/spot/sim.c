@@ -109,6 +109,7 @@ static void gf_sim_free_all(gf_sim *sim)
     gf_work_free(&sim->w0);
     gf_par_free(sim);
     gf_dom_free(sim);
+    gf_sweep_free(sim);
     gf_grid_free(&sim->grid);
     gf_free(sim, sizeof *sim);
 }

@@ -152,7 +152,7 @@ struct gf_sim {
     double *sx, *sy, *sz;
     uint64_t *sbirth; ///< insertion serial number
     uint32_t *scount; ///< moves since the spot's last relax() (relax.method = counter)
-    double *snext;    ///< time of the spot's next move (run.order = domains; unused by the other engines)
+    double *snext;    ///< time of the spot's next move (run.order = domains, sweep; unused by the other engines)
     uint64_t next_birth;
     uint64_t fstep;     ///< fixed mode: steps done (time = fstep / mu)
 
@@ -181,6 +181,8 @@ struct gf_sim {
     struct gf_par *par;
     // The domain engine's state (domains.c), made on its first cycle.
     struct gf_dom *dom;
+    // The sweep engine's state (sweep.c), made on its first window.
+    struct gf_sweep *sweep;
 
     // Derived parameters.
     double rs, rs2, re, re2, alpha, inv_w, ball_frac;
@@ -241,6 +243,11 @@ gf_status gf_nlist_slots(gf_sim *sim);
 /// pairs are redone (its row and its old and new neighbours' rows).
 gf_status gf_nlist_refresh(gf_sim *sim, uint32_t i);
 
+/// Fills row i alone by the listing rule from the current references (the
+/// rows naming i are left as they are): the sweep engine's batched refresh,
+/// which rewrites those itself. Writes row i only.
+gf_status gf_nlist_find_row(gf_sim *sim, uint32_t i);
+
 /// Takes particle i out of every list (it has exited).
 void gf_nlist_drop(gf_sim *sim, uint32_t i);
 
@@ -257,6 +264,9 @@ static inline bool gf_sim_exit_check(gf_sim *sim, gf_work *w, uint32_t i)
 /// Bookkeeping after the moves of one step, for the entries k < m of
 /// inside[] with moved[k] set: cells, and lists of those past their skin.
 gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *moved);
+
+/// qsort order of exits: by time, then id (the windowed engines' exits).
+int gf_exit_cmp_time_id(const void *a, const void *b);
 
 /// Queues particle i (just exited) for re-insertion; false when out of memory.
 bool gf_sim_reinsert_queue(gf_sim *sim, uint32_t i);
@@ -289,6 +299,17 @@ gf_status gf_sim_spatial_step(gf_sim *sim);
 /// domain in turn, each moving its spots at their own rate over the window,
 /// the domains of one sector side by side on run.threads threads.
 gf_status gf_sim_domains_cycle(gf_sim *sim);
+/// One window of the sweep engine (run.order = sweep, sweep.c): insertions,
+/// every spot's moves from the window-start packing, their displacements
+/// summed, then parallel.sweeps Jacobi relaxation sweeps; parallel over spots
+/// and cells, the result independent of run.threads.
+gf_status gf_sim_sweep_window(gf_sim *sim);
+/// Frees the sweep engine's state.
+void gf_sweep_free(gf_sim *sim);
+/// Starts or stops profiling the sweep engine's chunks.
+void gf_sweep_set_profiling(gf_sim *sim, int on);
+/// The sweep engine's profile (gf_sim_par_profile).
+gf_par_profile gf_sweep_profile(const gf_sim *sim);
 /// Frees the domain engine's state.
 void gf_dom_free(gf_sim *sim);
 /// The domain engine's decomposition and profile (gf_sim_par_profile).
@@ -339,6 +360,16 @@ gf_status gf_sim_fixed_end(gf_sim *sim);
 void gf_spots_compact(gf_sim *sim, const uint8_t *dead);
 /// A relaxation of the whole packing, timed into t_relax.
 gf_status gf_sim_global(gf_sim *sim);
+/// The insertions of the window (t_end - W, t_end] of the windowed engines
+/// (domains.c, sweep.c): Poisson(lambda W) spots, each born at a uniform
+/// time in the window and first moving an exponential time later (SPEC 1.3
+/// insertion, as the event engine), drawing on sim->rng.
+gf_status gf_spots_insert_window(gf_sim *sim, double t_end, double window);
+/// The walk of a spot at s (SPEC 1.3): the candidate n, truncated at the
+/// walls; false when the spot is to be removed (above its column's top, or
+/// the biased walk finds no particle). Reads the particles, writes nothing
+/// but w's stream.
+bool gf_spot_walk(gf_sim *sim, gf_work *w, const double s[3], double n[3]);
 /// Inserts one spot (SPEC 1.3 insertion), drawing on sim->rng.
 gf_status gf_spot_insert(gf_sim *sim);
 /// Moves spot k once with the serial worker (event mode, fixed random or

@@ -250,6 +250,21 @@ static bool gf_relax_due(gf_sim *sim, gf_work *w, uint32_t *count)
     }
 }
 
+bool gf_spot_walk(gf_sim *sim, gf_work *w, const double s[3], double n[3])
+{
+    if (sim->d.bias_exponent > 0.0) return gf_walk_biased(sim, w, s, n);
+    // The BCC walk, each candidate with probability 1/4; or the flow rule's.
+    if (sim->sfr)
+        gf_walk_sfr(sim, w, s, n);
+    else
+        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
+    // SPEC 1.3 removal: above the highest particle of its column (in the
+    // parallel engines: as the column was when the step or window began).
+    double top = w->coltop ? w->coltop[gf_grid_column(&sim->grid, n[0], n[1])]
+                           : gf_grid_column_top(&sim->grid, n[0], n[1], &sim->p[0].z, 4);
+    return !(n[2] > top);
+}
+
 // One step of a spot at s (2009 paper Sec. 2 pseudocode; SPEC 1.3): the
 // walk, wall truncation, removal test, spot() and relax().
 gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bool *deleted, long *ball)
@@ -257,25 +272,9 @@ gf_status gf_spot_step(gf_sim *sim, gf_work *w, double s[3], uint32_t *count, bo
     *deleted = false;
     *ball = 0;
     double n[3];
-    if (sim->d.bias_exponent > 0.0) {
-        if (!gf_walk_biased(sim, w, s, n)) {
-            *deleted = true;
-            return GF_OK;
-        }
-    } else {
-        // The BCC walk, each candidate with probability 1/4; or the flow rule's.
-        if (sim->sfr)
-            gf_walk_sfr(sim, w, s, n);
-        else
-            gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
-        // SPEC 1.3 removal: above the highest particle of its column (in the
-        // parallel step: as the column was when the step began).
-        double top = w->coltop ? w->coltop[gf_grid_column(&sim->grid, n[0], n[1])]
-                               : gf_grid_column_top(&sim->grid, n[0], n[1], &sim->p[0].z, 4);
-        if (n[2] > top) {
-            *deleted = true;
-            return GF_OK;
-        }
+    if (!gf_spot_walk(sim, w, s, n)) {
+        *deleted = true;
+        return GF_OK;
     }
     double v[3] = {n[0] - s[0], n[1] - s[1], n[2] - s[2]};
     double f = sim->ball_frac;
@@ -345,6 +344,19 @@ void gf_spots_compact(gf_sim *sim, const uint8_t *dead)
     }
     sim->st.spots_deleted += ns - w;
     sim->ns = w;
+}
+
+gf_status gf_spots_insert_window(gf_sim *sim, double t_end, double window)
+{
+    const gf_engine_defs *c = &sim->d;
+    uint64_t nins = gf_rng_poisson(&sim->rng, c->insertion_rate * window);
+    for (uint64_t k = 0; k < nins; k++) {
+        gf_status st = gf_spot_insert(sim);
+        if (st != GF_OK) return st;
+        double born = t_end - window * gf_rng_uniform(&sim->rng);
+        sim->snext[sim->ns - 1] = born + gf_rng_exp(&sim->rng, c->move_rate);
+    }
+    return GF_OK;
 }
 
 gf_status gf_sim_global(gf_sim *sim)

@@ -55,6 +55,16 @@ gf bench --json --particles 2000 --set container.width=14 --warmup 0.5 --window 
 expect_rc 0 "bench --spatial --no-large"
 grep -q '"engine": "spatial"' out || fail "bench --spatial did not time the spatial engine"
 ok "bench --spatial times the spatial fixed step"
+gf bench --json --particles 2000 --set container.width=14 --warmup 0.5 --window 0.1 --sweep --no-large
+expect_rc 0 "bench --sweep --no-large"
+python3 - "$T/out" <<'EOF' || fail "bench --sweep figures out of range: $(cat "$T/out")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["engine"] == "sweep" and d["blocks"] > 0 and d["barriers_per_tau"] > 0
+assert 0 < d["serial_fraction"] < 1
+assert 1 <= d["projected_speedup_2"] <= d["projected_speedup_16"] <= d["projected_speedup_256"]
+EOF
+ok "bench --sweep times the sweep engine and projects its speedup"
 gf bench --json --particles 2000 --set container.width=14 --warmup 1 --window 0.2 --event --no-large
 expect_rc 0 "bench --event --no-large"
 grep -q '"engine": "event"' out || fail "bench --event did not time the event engine"
