@@ -36,6 +36,28 @@ typedef struct gf_reins {
     double px, py;  ///< where
 } gf_reins;
 
+/// An id with the index of its line (or packing row) and a radius from the axis.
+typedef struct gf_idr {
+    int64_t id;
+    size_t k;
+    double r;
+} gf_idr;
+
+static int gf_idr_cmp_id(const void *pa, const void *pb)
+{
+    const gf_idr *a = pa, *b = pb;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+/// By id, then by index (the lines' time order; a packing's file order).
+static int gf_idr_cmp(const void *pa, const void *pb)
+{
+    int c = gf_idr_cmp_id(pa, pb);
+    if (c) return c;
+    const gf_idr *a = pa, *b = pb;
+    return (a->k > b->k) - (a->k < b->k);
+}
+
 /// How long ago a particle now `h` below the exit plane, falling at speed
 /// u (> 0 down), crossed it in free fall (g = 1): h = u t - t^2 / 2, the
 /// smaller root; when collisions slowed it below free fall (u^2 < 2 h), the
@@ -124,9 +146,9 @@ gf_status gf_dem_write_exits(const char *dir)
     if (st != GF_OK) return st;
     qsort(a, n, sizeof *a, gf_reins_cmp);
     // Where each pass began: pass 1 at t = 0 where the particle stood in the
-    // settled packing (packing.dump), then where it was put back.
-    int64_t maxid = 0;
-    for (size_t k = 0; k < n; k++) maxid = a[k].e.id > maxid ? a[k].e.id : maxid;
+    // settled packing (packing.dump), then where it was put back. The lines
+    // are walked by (id, time) through a sorted index, not tables indexed by
+    // id: a broken file's id of 10^18 must not size an allocation.
     gf_packing pk = {0};
     snprintf(path, sizeof path, "%s/packing.dump", dir);
     bool have_pk = gf_packing_read(path, GF_FORMAT_LAMMPS, &pk) == GF_OK;
@@ -134,38 +156,45 @@ gf_status gf_dem_write_exits(const char *dir)
         gf_warn("%s: cannot read it (%s): the first pass of each particle in exits.csv starts where it first left "
                 "(entry_r)",
                 path, gf_last_error());
-    size_t m = (size_t)maxid + 1;
-    int64_t *pass = GF_NEW(int64_t, m);
-    double *t0 = GF_NEW(double, m), *r0 = GF_NEW(double, m);
-    if (!pass || !t0 || !r0) {
+    gf_idr *start = have_pk && pk.n ? GF_NEW(gf_idr, pk.n) : NULL;
+    gf_idr *by_id = n ? GF_NEW(gf_idr, n) : NULL;
+    if ((have_pk && pk.n && !start) || (n && !by_id)) {
         st = gf_error_set(GF_ERR_NOMEM, "%s/exits.csv: out of memory", dir);
         goto done;
     }
-    for (size_t i = 0; i < m; i++) pass[i] = 1, t0[i] = 0.0, r0[i] = NAN;
-    for (size_t i = 0; have_pk && i < pk.n; i++)
-        if (pk.id[i] > 0 && pk.id[i] <= maxid) r0[pk.id[i]] = hypot(pk.x[i], pk.y[i]);
+    for (size_t i = 0; start && i < pk.n; i++) start[i] = (gf_idr){.id = pk.id[i], .k = i, .r = hypot(pk.x[i], pk.y[i])};
+    if (start) qsort(start, pk.n, sizeof *start, gf_idr_cmp);
+    for (size_t k = 0; k < n; k++) by_id[k] = (gf_idr){.id = a[k].e.id, .k = k};
+    if (by_id) qsort(by_id, n, sizeof *by_id, gf_idr_cmp); // by id, then time order (k)
+    for (size_t g = 0; g < n; g++) {
+        gf_exit *e = &a[by_id[g].k].e;
+        if (g > 0 && by_id[g - 1].id == e->id) { // a later pass: from where the last one put it back
+            const gf_reins *prev = &a[by_id[g - 1].k];
+            e->pass = prev->e.pass + 1;
+            e->entry_time = prev->t_back;
+            e->entry_r = hypot(prev->px, prev->py);
+            continue;
+        }
+        gf_idr key = {.id = e->id};
+        const gf_idr *at = start ? bsearch(&key, start, pk.n, sizeof *start, gf_idr_cmp_id) : NULL;
+        e->pass = 1;
+        e->entry_time = 0.0;
+        e->entry_r = at ? at->r : hypot(e->x, e->y);
+    }
     FILE *f;
     snprintf(path, sizeof path, "%s/exits.csv", dir);
     if ((st = gf_atomic_open(path, tmp, sizeof tmp, &f)) != GF_OK) goto done;
     fputs("id,time,x,y,pass,entry_time,entry_r\n", f);
     for (size_t k = 0; k < n; k++) {
-        gf_exit *e = &a[k].e;
-        const size_t i = (size_t)e->id;
-        e->pass = pass[i];
-        e->entry_time = t0[i];
-        e->entry_r = isnan(r0[i]) ? hypot(e->x, e->y) : r0[i];
+        const gf_exit *e = &a[k].e;
         // The format of a spot run's exits.csv (src/run/rundir.c, gf_print_exit).
         fprintf(f, "%lld,%.9g,%.7f,%.7f,%lld,%.9g,%.7f\n", (long long)e->id, e->time, e->x, e->y,
                 (long long)e->pass, e->entry_time, e->entry_r);
-        pass[i]++;
-        t0[i] = a[k].t_back;
-        r0[i] = hypot(a[k].px, a[k].py);
     }
     st = gf_atomic_commit(f, tmp, path);
 done:
-    if (pass) GF_DELETE(pass, m);
-    if (t0) GF_DELETE(t0, m);
-    if (r0) GF_DELETE(r0, m);
+    if (start) GF_DELETE(start, pk.n);
+    if (by_id) GF_DELETE(by_id, n);
     if (a) GF_DELETE(a, cap);
     gf_packing_free(&pk);
     return st;
