@@ -144,7 +144,7 @@ gf_status gf_dem_write_exits(const char *dir)
     size_t n = 0, cap = 0;
     gf_status st = gf_reins_read(path, &a, &n, &cap);
     if (st != GF_OK) return st;
-    qsort(a, n, sizeof *a, gf_reins_cmp);
+    if (n) qsort(a, n, sizeof *a, gf_reins_cmp); // a header alone: no lines, a NULL array
     // Where each pass began: pass 1 at t = 0 where the particle stood in the
     // settled packing (packing.dump), then where it was put back. The lines
     // are walked by (id, time) through a sorted index, not tables indexed by
