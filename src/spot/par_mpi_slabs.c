@@ -373,6 +373,24 @@ gf_status gf_mpi_slabs_partial(const gf_slabs *s)
     return GF_OK;
 }
 
+/// Writes cell c's record and, whole, its particles' (and their list rows'
+/// when `rows`), advancing the three write positions by their record sizes.
+static void gf_slab_write_cell(const gf_sim *sim, size_t c, bool rows, const size_t *rec, unsigned char **o,
+                               unsigned char **orow, unsigned char **ocell)
+{
+    const gf_grid *g = &sim->grid;
+    gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)c, NULL, NULL, 0, *ocell);
+    *ocell += rec[GF_TOUCH_CELL];
+    for (uint32_t k = 0; k < g->count[c]; k++) {
+        uint32_t i = g->slot[c * GF_CELL_CAP + k];
+        gf_mpi_record_write(sim, GF_TOUCH_PARTICLE, i, NULL, NULL, 0, *o);
+        *o += rec[GF_TOUCH_PARTICLE];
+        if (!rows) continue;
+        gf_mpi_record_write(sim, GF_TOUCH_ROW, i, NULL, NULL, 0, *orow);
+        *orow += rec[GF_TOUCH_ROW];
+    }
+}
+
 gf_status gf_mpi_whole(gf_sim *sim)
 {
     if (!gf_slab_st.dirty) return GF_OK;
@@ -405,16 +423,7 @@ gf_status gf_mpi_whole(gf_sim *sim)
     for (size_t c = 0; c < g->ncell; c++) {
         int L = gf_slabs_layer(s, (uint32_t)c);
         if (L < s->lo[me] || L >= s->hi[me]) continue;
-        gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)c, NULL, NULL, 0, ocell);
-        ocell += rec[GF_TOUCH_CELL];
-        for (uint32_t k = 0; k < g->count[c]; k++) {
-            uint32_t i = g->slot[c * GF_CELL_CAP + k];
-            gf_mpi_record_write(sim, GF_TOUCH_PARTICLE, i, NULL, NULL, 0, o);
-            o += rec[GF_TOUCH_PARTICLE];
-            if (!rows) continue;
-            gf_mpi_record_write(sim, GF_TOUCH_ROW, i, NULL, NULL, 0, orow);
-            orow += rec[GF_TOUCH_ROW];
-        }
+        gf_slab_write_cell(sim, c, rows, rec, &o, &orow, &ocell);
     }
     m->len = need;
     // One rank's records at a time (MPI_Bcast from each in turn, applied
@@ -501,16 +510,7 @@ static gf_status gf_slab_chunk(const gf_sim *sim, const gf_slabs *s, int me, con
     unsigned char *ocell = orow + h.v[1 + GF_TOUCH_ROW] * rec[GF_TOUCH_ROW];
     for (size_t k = *c; k < end; k++) {
         if (!gf_slab_picked(s, me, pick, gf_slabs_layer(s, (uint32_t)k))) continue;
-        gf_mpi_record_write(sim, GF_TOUCH_CELL, (uint32_t)k, NULL, NULL, 0, ocell);
-        ocell += rec[GF_TOUCH_CELL];
-        for (uint32_t j = 0; j < g->count[k]; j++) {
-            uint32_t i = g->slot[k * GF_CELL_CAP + j];
-            gf_mpi_record_write(sim, GF_TOUCH_PARTICLE, i, NULL, NULL, 0, o);
-            o += rec[GF_TOUCH_PARTICLE];
-            if (!rows) continue;
-            gf_mpi_record_write(sim, GF_TOUCH_ROW, i, NULL, NULL, 0, orow);
-            orow += rec[GF_TOUCH_ROW];
-        }
+        gf_slab_write_cell(sim, k, rows, rec, &o, &orow, &ocell);
     }
     m->len = need;
     *c = end;
