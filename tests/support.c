@@ -243,3 +243,19 @@ void gf_test_outcome_free(gf_test_outcome *o)
     gf_packing_free(&o->pk);
     free(o->ex);
 }
+
+void gf_test_resume_matches(const char *tag, gf_config whole, gf_config first, gf_config second, double stop_at)
+{
+    char dw[512], dp[512];
+    snprintf(dw, sizeof dw, "%s/%s_whole", gf_test_tmpdir(), tag);
+    snprintf(dp, sizeof dp, "%s/%s_part", gf_test_tmpdir(), tag);
+    gf_run_opts o = {.dir = dw, .force = 1};
+    assert_int_equal(gf_run_dir(&whole, &o, NULL), GF_OK);
+    first.run_duration = stop_at;
+    o.dir = dp;
+    assert_int_equal(gf_run_dir(&first, &o, NULL), GF_OK);
+    gf_run_opts r = {.dir = dp, .resume = 1, .force = 1};
+    assert_int_equal(gf_run_dir(&second, &r, NULL), GF_OK);
+    assert_true(gf_test_same_snapshot(dw, dp, 1));
+    assert_true(gf_test_same_snapshot(dw, dp, 2));
+}

@@ -44,6 +44,13 @@ bool gf_test_same_snapshot(const char *d1, const char *d2, int k);
 
 struct gf_sim;
 struct gf_config;
+/// Runs `whole` straight through into TMP/TAG_whole, then `first` stopped at
+/// `stop_at` tau into TMP/TAG_part and `second` resuming it (the same keys
+/// on other thread counts), and asserts snapshots 1 and 2 of both are the
+/// same bytes: a resume under another thread count changes nothing.
+void gf_test_resume_matches(const char *tag, struct gf_config whole, struct gf_config first,
+                            struct gf_config second, double stop_at);
+
 /// The papers' silo config with another width, particle count and seed (validated).
 struct gf_config gf_test_silo_config(double width, int64_t particles, uint64_t seed);
 

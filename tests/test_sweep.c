@@ -159,19 +159,7 @@ static void refuses_other_relax_methods(void **state)
 static void resume_under_another_thread_count(void **state)
 {
     (void)state;
-    char whole[512], part[512];
-    snprintf(whole, sizeof whole, "%s/sweep_whole", gf_test_tmpdir());
-    snprintf(part, sizeof part, "%s/sweep_part", gf_test_tmpdir());
-    gf_config c3 = tall_silo(3), c1 = tall_silo(1), c2 = tall_silo(2);
-    gf_run_opts o = {.dir = whole, .force = 1};
-    assert_int_equal(gf_run_dir(&c3, &o, NULL), GF_OK);
-    c1.run_duration = 4.1;
-    o.dir = part;
-    assert_int_equal(gf_run_dir(&c1, &o, NULL), GF_OK);
-    gf_run_opts r = {.dir = part, .resume = 1, .force = 1};
-    assert_int_equal(gf_run_dir(&c2, &r, NULL), GF_OK);
-    assert_true(gf_test_same_snapshot(whole, part, 1));
-    assert_true(gf_test_same_snapshot(whole, part, 2));
+    gf_test_resume_matches("sweep", tall_silo(3), tall_silo(1), tall_silo(2), 4.1);
 }
 
 static const struct CMUnitTest tests[] = {
