@@ -169,6 +169,23 @@ static gf_status gf_slab_allgather(const gf_slab_buf *mine, int R, uint64_t *tot
 
 // The messages from the partners (point to point): sends posted first, then
 // each partner's received whole (probed for its length).
+/// Receives the next message from rank r with `tag` into m (grown to fit),
+/// returning its length. Out of memory sets *st (naming `what`) and returns
+/// 0, the message still received (its sender waits for it).
+static int gf_slab_recv(int r, int tag, gf_slab_buf *m, const char *what, gf_status *st)
+{
+    MPI_Status ms;
+    int len = 0;
+    MPI_Probe(r, tag, MPI_COMM_WORLD, &ms);
+    MPI_Get_count(&ms, MPI_BYTE, &len);
+    if (len < 0 || !gf_mpi_room((void **)&m->b, &m->cap, (size_t)len + 1, 1)) {
+        *st = gf_error_set(GF_ERR_NOMEM, "out of memory for %s (%d bytes from rank %d)", what, len, r);
+        len = 0;
+    }
+    MPI_Recv(len ? m->b : NULL, len, MPI_BYTE, r, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    return len;
+}
+
 static gf_status gf_slab_swap(const gf_slabs *s, int me, int R, uint64_t *sent, uint64_t *got)
 {
     int nreq = 0;
@@ -180,16 +197,8 @@ static gf_status gf_slab_swap(const gf_slabs *s, int me, int R, uint64_t *sent, 
     for (int r = 0; r < R; r++) {
         if (!gf_slabs_partners(s, me, r)) continue;
         *sent += gf_slab_st.out[r].len;
-        MPI_Status ms;
-        int len = 0;
-        MPI_Probe(r, GF_SLAB_TAG, MPI_COMM_WORLD, &ms);
-        MPI_Get_count(&ms, MPI_BYTE, &len);
         gf_slab_buf *m = &gf_slab_st.in[r];
-        if (len < 0 || !gf_mpi_room((void **)&m->b, &m->cap, (size_t)len + 1, 1)) {
-            st = gf_error_set(GF_ERR_NOMEM, "out of memory for the MPI exchange (%d bytes from rank %d)", len, r);
-            len = 0; // (still received: the sender waits for it)
-        }
-        MPI_Recv(len ? m->b : NULL, len, MPI_BYTE, r, GF_SLAB_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        int len = gf_slab_recv(r, GF_SLAB_TAG, m, "the MPI exchange", &st);
         m->len = (size_t)len;
         *got += (size_t)len;
     }
@@ -604,16 +613,8 @@ gf_status gf_mpi_resort(gf_sim *sim, const gf_slabs *s)
     gf_mpi_tallies *t = gf_mpi_tally();
     for (int r = 0; r < R; r++) {
         if (!gf_slabs_partners(s, me, r)) continue;
-        MPI_Status ms;
-        int len = 0;
-        MPI_Probe(r, GF_MARGIN_TAG, MPI_COMM_WORLD, &ms);
-        MPI_Get_count(&ms, MPI_BYTE, &len);
         gf_slab_buf *in = &gf_slab_st.in[r];
-        if (len < 0 || !gf_mpi_room((void **)&in->b, &in->cap, (size_t)len + 1, 1)) {
-            st = gf_error_set(GF_ERR_NOMEM, "out of memory for the re-sort's margins (%d bytes)", len);
-            len = 0;
-        }
-        MPI_Recv(len ? in->b : NULL, len, MPI_BYTE, r, GF_MARGIN_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        int len = gf_slab_recv(r, GF_MARGIN_TAG, in, "the re-sort's margins", &st);
         if (st != GF_OK || (st = gf_mpi_records_check(sim, in->b, (size_t)len, 0, 0, r)) != GF_OK) continue;
         gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, false, &t->applied_p, &t->applied_c);
         gf_mpi_records_apply(sim, in->b, NULL, NULL, 0, 0, true, &t->applied_p, &t->applied_c);
