@@ -552,11 +552,7 @@ static gf_status gf_dom_phase(gf_sim *sim, gf_dom *q, int colour, double t_end)
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
     for (size_t r = 0; r < nrun; r++) {
-#ifdef _OPENMP
-        const int t = omp_get_thread_num();
-#else
-        const int t = 0;
-#endif
+        const int t = gf_sim_thread();
         if (q->mine[r]) gf_dom_sector(sim, q, t, q->run[r], t_end);
     }
 #ifdef GF_MPI

@@ -548,11 +548,7 @@ gf_status gf_sim_spatial_step(gf_sim *sim)
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
             for (size_t r = 0; r < nrun; r++) {
-#ifdef _OPENMP
-                gf_work *w = &q->work[omp_get_thread_num()];
-#else
-                gf_work *w = &q->work[0];
-#endif
+                gf_work *w = &q->work[gf_sim_thread()];
                 if (q->mine[r]) gf_par_block(sim, q, w, q->run[r], p);
             }
 #ifdef GF_MPI

@@ -6,6 +6,9 @@
 #ifndef GF_SPOT_SIM_INTERNAL_H
 #define GF_SPOT_SIM_INTERNAL_H
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -428,5 +431,16 @@ gf_status gf_sim_write_stress(const gf_sim *sim, const char *dir);
 /// its default, is unknown here or is listed twice.
 gf_status gf_ckpt_compare_settings(const char *path, const char *stored, size_t slen, const char *mine, size_t mlen,
                                    const char *def, size_t dlen);
+
+/// The calling thread's number in its OpenMP team (0 without OpenMP): the
+/// per-thread scratch (gf_work, candidate lists) a parallel loop's body uses.
+static inline int gf_sim_thread(void)
+{
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
 
 #endif

@@ -869,11 +869,7 @@ static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1)
 #endif
     for (size_t c = 0; c < n; c++) {
-#ifdef _OPENMP
-        const int t = omp_get_thread_num();
-#else
-        const int t = 0;
-#endif
+        const int t = gf_sim_thread();
         if (what == 0)
             gf_sweep_displace(sim, q, t, c);
         else if (what == 1)
