@@ -133,10 +133,12 @@ void gf_grid_remove(gf_grid *g, uint32_t i)
     }
 }
 
-void gf_grid_recompute_top(gf_grid *g)
+void gf_grid_recompute_top(gf_grid *g) { gf_grid_recompute_top_cols(g, 0, (size_t)g->nx * (size_t)g->ny); }
+
+void gf_grid_recompute_top_cols(gf_grid *g, size_t col0, size_t col1)
 {
     const size_t layer = (size_t)g->nx * (size_t)g->ny;
-    for (size_t col = 0; col < layer; col++) {
+    for (size_t col = col0; col < col1; col++) {
         int32_t z = g->nz - 1;
         while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
         g->top[col] = z;

@@ -102,6 +102,8 @@ void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int
 
 /// Recomputes top[] from the counts (after phases that ran with lazy_top).
 void gf_grid_recompute_top(gf_grid *g);
+/// The same for the columns [col0, col1) only (columns side by side).
+void gf_grid_recompute_top_cols(gf_grid *g, size_t col0, size_t col1);
 /// Largest z among particles in the column of cells containing (x, y), or
 /// -INFINITY when the column is empty. `z` is the particles' z array, stride `stride`.
 double gf_grid_column_top(const gf_grid *g, double x, double y, const double *z, size_t stride);

@@ -58,6 +58,12 @@
 /// Crossers per search task and rows per merge task of a batch of list refreshes.
 #define GF_SWEEP_FIND_GROUP 4
 #define GF_SWEEP_MERGE_GROUP 32
+/// Cell chunks per group of the summary after a block: the one-thread loops
+/// (counters, exits and cell moves, the list batch) visit a thousand groups
+/// of the pebble bed, not 68,000 chunk records.
+#define GF_SWEEP_GROUP 64
+/// Grid columns per task of the column tops and the top recompute.
+#define GF_SWEEP_COL_CHUNK 64
 /// Worker counts the speedup is projected for (as the other engines').
 static const int gf_sweep_proj_threads[GF_PAR_NPROJ] = {2, 8, 16, 64, 256};
 
@@ -87,12 +93,39 @@ typedef struct gf_sweep_chunk {
     double seconds;
 } gf_sweep_chunk;
 
+/// The grid cells of a group (GF_SWEEP_GROUP chunks of GF_SWEEP_CELL_CHUNK cells).
+#define GF_SWEEP_GROUP_CELLS ((size_t)GF_SWEEP_GROUP * GF_SWEEP_CELL_CHUNK)
+
+/// A particle that changes cell: its index and its new cell.
+typedef struct gf_sweep_mover {
+    uint32_t i, cell;
+} gf_sweep_mover;
+
+/// A group of GF_SWEEP_GROUP cell chunks, summarised side by side after a
+/// block: what its chunks flagged sorted into the bookkeeping's lists, and
+/// their counters summed, in chunk order.
+typedef struct gf_sweep_group {
+    uint32_t *exit;        ///< below the exit plane (one thread: exits)
+    size_t nexit, exit_cap;
+    gf_sweep_mover *mover; ///< into another cell (cell moves, side by side)
+    size_t nmover, mover_cap;
+    uint32_t *skin;        ///< past their skin (the list batch)
+    size_t nskin, skin_cap;
+    ptrdiff_t reach_lo, reach_hi; ///< the groups its movers go to, relative to it
+    double spot_dz, relax_dz;
+    gf_status status;
+    uint32_t full_cell;    ///< a cell the insertions found full (status GF_ERR_STATE)
+} gf_sweep_group;
+
 typedef struct gf_sweep {
     int threads;
     size_t nspot_chunk, spot_chunk_cap;
     gf_sweep_chunk *spot; ///< walk chunks
     size_t ncell_chunk;
     gf_sweep_chunk *cell; ///< gather and sweep chunks
+    size_t ngroup;
+    gf_sweep_group *group; ///< the cell chunks' summaries, GF_SWEEP_GROUP chunks a group
+    double *gsecs;        ///< profiling: the last summary's time per group
     gf_sweep_move *mv;    ///< the window's moves, joined in chunk order
     size_t nmv, mv_cap;
     double (*mirs)[3];    ///< their mirror centres
@@ -122,6 +155,7 @@ typedef struct gf_sweep {
     size_t dead_cap;
     double *coltop;
     size_t ncol;
+    double *csecs;        ///< profiling: the last column block's time per task
     gf_work w;            ///< the bookkeeping's worker (timed exits)
     double *secs;         ///< profiling scratch
     size_t secs_cap;
@@ -175,6 +209,14 @@ void gf_sweep_free(gf_sim *sim)
     GF_DELETE(q->spot, q->spot_chunk_cap);
     for (size_t k = 0; k < q->ncell_chunk; k++) gf_sweep_chunk_free(&q->cell[k]);
     GF_DELETE(q->cell, q->ncell_chunk);
+    for (size_t k = 0; q->group && k < q->ngroup; k++) {
+        gf_sweep_group *gr = &q->group[k];
+        GF_DELETE(gr->exit, gr->exit_cap);
+        GF_DELETE(gr->mover, gr->mover_cap);
+        GF_DELETE(gr->skin, gr->skin_cap);
+    }
+    GF_DELETE(q->group, q->ngroup);
+    GF_DELETE(q->gsecs, q->ngroup);
     GF_DELETE(q->mv, q->mv_cap);
     gf_free(q->mirs, sizeof(double[3]) * q->mirs_cap);
     gf_celllist_free(&q->bycell);
@@ -192,6 +234,7 @@ void gf_sweep_free(gf_sim *sim)
     GF_DELETE(q->fsecs, q->fsecs_cap);
     GF_DELETE(q->msecs, q->msecs_cap);
     GF_DELETE(q->dead, q->dead_cap);
+    GF_DELETE(q->csecs, (q->ncol + GF_SWEEP_COL_CHUNK - 1) / GF_SWEEP_COL_CHUNK);
     GF_DELETE(q->coltop, q->ncol);
     GF_DELETE(q->secs, q->secs_cap);
     gf_work_free(&q->w);
@@ -223,11 +266,19 @@ static gf_status gf_sweep_make(gf_sim *sim)
         const gf_grid *g = &sim->grid;
         q->ncol = (size_t)g->nx * (size_t)g->ny;
         q->coltop = GF_NEW(double, q->ncol);
+        q->csecs = GF_NEW(double, (q->ncol + GF_SWEEP_COL_CHUNK - 1) / GF_SWEEP_COL_CHUNK);
         q->ncell_chunk = (g->ncell + GF_SWEEP_CELL_CHUNK - 1) / GF_SWEEP_CELL_CHUNK;
         q->cell = GF_NEW(gf_sweep_chunk, q->ncell_chunk);
-        gf_status st = q->coltop && q->cell ? GF_OK : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
+        q->ngroup = (q->ncell_chunk + GF_SWEEP_GROUP - 1) / GF_SWEEP_GROUP;
+        q->group = GF_NEW(gf_sweep_group, q->ngroup);
+        q->gsecs = GF_NEW(double, q->ngroup);
+        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs
+                           ? GF_OK
+                           : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         if (q->cell)
             for (size_t k = 0; k < q->ncell_chunk; k++) q->cell[k] = (gf_sweep_chunk){0};
+        if (q->group)
+            for (size_t k = 0; k < q->ngroup; k++) q->group[k] = (gf_sweep_group){0};
         if (st == GF_OK) st = gf_work_init(sim, &q->w);
         if (st != GF_OK) {
             gf_sweep_free(sim);
@@ -402,6 +453,7 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     const gf_grid *g = &sim->grid;
     gf_pos *restrict p = sim->p;
+    ch->status = GF_OK;
     ch->ntodo = 0;
     const size_t end = (c + 1) * GF_SWEEP_CELL_CHUNK < g->ncell ? (c + 1) * GF_SWEEP_CELL_CHUNK : g->ncell;
     const double rs2 = sim->rs2, re2 = sim->re2;
@@ -467,6 +519,7 @@ static void gf_sweep_relax(gf_sim *sim, gf_sweep *q, size_t c)
     const gf_grid *g = &sim->grid;
     const gf_pos *restrict p = sim->p;
     const uint8_t *restrict act = q->active;
+    ch->status = GF_OK;
     const double alpha = sim->alpha, half = 0.5 * sim->alpha;
     ch->nlist = 0;
     const size_t end = (c + 1) * GF_SWEEP_CELL_CHUNK < g->ncell ? (c + 1) * GF_SWEEP_CELL_CHUNK : g->ncell;
@@ -513,7 +566,7 @@ static void gf_sweep_move_chunk(gf_sim *sim, gf_sweep *q, size_t c)
     gf_sweep_chunk *ch = &q->cell[c];
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     double dz = 0.0;
-    ch->ntodo = 0;
+    ch->ntodo = 0; // (its status is the sweep's, set by gf_sweep_relax)
     uint32_t *todo = gf_sweep_grow(ch->todo, &ch->todo_cap, ch->nlist, sizeof *ch->todo);
     if (!todo) {
         ch->status = GF_ERR_NOMEM;
@@ -561,6 +614,49 @@ static gf_status gf_sweep_row_merge(gf_sim *sim, gf_sweep *q, size_t a, size_t s
     return GF_OK;
 }
 
+static int gf_sweep_cmp_desc(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
+
+// Profiling: one parallel block's chunk times (ch[k].seconds, or secs[k]), and
+// the serial time since the last.
+static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, const double *secs, size_t n, double serial,
+                            int part)
+{
+    gf_par_profile *f = &q->prof;
+    if (n > q->secs_cap) {
+        GF_DELETE(q->secs, q->secs_cap);
+        q->secs = GF_NEW(double, n);
+        q->secs_cap = q->secs ? n : 0;
+        if (!q->secs) return;
+    }
+    double work = 0.0;
+    for (size_t k = 0; k < n; k++) {
+        q->secs[k] = ch ? ch[k].seconds : secs[k];
+        work += q->secs[k];
+    }
+    qsort(q->secs, n, sizeof(double), gf_sweep_cmp_desc); // LPT: heaviest first
+    f->colour_phases++;
+    f->barriers++;
+    f->blocks_run += n;
+    f->work_seconds += work + serial;
+    if (part >= 0) f->part_seconds[part] += work;
+    f->serial_seconds += serial;
+    f->span_seconds += (n ? q->secs[0] : 0.0) + serial;
+    for (int i = 0; i < GF_PAR_NPROJ; i++)
+        f->makespan_seconds[i] += gf_par_makespan(q->secs, n, gf_sweep_proj_threads[i]) + serial;
+}
+
+// Profiling a bookkeeping: the list refreshes' two blocks, timed by groups
+// (the rest of it is in the window's one-thread part).
+static void gf_sweep_record_book(gf_sweep *q)
+{
+    if (q->nf) gf_sweep_record(q, NULL, q->fsecs, q->nf, 0.0, 3);
+    if (q->nm) gf_sweep_record(q, NULL, q->msecs, q->nm, 0.0, 3);
+}
+
 // The neighbour-list refreshes of the particles the chunks flagged that went
 // past their skin, as a batch. A row lists exactly the live j with
 // |p0_i - p0_j| below the listing distance (nlist.c): a function of the
@@ -577,10 +673,10 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     q->nf = q->nm = 0;
     double ts = gf_sweep_tic(q);
     size_t nc = 0;
-    for (size_t c = 0; c < q->ncell_chunk; c++) {
-        const gf_sweep_chunk *ch = &q->cell[c];
-        for (size_t k = 0; k < ch->ntodo; k++) {
-            uint32_t i = ch->todo[k];
+    for (size_t gi = 0; gi < q->ngroup; gi++) {
+        const gf_sweep_group *gr = &q->group[gi];
+        for (size_t k = 0; k < gr->nskin; k++) {
+            uint32_t i = gr->skin[k];
             if (!sim->alive[i] || q->crossing[i]) continue;
             const gf_pos *p = &sim->p[i];
             const gf_ref *a = &sim->p0[i];
@@ -696,18 +792,51 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     return st;
 }
 
-// One thread, in chunk order, over the particles the chunks flagged: exits
-// (timed by the last move that reached the particle), cells, then the lists
-// of those past their skin.
+// Group d's insertions: the movers of the groups that reach it, in group
+// then list order, into its cells.
+static void gf_sweep_arrive(gf_sim *sim, gf_sweep *q, size_t d, ptrdiff_t lo, ptrdiff_t hi)
+{
+    gf_sweep_group *gd = &q->group[d];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const uint32_t c0 = (uint32_t)(d * GF_SWEEP_GROUP_CELLS), c1 = (uint32_t)((d + 1) * GF_SWEEP_GROUP_CELLS);
+    gd->status = GF_OK;
+    for (ptrdiff_t s = (ptrdiff_t)d - hi; s <= (ptrdiff_t)d - lo; s++) {
+        if (s < 0 || s >= (ptrdiff_t)q->ngroup) continue;
+        const gf_sweep_group *gs = &q->group[s];
+        for (size_t k = 0; k < gs->nmover; k++) {
+            const gf_sweep_mover m = gs->mover[k];
+            if (m.cell < c0 || m.cell >= c1) continue;
+            if (sim->grid.count[m.cell] >= GF_CELL_CAP) {
+                gd->status = GF_ERR_STATE;
+                gd->full_cell = m.cell;
+                continue;
+            }
+            (void)gf_grid_insert(&sim->grid, m.i, m.cell);
+        }
+    }
+    if (q->profiling) q->gsecs[d] = gf_sweep_since(q, t0);
+}
+
+// The bookkeeping of what the chunks flagged, sorted by the groups'
+// summaries: exits on one thread in chunk order (timed by the last move that
+// reached the particle; a handful a window); then the cell moves side by
+// side, every group taking its movers out of its own cells, then every group
+// putting into its cells the movers bound for them; then the lists of those
+// past their skin.
 static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
 {
     gf_grid *g = &sim->grid;
     gf_work *w = &q->w;
-    const double ts = gf_sweep_tic(q);
-    for (size_t c = 0; c < q->ncell_chunk; c++) {
-        const gf_sweep_chunk *ch = &q->cell[c];
-        for (size_t k = 0; k < ch->ntodo; k++) {
-            uint32_t i = ch->todo[k];
+    double ts = gf_sweep_tic(q);
+    ptrdiff_t lo = 0, hi = 0;
+    for (size_t gi = 0; gi < q->ngroup; gi++) {
+        const gf_sweep_group *gr = &q->group[gi];
+        if (gr->nmover) {
+            lo = gr->reach_lo < lo ? gr->reach_lo : lo;
+            hi = gr->reach_hi > hi ? gr->reach_hi : hi;
+        }
+        for (size_t k = 0; k < gr->nexit; k++) {
+            uint32_t i = gr->exit[k];
             w->t = q->tlast[i];
             if (gf_sim_exit_check(sim, w, i)) continue;
             if (w->exit_failed) return gf_error_set(GF_ERR_NOMEM, "out of memory for the exits");
@@ -716,50 +845,35 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
         }
     }
     gf_sweep_toc(q, ts);
+    const size_t n = q->ngroup;
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && n > 1)
+#endif
+    for (size_t gi = 0; gi < n; gi++) {
+        double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+        const gf_sweep_group *gr = &q->group[gi];
+        for (size_t k = 0; k < gr->nmover; k++) gf_grid_remove(g, gr->mover[k].i);
+        if (q->profiling) q->gsecs[gi] = gf_sweep_since(q, t0);
+    }
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, n, 0.0, 3);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && n > 1)
+#endif
+    for (size_t d = 0; d < n; d++) gf_sweep_arrive(sim, q, d, lo, hi);
+    (void)threads;
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, n, 0.0, 3);
+    ts = gf_sweep_tic(q);
+    for (size_t d = 0; d < n; d++)
+        if (q->group[d].status != GF_OK) {
+            gf_sweep_toc(q, ts);
+            return gf_error_set(GF_ERR_STATE,
+                                "more than %d particle centres in one %.2g d cell (cell %u): the packing "
+                                "overlaps far too much",
+                                GF_CELL_CAP, g->h, q->group[d].full_cell);
+        }
+    gf_sweep_toc(q, ts);
     return sim->use_nlist ? gf_sweep_refresh(sim, q) : GF_OK;
-}
-
-static int gf_sweep_cmp_desc(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x < y) - (x > y);
-}
-
-// Profiling: one parallel block's chunk times (ch[k].seconds, or secs[k]), and
-// the serial time since the last.
-static void gf_sweep_record(gf_sweep *q, const gf_sweep_chunk *ch, const double *secs, size_t n, double serial,
-                            int part)
-{
-    gf_par_profile *f = &q->prof;
-    if (n > q->secs_cap) {
-        GF_DELETE(q->secs, q->secs_cap);
-        q->secs = GF_NEW(double, n);
-        q->secs_cap = q->secs ? n : 0;
-        if (!q->secs) return;
-    }
-    double work = 0.0;
-    for (size_t k = 0; k < n; k++) {
-        q->secs[k] = ch ? ch[k].seconds : secs[k];
-        work += q->secs[k];
-    }
-    qsort(q->secs, n, sizeof(double), gf_sweep_cmp_desc); // LPT: heaviest first
-    f->colour_phases++;
-    f->barriers++;
-    f->blocks_run += n;
-    f->work_seconds += work + serial;
-    if (part >= 0) f->part_seconds[part] += work;
-    f->serial_seconds += serial;
-    f->span_seconds += (n ? q->secs[0] : 0.0) + serial;
-    for (int i = 0; i < GF_PAR_NPROJ; i++)
-        f->makespan_seconds[i] += gf_par_makespan(q->secs, n, gf_sweep_proj_threads[i]) + serial;
-}
-
-// Profiling a bookkeeping: the list refreshes' two blocks, timed by groups
-// (the rest of it is in the window's one-thread part).
-static void gf_sweep_record_book(gf_sweep *q)
-{
-    if (q->nf) gf_sweep_record(q, NULL, q->fsecs, q->nf, 0.0, 3);
-    if (q->nm) gf_sweep_record(q, NULL, q->msecs, q->nm, 0.0, 3);
 }
 
 static gf_status gf_sweep_status(const gf_sweep_chunk *ch, size_t n)
@@ -861,10 +975,6 @@ static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
 {
     const size_t n = q->ncell_chunk;
     const int threads = q->threads;
-    for (size_t c = 0; c < n; c++) {
-        q->cell[c].status = GF_OK;
-        q->cell[c].seconds = 0.0;
-    }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1)
 #endif
@@ -880,19 +990,105 @@ static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
     (void)threads;
 }
 
-// The cell chunks' counters added in chunk order. They count nothing but
-// spot_dz and relax_dz, so the chunks that moved nothing are passed over
-// (adding their zeros would change no bit) and only those two are reset:
-// tens of thousands of chunks, three times a window, on one thread.
+// Group g's summary: its chunks' status, counters (they count nothing but
+// spot_dz and relax_dz, reset here) and todo lists, in chunk order.
+static void gf_sweep_summarise(gf_sim *sim, gf_sweep *q, size_t g)
+{
+    gf_sweep_group *gr = &q->group[g];
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const size_t lo = g * GF_SWEEP_GROUP, hi = lo + GF_SWEEP_GROUP < q->ncell_chunk ? lo + GF_SWEEP_GROUP : q->ncell_chunk;
+    const gf_grid *grid = &sim->grid;
+    gr->status = GF_OK;
+    gr->nexit = gr->nmover = gr->nskin = 0;
+    gr->reach_lo = gr->reach_hi = 0;
+    gr->spot_dz = gr->relax_dz = 0.0;
+    size_t need = 0;
+    for (size_t c = lo; c < hi; c++) need += q->cell[c].ntodo;
+    uint32_t *ex = gf_sweep_grow(gr->exit, &gr->exit_cap, need, sizeof *ex);
+    if (ex) gr->exit = ex;
+    gf_sweep_mover *mv = ex ? gf_sweep_grow(gr->mover, &gr->mover_cap, need, sizeof *mv) : NULL;
+    if (mv) gr->mover = mv;
+    uint32_t *sk = mv ? gf_sweep_grow(gr->skin, &gr->skin_cap, need, sizeof *sk) : NULL;
+    if (!sk) {
+        gr->status = GF_ERR_NOMEM;
+        return;
+    }
+    gr->skin = sk;
+    for (size_t c = lo; c < hi; c++) {
+        gf_sweep_chunk *ch = &q->cell[c];
+        if (gr->status == GF_OK) gr->status = ch->status;
+        gr->spot_dz += ch->st.spot_dz;
+        gr->relax_dz += ch->st.relax_dz;
+        ch->st.spot_dz = ch->st.relax_dz = 0.0;
+        for (size_t k = 0; k < ch->ntodo; k++) {
+            const uint32_t i = ch->todo[k];
+            const gf_pos *p = &sim->p[i];
+            const uint32_t cell = gf_grid_cell(grid, p->x, p->y, p->z);
+            if (p->z < sim->box.z_exit) {
+                ex[gr->nexit++] = i; // (if it stays, its cell is moved on one thread too)
+            } else if (cell != grid->cell_of[i]) {
+                mv[gr->nmover++] = (gf_sweep_mover){i, cell};
+                ptrdiff_t dg = (ptrdiff_t)(cell / GF_SWEEP_GROUP_CELLS) - (ptrdiff_t)g;
+                gr->reach_lo = dg < gr->reach_lo ? dg : gr->reach_lo;
+                gr->reach_hi = dg > gr->reach_hi ? dg : gr->reach_hi;
+            }
+            if (sim->use_nlist) {
+                const gf_ref *a = &sim->p0[i];
+                double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
+                if (dx * dx + dy * dy + dz * dz > lim * lim) sk[gr->nskin++] = i;
+            }
+        }
+    }
+    if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
+}
+
+// After a gather or a sweep: the groups summarised side by side, then their
+// counters added on one thread in group order (a thousand groups on the
+// pebble bed, where one thread once went through 68,000 chunk records three
+// times a window).
 static gf_status gf_sweep_counters(gf_sim *sim, gf_sweep *q)
 {
-    for (size_t c = 0; c < q->ncell_chunk; c++) {
-        gf_sim_stats *cs = &q->cell[c].st;
-        if (cs->spot_dz == 0.0 && cs->relax_dz == 0.0) continue;
-        gf_par_add(&sim->st, cs);
-        cs->spot_dz = cs->relax_dz = 0.0;
+    const size_t n = q->ngroup;
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && n > 1)
+#endif
+    for (size_t g = 0; g < n; g++) gf_sweep_summarise(sim, q, g);
+    (void)threads;
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, n, 0.0, 3);
+    const double ts = gf_sweep_tic(q);
+    gf_status st = GF_OK;
+    for (size_t g = 0; g < n; g++) {
+        const gf_sweep_group *gr = &q->group[g];
+        sim->st.spot_dz += gr->spot_dz;
+        sim->st.relax_dz += gr->relax_dz;
+        if (st == GF_OK && gr->status != GF_OK) st = gf_error_set(gr->status, "out of memory in the sweep engine");
     }
-    return gf_sweep_status(q->cell, q->ncell_chunk);
+    gf_sweep_toc(q, ts);
+    return st;
+}
+
+// The grid's columns side by side: 0, the column tops the window's walk
+// reads (as the window begins); 1, the grid's top[] (as it ends).
+static void gf_sweep_columns(gf_sim *sim, gf_sweep *q, int what)
+{
+    const size_t n = (q->ncol + GF_SWEEP_COL_CHUNK - 1) / GF_SWEEP_COL_CHUNK;
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && n > 1)
+#endif
+    for (size_t c = 0; c < n; c++) {
+        double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+        const size_t lo = c * GF_SWEEP_COL_CHUNK, hi = lo + GF_SWEEP_COL_CHUNK < q->ncol ? lo + GF_SWEEP_COL_CHUNK : q->ncol;
+        if (what == 0)
+            for (size_t col = lo; col < hi; col++)
+                q->coltop[col] = gf_grid_column_top_at(&sim->grid, (uint32_t)col, &sim->p[0].z, 4);
+        else
+            gf_grid_recompute_top_cols(&sim->grid, lo, hi);
+        if (q->profiling) q->csecs[c] = gf_sweep_since(q, t0);
+    }
+    (void)threads;
+    if (q->profiling) gf_sweep_record(q, NULL, q->csecs, n, 0.0, -1);
 }
 
 gf_status gf_sim_sweep_window(gf_sim *sim)
@@ -910,17 +1106,15 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     sim->st.events++;
     const size_t nexit0 = sim->nexit;
     if ((st = gf_spots_insert_window(sim, t_end, window)) != GF_OK) return st;
-    gf_par_column_tops(sim, q->coltop, q->ncol);
     sim->grid.lazy_top = true; // top[] is redone after the window
     gf_sweep_toc(q, ts);
+    gf_sweep_columns(sim, q, 0);
     st = gf_sweep_walk_all(sim, q, t_end);
     if (st == GF_OK && q->nmv > 0) {
         double t1 = sim->timing ? gf_clock_now() : 0.0;
         gf_sweep_cells(sim, q, 0);
         if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 1);
-        ts = gf_sweep_tic(q);
         st = gf_sweep_counters(sim, q);
-        gf_sweep_toc(q, ts);
         if (st == GF_OK) st = gf_sweep_book(sim, q);
         if (q->profiling) gf_sweep_record_book(q);
         if (sim->timing) sim->st.spot_seconds += gf_clock_now() - t1;
@@ -931,18 +1125,16 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
             if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
             gf_sweep_cells(sim, q, 2);
             if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
-            ts = gf_sweep_tic(q);
             st = gf_sweep_counters(sim, q);
-            gf_sweep_toc(q, ts);
             if (st == GF_OK) st = gf_sweep_book(sim, q);
             if (q->profiling) gf_sweep_record_book(q);
             sim->st.relax_calls++;
         }
         sim->st.relax_seconds += gf_clock_now() - t2;
     }
-    ts = gf_sweep_tic(q);
     sim->grid.lazy_top = false;
-    gf_grid_recompute_top(&sim->grid);
+    gf_sweep_columns(sim, q, 1);
+    ts = gf_sweep_tic(q);
     if (st != GF_OK) return st;
     if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_exit_cmp_time_id);
     gf_spots_compact(sim, q->dead);
