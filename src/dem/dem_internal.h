@@ -8,6 +8,23 @@
 #include "granflow/core.h"
 #include "granflow/dem.h"
 
+/// in.drain's `restart N drain.a.restart drain.b.restart` (nothing when
+/// plan->restart_steps is 0), before the drain's first run.
+void gf_dem_restart_line(FILE *f, const gf_dem_plan *plan, double timestep);
+
+// ---- granflow dem --continue (lammps_continue.c) ---------------------------------
+
+/// Whether the newer of DIR/log.drain and log.continue says its drain ran
+/// to its end, to a time (*until, tau) of at least `duration`.
+bool gf_dem_cont_finished(const char *dir, double duration, double *until);
+/// Puts each snapshot's ITEM: TIME right (step * dt) where LAMMPS wrote the
+/// time of a run after read_restart (from 0); counts those rewritten.
+gf_status gf_dem_cont_fix_times(const char *dir, double dt, size_t *fixed);
+/// Checks DIR/in.drain against cfg, removes the tail after `step` (snapshots;
+/// reinsertions) and writes DIR/in.continue reading `restart` (fills c).
+gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char *restart, int64_t step,
+                              gf_dem_cont *c);
+
 // ---- recirculation (lammps_recirculate.c, reinserted.c; issue 27 item 4) --------
 
 /// The reinsertion file LAMMPS appends to, in the run directory.
