@@ -247,8 +247,8 @@ void gf_test_outcome_free(gf_test_outcome *o)
 void gf_test_resume_matches(const char *tag, gf_config whole, gf_config first, gf_config second, double stop_at)
 {
     char dw[512], dp[512];
-    snprintf(dw, sizeof dw, "%s/%s_whole", gf_test_tmpdir(), tag);
-    snprintf(dp, sizeof dp, "%s/%s_part", gf_test_tmpdir(), tag);
+    assert_true(snprintf(dw, sizeof dw, "%s/%s_whole", gf_test_tmpdir(), tag) < (int)sizeof dw);
+    assert_true(snprintf(dp, sizeof dp, "%s/%s_part", gf_test_tmpdir(), tag) < (int)sizeof dp);
     gf_run_opts o = {.dir = dw, .force = 1};
     assert_int_equal(gf_run_dir(&whole, &o, NULL), GF_OK);
     first.run_duration = stop_at;
