@@ -31,6 +31,7 @@
 #include "core/alloc.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/fs.h"
 #include "dem/dem_internal.h"
 #include "granflow/defs.h"
 #include "granflow/particles.h"
@@ -217,46 +218,42 @@ static gf_status gf_cont_settled_top(const char *dir, double *top)
     return GF_OK;
 }
 
-static void gf_cont_free(char **lines, size_t n, size_t cap)
+/// in.drain as lines: the file in one block (*data, *cap: gf_free), split in
+/// place at its newlines, and an array of their starts (*lines, *lcap).
+typedef struct gf_cont_text {
+    unsigned char *data;
+    size_t len, cap;
+    char **l;
+    size_t n, lcap;
+} gf_cont_text;
+
+static void gf_cont_free(gf_cont_text *t)
 {
-    for (size_t k = 0; k < n; k++) free(lines[k]);
-    if (lines) GF_DELETE(lines, cap);
+    if (t->data) gf_free(t->data, t->cap);
+    if (t->l) GF_DELETE(t->l, t->lcap);
+    *t = (gf_cont_text){0};
 }
 
-static gf_status gf_cont_read(const char *path, char ***out, size_t *n, size_t *cap)
+static gf_status gf_cont_read(const char *path, gf_cont_text *t)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) return gf_error_set(GF_ERR_IO, "%s: %s", path, strerror(errno));
-    char line[GF_CONT_LINE];
-    char **a = NULL;
-    size_t cnt = 0, c = 0;
-    gf_status st = GF_OK;
-    while (fgets(line, sizeof line, f)) {
-        line[strcspn(line, "\r\n")] = '\0';
-        if (cnt == c) {
-            size_t nc = c ? 2 * c : 256;
-            char **b = gf_realloc(a, sizeof *a * c, sizeof *a * nc);
-            if (!b) {
-                st = gf_error_set(GF_ERR_NOMEM, "%s: out of memory", path);
-                break;
-            }
-            a = b;
-            c = nc;
-        }
-        if (!(a[cnt] = strdup(line))) {
-            st = gf_error_set(GF_ERR_NOMEM, "%s: out of memory", path);
-            break;
-        }
-        cnt++;
+    *t = (gf_cont_text){0};
+    gf_status st = gf_fs_read_all(path, 1 << 24, &t->data, &t->len, &t->cap); // an in.drain is a few kB
+    if (st != GF_OK) return st;
+    size_t lines = 1;
+    for (size_t k = 0; k < t->len; k++) lines += t->data[k] == '\n';
+    if (!(t->l = GF_NEW(char *, lines))) {
+        gf_cont_free(t);
+        return gf_error_set(GF_ERR_NOMEM, "%s: out of memory", path);
     }
-    fclose(f);
-    if (st != GF_OK) {
-        gf_cont_free(a, cnt, c);
-        return st;
+    t->lcap = lines;
+    char *p = (char *)t->data, *end = p + t->len;
+    while (p < end) {
+        char *nl = memchr(p, '\n', (size_t)(end - p));
+        if (nl) *nl = '\0';
+        p[strcspn(p, "\r")] = '\0';
+        t->l[t->n++] = p;
+        p = nl ? nl + 1 : end;
     }
-    *out = a;
-    *n = cnt;
-    *cap = c;
     return GF_OK;
 }
 
@@ -281,10 +278,11 @@ gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char 
     char path[GF_PATH_MAX + 32], cpath[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 48];
     snprintf(path, sizeof path, "%s/in.drain", dir);
     snprintf(cpath, sizeof cpath, "%s/config.ini", dir);
-    char **l = NULL;
-    size_t n = 0, cap = 0;
-    gf_status st = gf_cont_read(path, &l, &n, &cap);
+    gf_cont_text text;
+    gf_status st = gf_cont_read(path, &text);
     if (st != GF_OK) return st;
+    char **l = text.l;
+    const size_t n = text.n;
     // What the continuation needs of in.drain, and what must agree with the configuration.
     const size_t i_read = gf_cont_find(l, n, 0, "read_restart settled.restart"),
                  i_reset = gf_cont_find(l, n, 0, "reset_timestep 0"),
@@ -382,6 +380,10 @@ gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char 
                        "# as before while the 1 d below it is packed\n"
                        "variable rc_lo equal $(%.10g%s\n", top, rest);
         } else if (k == i_loop) {
+            // Before any reinsertion moves a particle (create_atoms, set, delete_atoms): LAMMPS discards
+            // restart state no fix has claimed by then, and the pair style's contact histories are claimed
+            // at the first run's setup.
+            fprintf(f, "run 0 post no # continued: takes the contact histories back from the restart\n");
             if (first > full) { // the restart is in the last, partial chunk: no reinsertion is left
                 fprintf(f, "run %lld upto pre yes post no # continued\njump SELF rc_end\n", total);
             } else {
@@ -413,6 +415,6 @@ gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char 
     }
     st = gf_atomic_commit(f, tmp, path);
 done:
-    gf_cont_free(l, n, cap);
+    gf_cont_free(&text);
     return st;
 }
