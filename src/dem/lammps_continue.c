@@ -309,7 +309,7 @@ gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char 
         st = gf_error_set(GF_ERR_PARAM,
                           "%s:%zu and %s disagree (%s): the configuration is not the one this drain ran with; "
                           "continue it with its own %s",
-                          path, fabs(ts - dt) > 1e-12 * dt ? i_ts + 1 : snap_every != want_snap ? i_dump + 1 : i_loop + 1,
+                          path, fabs(ts - dt) > 1e-12 * dt ? i_ts + 1 : snap_every != want_snap ? i_dump + 1 : (recirc ? i_loop : i_mark) + 1,
                           cpath,
                           fabs(ts - dt) > 1e-12 * dt ? "dem.timestep" : snap_every != want_snap ? "output.snapshot_interval"
                                                                                                 : "run.recirculate",

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -351,6 +352,16 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
                 dd.duration, (long long)plan.drain_steps);
     }
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;
+    // An earlier drain's restart files and continuation do not fit this in.drain: gone, so that
+    // granflow dem --continue cannot go on from them.
+    static const char *const stale[] = {"drain.a.restart", "drain.b.restart", "in.continue", "log.continue"};
+    for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, stale[k]);
+        if (unlink(path) != 0 && errno != ENOENT) {
+            st = gf_error_set(GF_ERR_IO, "%s: cannot remove the earlier drain's: %s", path, strerror(errno));
+            goto done;
+        }
+    }
 
     // config.ini: the container and keys, for calibrate/compare/analyze.
     snprintf(path, sizeof path, "%s/config.ini", dir);

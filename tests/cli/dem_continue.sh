@@ -125,6 +125,14 @@ expect_rc 0 "--continue --set run.duration=7"
 check_series d 7 600 0
 grep -q '^duration *= *7$' d/config.ini || fail "config.ini does not hold the longer run.duration"
 ok "a finished drain: nothing to continue (2); a longer run.duration continues it to t = 7"
+# New inputs in the directory: the earlier drain's restart files go with its in.drain.
+gf dem -q "${BOX[@]}" --set run.duration=6 -o d --force
+expect_rc 0 "granflow dem --force over the continued run"
+for f in drain.a.restart drain.b.restart in.continue log.continue; do [ -e "d/$f" ] && fail "new inputs left d/$f"; done
+gf dem -o d --continue
+expect_rc 2 "--continue after new inputs"
+expect_err "no restart file to continue from" "--continue after new inputs"
+ok "new inputs remove the earlier drain's restart files: nothing to continue"
 
 # ---- a recirculating drain ----
 start dem -q "${BOX[@]}" --set packing.particles=300 --set run.recirculate=on --set run.duration=4 -o rc --run
