@@ -241,7 +241,7 @@ static gf_status gf_dem_check_outputs(const char *dir, bool fill, time_t since)
 /// saying so. The error message of the stop is kept.
 static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_reader *r, time_t since)
 {
-    char msg[1024], path[GF_PATH_MAX + 64], removed[GF_PATH_MAX + 64] = "";
+    char msg[1024], path[GF_PATH_MAX + 320], removed[GF_PATH_MAX + 64] = "";
     snprintf(msg, sizeof msg, "%s", gf_last_error());
     if (fill) {
         const char *names[2] = {"settled.restart", "packing.dump"};
