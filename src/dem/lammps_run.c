@@ -227,7 +227,7 @@ static gf_status gf_dem_check_outputs(const char *dir, bool fill, time_t since)
     }
     if (d) closedir(d);
     if (!found)
-        return gf_error_set(GF_ERR_PARAM,
+        return gf_error_set(GF_ERR_STATE,
                             "LAMMPS ended the drain (%s/in.drain) with exit status 0 but wrote no snapshot in %s "
                             "(see %s/log.drain)",
                             dir, path, dir);
@@ -435,7 +435,7 @@ gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_ru
                             dir, c.restart, dt, dir, dd.timestep);
     gf_dem_cont probe = c; // prepare fills c afresh
     if ((st = gf_dem_cont_prepare(dir, cfg, probe.restart, step, &c)) != GF_OK) {
-        if (out) *out = (gf_dem_cont){.unreadable[0] = 0};
+        if (out) *out = (gf_dem_cont){0};
         return st;
     }
     snprintf(c.unreadable, sizeof c.unreadable, "%s", probe.unreadable);
