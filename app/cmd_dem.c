@@ -52,11 +52,11 @@ static void gf_dem_show_progress(void *ctx, const gf_dem_progress *p)
 /// --set may lengthen; dem.mpi_ranks may change: nothing else).
 static int gf_dem_cmd_continue(const gf_cli *cli)
 {
-    if (cli->config_path || cli->drain_only || cli->force) {
+    if (cli->config_path || cli->drain_only) {
         fprintf(stderr, "granflow dem: error: --continue goes on with %s/config.ini%s: %s\n", cli->out,
                 cli->config_path ? ", not another CONFIG" : "",
                 cli->config_path ? "a drain under way keeps its configuration (change run.duration with --set)"
-                                 : "it takes neither --drain-only nor --force");
+                                 : "it does not take --drain-only");
         return GF_EXIT_USAGE;
     }
     static const char *const may[] = {"run.duration=", "dem.mpi_ranks="};
@@ -84,7 +84,7 @@ static int gf_dem_cmd_continue(const gf_cli *cli)
     volatile sig_atomic_t *stop = gf_cli_catch_stop();
     gf_dem_show show = {.tty = !cli->quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
     gf_dem_run_opts o = {.ranks = (int)dd.mpi_ranks, .progress = cli->quiet ? NULL : gf_dem_show_progress,
-                         .ctx = &show, .stop = stop};
+                         .ctx = &show, .stop = stop, .force = cli->force};
     gf_dem_cont c;
     if (!cli->quiet) fprintf(stderr, "granflow dem: continuing the drain of %s (log: log.continue)\n", cli->out);
     gf_status st = gf_dem_continue(cli->out, &cfg, &o, &c);
@@ -103,6 +103,7 @@ static int gf_dem_cmd_continue(const gf_cli *cli)
         fputs("\n", stderr);
     }
     if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL);
+    if (st == GF_ERR_EXISTS) return gf_cli_fail_hint("dem", st, "(--force if you know it is not)");
     if (st != GF_OK) return gf_cli_fail("dem", st);
     if (!cli->quiet) fprintf(stderr, "granflow dem: done: %s/snapshots/ (the whole drainage)\n", cli->out);
     return GF_EXIT_OK;

@@ -110,7 +110,7 @@ static const struct gf_usage {
     GF_HELP_LINE},
     {"dem",
      "usage: granflow dem [CONFIG] [--set KEY=VALUE]... -o DIR [--run | --drain-only] [--force] [-q]\n"
-     "       granflow dem -o DIR --continue [--set run.duration=T] [--set dem.mpi_ranks=N] [-q]\n"
+     "       granflow dem -o DIR --continue [--set run.duration=T] [--set dem.mpi_ranks=N] [--force] [-q]\n"
      "Writes the LAMMPS inputs of a DEM run of the same silo (DIR/in.fill: pour or\n"
      "settle the packing; DIR/in.drain: open the orifice), and with --run runs them\n"
      "(lmp; dem.mpi_ranks under mpirun) with a progress line. The drain writes a\n"
@@ -123,7 +123,8 @@ static const struct gf_usage {
      "      --drain-only       run the drainage again from DIR/settled.restart\n"
      "      --continue         continue an interrupted drainage from the newer of\n"
      "                         DIR/drain.a.restart and drain.b.restart\n"
-     "  -f, --force            replace a DEM run in DIR\n"
+     "  -f, --force            replace a DEM run in DIR; --continue: even if the drain\n"
+     "                         wrote files in the last 2 minutes (its LAMMPS gone)\n"
      "  -q, --quiet            no progress lines\n" GF_HELP_LINE},
     {"calibrate",
      "usage: granflow calibrate DEM_DIR -o PARAMS.ini [--timestep DT] [--config INI]\n"

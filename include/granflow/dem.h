@@ -95,7 +95,17 @@ typedef struct gf_dem_run_opts {
     /// reaped, and gf_dem_run returns GF_ERR_INTERRUPTED having marked the
     /// directory (GF_DEM_INTERRUPTED).
     volatile sig_atomic_t *stop;
+    /// gf_dem_continue only: go on even though the drain's files were written
+    /// in the last GF_DEM_BUSY_SECONDS (a LAMMPS that may still run there).
+    bool force;
 } gf_dem_run_opts;
+
+/// gf_dem_continue refuses a directory whose drain has not ended (its log has
+/// no `done` marker) and wrote its log, a restart file or a snapshot less
+/// than this many seconds ago (with no newer interrupted.txt): its LAMMPS
+/// may still be running, and the continuation would remove and write over
+/// what it writes.
+#define GF_DEM_BUSY_SECONDS 120
 
 /// The file gf_dem_run writes into a run directory whose LAMMPS run was
 /// stopped (and removes when a run completes): the phase, and what it removed
@@ -138,8 +148,10 @@ typedef struct gf_dem_cont {
 /// written from the whole reinserted.txt. GF_ERR_PARAM when the drain already
 /// ran to run.duration, no restart file exists, or in.drain, the restart and
 /// the configuration disagree; GF_ERR_FORMAT when LAMMPS can read neither
-/// restart file (its error, naming the file); otherwise as gf_dem_run (the
-/// directory marked interrupted.txt when stopped). `out` may be NULL.
+/// restart file (its error, naming the file); GF_ERR_EXISTS when the drain
+/// may still be running (GF_DEM_BUSY_SECONDS; o->force goes on); otherwise
+/// as gf_dem_run (the directory marked interrupted.txt when stopped). `out`
+/// may be NULL.
 GF_API gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_run_opts *o, gf_dem_cont *out);
 
 // ---------------------------------------------------------------------------

@@ -15,8 +15,14 @@ void gf_dem_restart_line(FILE *f, const gf_dem_plan *plan, double timestep);
 // ---- granflow dem --continue (lammps_continue.c) ---------------------------------
 
 /// Whether the newer of DIR/log.drain and log.continue says its drain ran
-/// to its end, to a time (*until, tau) of at least `duration`.
-bool gf_dem_cont_finished(const char *dir, double duration, double *until);
+/// to its end (the `done` marker after the last `drain` or `continue`
+/// marker), and to which time (*until, tau; the marker's 6 digits).
+bool gf_dem_cont_done(const char *dir, double *until);
+/// GF_ERR_EXISTS when the drain of DIR wrote its log, a restart file or a
+/// snapshot in the last GF_DEM_BUSY_SECONDS and no newer interrupted.txt
+/// says granflow stopped it: its LAMMPS may still be running (the caller
+/// asks only of a drain whose log has not ended: gf_dem_cont_done).
+gf_status gf_dem_cont_check_idle(const char *dir);
 /// Puts each snapshot's ITEM: TIME right (step * dt) where LAMMPS wrote the
 /// time of a run after read_restart (from 0); counts those rewritten.
 gf_status gf_dem_cont_fix_times(const char *dir, double dt, size_t *fixed);

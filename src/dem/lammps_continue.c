@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/alloc.h"
@@ -47,9 +48,7 @@ static long long gf_cont_snap_step(const char *name)
     return (!name[end] || !strcmp(name + end, ".gz")) ? step : -1;
 }
 
-/// The newer of log.drain and log.continue: did its drain run to its end,
-/// and to which time (the `granflow-phase drain|continue N D` marker)?
-bool gf_dem_cont_finished(const char *dir, double duration, double *until)
+bool gf_dem_cont_done(const char *dir, double *until)
 {
     char path[GF_PATH_MAX + 32], best[GF_PATH_MAX + 32] = "";
     struct stat sb;
@@ -80,8 +79,30 @@ bool gf_dem_cont_finished(const char *dir, double duration, double *until)
         }
     }
     fclose(f);
-    // The marker has 6 digits (%.6g): a drain to 12.3456789 tau printed 12.3457.
-    return done && duration <= *until * (1.0 + 1e-5);
+    return done;
+}
+
+gf_status gf_dem_cont_check_idle(const char *dir)
+{
+    static const char *const names[] = {"log.drain", "log.continue", "drain.a.restart", "drain.b.restart", "snapshots"};
+    char path[GF_PATH_MAX + 32], newest[GF_PATH_MAX + 32] = "";
+    struct stat sb;
+    time_t last = 0;
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]); // snapshots/: its time changes as a file is added
+        if (stat(path, &sb) == 0 && sb.st_mtime > last) {
+            last = sb.st_mtime;
+            snprintf(newest, sizeof newest, "%s", path);
+        }
+    }
+    snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
+    if (stat(path, &sb) == 0 && sb.st_mtime >= last) return GF_OK; // granflow stopped that LAMMPS and saw it go
+    const time_t now = time(NULL);
+    if (!newest[0] || now - last >= GF_DEM_BUSY_SECONDS) return GF_OK;
+    return gf_error_set(GF_ERR_EXISTS,
+                        "%s was written %lld s ago: the drain's LAMMPS may still be running there, and going on "
+                        "would remove and write over what it writes; stop it (or wait until %d s after it stopped)",
+                        newest, (long long)(now - last), GF_DEM_BUSY_SECONDS);
 }
 
 /// Rewrites a snapshot's ITEM: TIME line as step * dt when it is not that.

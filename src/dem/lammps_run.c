@@ -350,6 +350,16 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
     return GF_OK;
 }
 
+/// The error of a directory without restart files.
+static gf_status gf_dem_cont_none(const char *dir)
+{
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s: no restart file to continue from (drain.a.restart, drain.b.restart): the drain "
+                        "wrote none yet (it writes one every dem.restart_interval), or its in.drain has no "
+                        "restart line; drain again from settled.restart (--drain-only)",
+                        dir);
+}
+
 /// Which of DIR/drain.a.restart and drain.b.restart LAMMPS reads, and at
 /// which step: each present one is read by a one-rank LAMMPS (in.probe) that
 /// prints its step and timestep; the readable one of the higher step wins.
@@ -389,12 +399,7 @@ static gf_status gf_dem_cont_probe(const char *dir, const char *lmp, const gf_de
                      r.error[0] ? r.error : "no step printed");
         }
     }
-    if (!found)
-        return gf_error_set(GF_ERR_PARAM,
-                            "%s: no restart file to continue from (drain.a.restart, drain.b.restart): the drain "
-                            "wrote none yet (it writes one every dem.restart_interval), or its in.drain has no "
-                            "restart line; drain again from settled.restart (--drain-only)",
-                            dir);
+    if (!found) return gf_dem_cont_none(dir);
     if (best < 0)
         return gf_error_set(GF_ERR_FORMAT, "%s%s%s", why[0], why[0][0] && why[1][0] ? "; " : "", why[1]);
     snprintf(c->unreadable, sizeof c->unreadable, "%s", why[1 - best]);
@@ -420,7 +425,16 @@ gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_ru
     if (access(path, R_OK) != 0)
         return gf_error_set(GF_ERR_IO, "%s: %s (no drain to continue there)", path, strerror(errno));
     double until = 0.0;
-    if (gf_dem_cont_finished(dir, dd.duration, &until))
+    const bool done = gf_dem_cont_done(dir, &until);
+    bool any = false;
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/drain.%c.restart", dir, "ab"[k]);
+        any = any || access(path, F_OK) == 0;
+    }
+    if (!any) return gf_dem_cont_none(dir);
+    if (!done && !o->force && (st = gf_dem_cont_check_idle(dir)) != GF_OK) return st;
+    // The marker has 6 digits (%.6g): a drain to 12.3456789 tau printed 12.3457.
+    if (done && dd.duration <= until * (1.0 + 1e-5))
         return gf_error_set(GF_ERR_PARAM,
                             "%s: the drain ran to its end (t = %g tau, run.duration = %g): nothing to continue "
                             "(a longer drain: --set run.duration=T)",

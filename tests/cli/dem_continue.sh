@@ -8,9 +8,10 @@
 # no gap, each ITEM: TIME is its step's; no particle comes back and every
 # id of the settled packing is either still there or left (count + exits =
 # initial, and analyze agrees); a second --continue of the finished drain
-# is refused, a longer run.duration continues it. Errors: no restart file,
-# both restart files cut short (LAMMPS' error naming each), another
-# configuration. Then a recirculating drain (300 spheres, 4 tau): 300 in
+# is refused, a longer run.duration continues it. Errors: a drain written
+# seconds ago without interrupted.txt (its LAMMPS may still run), no
+# restart file, both restart files cut short (LAMMPS' error naming each),
+# another configuration. Then a recirculating drain (300 spheres, 4 tau): 300 in
 # every snapshot, reinserted.txt in time order across the restart and
 # exits.csv with one row per reinsertion over the whole drain.
 # ctest: nosan
@@ -74,30 +75,37 @@ grep -q '^restart 5000 drain.a.restart drain.b.restart$' d/in.drain || fail "in.
 n_before=$(ls d/snapshots | wc -l)
 ok "drain stopped by SIGTERM with $n_before snapshots; interrupted.txt names --continue"
 
-# ---- errors, on copies ----
-cp -r d nores && rm nores/drain.a.restart nores/drain.b.restart
+# ---- errors, on copies (cp -a: the times of the files kept) ----
+cp -a d busy && rm busy/interrupted.txt
+gf dem -o busy --continue
+expect_rc 2 "--continue of a drain written seconds ago, without interrupted.txt"
+expect_err "the drain's LAMMPS may still be running there" "--continue of a drain that may still run"
+expect_err "(--force if you know it is not)" "--continue of a drain that may still run"
+[ "$(ls busy/snapshots | wc -l)" -eq "$n_before" ] || fail "--continue of a busy drain removed snapshots"
+cp -a d nores && rm nores/drain.a.restart nores/drain.b.restart
 gf dem -o nores --continue
 expect_rc 2 "--continue without a restart file"
 expect_err "no restart file to continue from" "--continue without a restart file"
-cp -r d cut && truncate -s 1000 cut/drain.a.restart && truncate -s 1000 cut/drain.b.restart
-gf dem -o cut --continue
+# Cut by hand after granflow stopped the drain: newer than interrupted.txt, so --force.
+cp -a d cut && truncate -s 1000 cut/drain.a.restart && truncate -s 1000 cut/drain.b.restart
+gf dem -o cut --continue --force
 expect_rc 3 "--continue with both restart files cut short"
 expect_err "cut/drain.a.restart: LAMMPS cannot read it (ERROR" "--continue with both restart files cut short"
 expect_err "cut/drain.b.restart: LAMMPS cannot read it (ERROR" "--continue with both restart files cut short"
 gf dem -o d --continue --set dem.kn=1e5
 expect_rc 2 "--continue --set dem.kn"
 expect_err "--continue changes only run.duration" "--continue --set dem.kn"
-cp -r d other && sed -i 's/^timestep *= *0.0001$/timestep = 5e-05/' other/config.ini
+cp -a d other && sed -i 's/^timestep *= *0.0001$/timestep = 5e-05/' other/config.ini
 gf dem -o other --continue
 expect_rc 2 "--continue with another dem.timestep in config.ini"
 expect_err "dem.timestep = 5e-05: the configuration is not the one this drain ran with" "another dem.timestep"
 [ "$(ls d/snapshots | wc -l)" -eq "$n_before" ] || fail "a refused --continue changed d/snapshots"
-ok "refused: no restart file (2), both cut short (3, naming each), --set dem.kn (2), another dem.timestep (2)"
+ok "refused: written seconds ago (2), no restart file (2), both cut short (3, naming each), --set dem.kn (2), another dem.timestep (2)"
 
 # ---- the continuation: the newer restart file cut short goes on from the other one ----
 newer=$(ls -t d/drain.?.restart | head -1)
 truncate -s 2000 "$newer"
-gf dem -o d --continue
+gf dem -o d --continue --force
 expect_rc 0 "granflow dem --continue"
 expect_err "$newer: LAMMPS cannot read it (ERROR" "--continue past a cut restart file"
 grep -q 'went on from d/drain.[ab].restart at t = [0-9.]* tau (of 6); kept [0-9]* snapshots up to it, removed [0-9]* after it' err ||
