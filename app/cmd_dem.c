@@ -47,6 +47,39 @@ static void gf_dem_show_progress(void *ctx, const gf_dem_progress *p)
     fflush(stderr);
 }
 
+/// What --continue went on from and dropped (c filled), said once.
+typedef struct gf_dem_cont_show {
+    gf_dem_show show;
+    const char *dir;
+    const gf_dem_cont *c;
+    bool said;
+} gf_dem_cont_show;
+
+static void gf_dem_cont_say(gf_dem_cont_show *s)
+{
+    const gf_dem_cont *c = s->c;
+    if (s->said || !c->restart[0]) return;
+    s->said = true;
+    if (c->unreadable[0]) fprintf(stderr, "granflow dem: warning: %s; went on from the other one\n", c->unreadable);
+    fprintf(stderr, "granflow dem: went on from %s/%s at t = %g tau (of %g); kept %zu snapshots up to it", s->dir,
+            c->restart, (double)c->step * c->dt, (double)c->total * c->dt, c->kept_snaps);
+    if (c->dropped_snaps)
+        fprintf(stderr, ", removed %zu after it (to t = %g tau: the continued drain writes its own)", c->dropped_snaps,
+                c->dropped_until);
+    if (c->kept_reins || c->dropped_reins)
+        fprintf(stderr, "; reinserted.txt: kept %zu reinsertions before it, removed %zu at or after it", c->kept_reins,
+                c->dropped_reins);
+    fputs("\n", stderr);
+}
+
+/// The progress line, after saying (at the first report, LAMMPS running) where the drain went on from.
+static void gf_dem_cont_progress(void *ctx, const gf_dem_progress *p)
+{
+    gf_dem_cont_show *s = ctx;
+    gf_dem_cont_say(s);
+    gf_dem_show_progress(&s->show, p);
+}
+
 /// granflow dem -o DIR --continue: the interrupted drain of DIR goes on
 /// from its newer restart file, with DIR/config.ini (whose run.duration
 /// --set may lengthen; dem.mpi_ranks may change: nothing else).
@@ -82,26 +115,15 @@ static int gf_dem_cmd_continue(const gf_cli *cli)
     gf_dem_defs dd;
     gf_config_dem_defs(&cfg, &dd);
     volatile sig_atomic_t *stop = gf_cli_catch_stop();
-    gf_dem_show show = {.tty = !cli->quiet && isatty(STDERR_FILENO), .last_wall = -1.0};
-    gf_dem_run_opts o = {.ranks = (int)dd.mpi_ranks, .progress = cli->quiet ? NULL : gf_dem_show_progress,
+    gf_dem_cont c = {0};
+    gf_dem_cont_show show = {.show = {.tty = !cli->quiet && isatty(STDERR_FILENO), .last_wall = -1.0},
+                             .dir = cli->out, .c = &c};
+    gf_dem_run_opts o = {.ranks = (int)dd.mpi_ranks, .progress = cli->quiet ? NULL : gf_dem_cont_progress,
                          .ctx = &show, .stop = stop, .force = cli->force};
-    gf_dem_cont c;
     if (!cli->quiet) fprintf(stderr, "granflow dem: continuing the drain of %s (log: log.continue)\n", cli->out);
     gf_status st = gf_dem_continue(cli->out, &cfg, &o, &c);
-    if (show.tty && show.last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
-    if (c.restart[0] && !cli->quiet) {
-        // Said whatever the outcome: what the directory now holds.
-        if (c.unreadable[0]) fprintf(stderr, "granflow dem: warning: %s; went on from the other one\n", c.unreadable);
-        fprintf(stderr, "granflow dem: went on from %s/%s at t = %g tau (of %g); kept %zu snapshots up to it", cli->out,
-                c.restart, (double)c.step * c.dt, (double)c.total * c.dt, c.kept_snaps);
-        if (c.dropped_snaps)
-            fprintf(stderr, ", removed %zu after it (to t = %g tau: the continued drain writes its own)", c.dropped_snaps,
-                    c.dropped_until);
-        if (c.kept_reins || c.dropped_reins)
-            fprintf(stderr, "; reinserted.txt: kept %zu reinsertions before it, removed %zu at or after it",
-                    c.kept_reins, c.dropped_reins);
-        fputs("\n", stderr);
-    }
+    if (show.show.tty && show.show.last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
+    if (!cli->quiet) gf_dem_cont_say(&show); // if LAMMPS reported nothing: what the directory now holds
     if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL);
     if (st == GF_ERR_EXISTS) return gf_cli_fail_hint("dem", st, "(--force if you know it is not)");
     if (st != GF_OK) return gf_cli_fail("dem", st);

@@ -26,6 +26,10 @@ gf_status gf_dem_cont_check_idle(const char *dir);
 /// Puts each snapshot's ITEM: TIME right (step * dt) where LAMMPS wrote the
 /// time of a run after read_restart (from 0); counts those rewritten.
 gf_status gf_dem_cont_fix_times(const char *dir, double dt, size_t *fixed);
+/// gf_dem_cont_fix_times of the one snapshot of step `step`, if it exists
+/// (as the continuation goes: LAMMPS has closed it once its thermo line of
+/// that step is out).
+gf_status gf_dem_cont_fix_step(const char *dir, int64_t step, double dt);
 /// Checks DIR/in.drain against cfg, removes the tail after `step` (snapshots;
 /// reinsertions) and writes DIR/in.continue reading `restart` (fills c).
 gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char *restart, int64_t step,

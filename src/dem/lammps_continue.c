@@ -142,6 +142,15 @@ static gf_status gf_cont_fix_one(const char *path, double dt, bool *fixed)
     return gf_atomic_commit(o, tmp, path);
 }
 
+gf_status gf_dem_cont_fix_step(const char *dir, int64_t step, double dt)
+{
+    char path[GF_PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/snapshots/snap_%09lld.dump", dir, (long long)step); // dump_modify pad 9
+    if (access(path, F_OK) != 0) return GF_OK;
+    bool did;
+    return gf_cont_fix_one(path, dt, &did);
+}
+
 gf_status gf_dem_cont_fix_times(const char *dir, double dt, size_t *fixed)
 {
     char snaps[GF_PATH_MAX + 32], path[GF_PATH_MAX + 320];

@@ -350,6 +350,25 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
     return GF_OK;
 }
 
+/// A continuation's progress: passed on, and each snapshot LAMMPS has
+/// finished gets its ITEM: TIME put right then (gf_dem_cont_fix_step), not
+/// only at the end: a granflow killed meanwhile leaves few wrong ones.
+typedef struct gf_dem_cont_watch {
+    const gf_dem_run_opts *o;
+    const char *dir;
+    double dt;
+    int64_t every, next; ///< steps between snapshots; the next one to put right
+} gf_dem_cont_watch;
+
+static void gf_dem_cont_on_progress(void *ctx, const gf_dem_progress *p)
+{
+    gf_dem_cont_watch *w = ctx;
+    if (w->o->progress) w->o->progress(w->o->ctx, p);
+    if (p->phase != GF_DEM_PHASE_DRAIN || !(p->time >= 0)) return; // thermo times: the drain's (step * dt)
+    const int64_t now = (int64_t)floor(p->time / w->dt + 0.5);
+    for (; w->next <= now; w->next += w->every) (void)gf_dem_cont_fix_step(w->dir, w->next, w->dt); // the end's pass reports
+}
+
 /// The error of a directory without restart files.
 static gf_status gf_dem_cont_none(const char *dir)
 {
@@ -458,7 +477,13 @@ gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_ru
     if ((st = gf_config_save(cfg, path)) != GF_OK) return st;
 
     const time_t since = time(NULL);
-    gf_dem_reader r = {.o = o, .wall0 = gf_clock_now(), .t_phase = NAN, .restart_step = -1};
+    const int64_t every = (int64_t)fmax(1.0, floor(dd.snapshot_interval / dd.timestep + 0.5));
+    gf_dem_cont_watch w = {.o = o, .dir = dir, .dt = dd.timestep, .every = every,
+                           .next = (step + every - 1) / every * every};
+    gf_dem_run_opts wo = *o;
+    wo.progress = gf_dem_cont_on_progress;
+    wo.ctx = &w;
+    gf_dem_reader r = {.o = &wo, .wall0 = gf_clock_now(), .t_phase = NAN, .restart_step = -1};
     st = gf_dem_run_one(dir, "in.continue", lmp, mpirun[0] ? mpirun : NULL, ranks, &r);
     char msg[1024];
     snprintf(msg, sizeof msg, "%s", gf_last_error());
