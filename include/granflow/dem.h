@@ -49,7 +49,9 @@ typedef struct gf_dem_plan {
 /// run.duration, dump `snapshots/snap_NNNNNNNNN.dump` every
 /// output.snapshot_interval with ITEM: TIME; with run.recirculate = on the
 /// particles that fell through the orifice are put back on top instead of
-/// deleted, each recorded in `reinserted.txt`: docs/dem.md), and `config.ini` (the effective
+/// deleted, each recorded in `reinserted.txt`: docs/dem.md; a LAMMPS restart file
+/// every dem.restart_interval, to `drain.a.restart` and `drain.b.restart` in
+/// turn: gf_dem_continue), and `config.ini` (the effective
 /// configuration, which `calibrate`, `compare` and `analyze` read back).
 /// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
 /// law on the flat side walls and the base. `plan` may be NULL. The packing
