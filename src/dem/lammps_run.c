@@ -277,11 +277,13 @@ static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_rea
         fprintf(f,
                 "interrupted: LAMMPS was stopped during the %s (t = %.6g tau of the phase, %.0f s after the start)\n"
                 "removed: %s\n"
-                "again: granflow dem ... --run --force (from the fill)%s%s\n",
+                "again: granflow dem ... --run --force (from the fill)%s%s%s%s\n",
                 r->p.phase != GF_DEM_PHASE_NONE ? gf_dem_phase_name(r->p.phase) : fill ? "fill" : "drain", r->p.time, gf_clock_now() - r->wall0,
                 removed[0] ? removed : (fill ? "nothing (no settled packing was written)" : "nothing (no snapshot yet)"),
                 fill ? "" : " or --drain-only (from settled.restart)",
-                fill || !restarts ? "" : "\ncontinue: granflow dem -o DIR --continue (from the newer drain.a.restart, drain.b.restart)");
+                fill || !restarts ? "" : "\ncontinue: granflow dem -o ",
+                fill || !restarts ? "" : dir,
+                fill || !restarts ? "" : " --continue (from the newer of drain.a.restart and drain.b.restart)");
         gf_atomic_commit(f, tmp, path);
     }
     gf_error_set(GF_ERR_INTERRUPTED, "%s; %s/%s says what is left", msg, dir, GF_DEM_INTERRUPTED);

@@ -70,7 +70,7 @@ waits_for d/snapshots/snap_000012500.dump 60 || { finish 1; fail "no snapshot af
 kill -TERM "$BGPID"
 finish 30
 expect_rc 130 "SIGTERM during the drain"
-grep -q '^continue: granflow dem -o DIR --continue' d/interrupted.txt || fail "interrupted.txt does not name --continue: $(cat d/interrupted.txt)"
+grep -q '^continue: granflow dem -o d --continue' d/interrupted.txt || fail "interrupted.txt does not name --continue: $(cat d/interrupted.txt)"
 grep -q '^restart 5000 drain.a.restart drain.b.restart$' d/in.drain || fail "in.drain has no 'restart 5000 drain.a.restart drain.b.restart'"
 n_before=$(ls d/snapshots | wc -l)
 ok "drain stopped by SIGTERM with $n_before snapshots; interrupted.txt names --continue"
