@@ -22,7 +22,7 @@ static bool gf_cli_number(const char *cmd, const char *opt, const char *s, doubl
 
 // Option codes of the long-only options (after every char).
 enum { GF_OPT_RESUME = 256, GF_OPT_JSON, GF_OPT_PARTICLES, GF_OPT_WARMUP, GF_OPT_WINDOW, GF_OPT_EVENT, GF_OPT_SPATIAL, GF_OPT_SWEEP,
-       GF_OPT_NO_LARGE, GF_OPT_LGA_ONLY, GF_OPT_RUN, GF_OPT_DRAIN_ONLY };
+       GF_OPT_NO_LARGE, GF_OPT_LGA_ONLY, GF_OPT_RUN, GF_OPT_DRAIN_ONLY, GF_OPT_CONTINUE };
 
 // Every option of the commands that share gf_cli_parse; `cmds` lists those
 // that take it (each command's --help lists the same).
@@ -46,6 +46,7 @@ static const struct gf_cli_opt {
     {{"lga-only", no_argument, NULL, GF_OPT_LGA_ONLY}, "bench"},
     {{"run", no_argument, NULL, GF_OPT_RUN}, "dem"},
     {{"drain-only", no_argument, NULL, GF_OPT_DRAIN_ONLY}, "dem"},
+    {{"continue", no_argument, NULL, GF_OPT_CONTINUE}, "dem"},
     {{"help", no_argument, NULL, 'h'}, "run pack config bench lga report dem"},
 };
 
@@ -128,6 +129,7 @@ int gf_cli_parse(int argc, char **argv, const char *cmd, gf_cli *cli)
         case GF_OPT_LGA_ONLY: cli->lga_only = true; break;
         case GF_OPT_RUN: cli->dem_run = true; break;
         case GF_OPT_DRAIN_ONLY: cli->drain_only = true; break;
+        case GF_OPT_CONTINUE: cli->dem_continue = true; break;
         default: return gf_cli_getopt_error(cmd, c, argv);
         }
     }

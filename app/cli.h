@@ -28,7 +28,7 @@ typedef struct gf_cli {
     int nsets;
     double bench_particles, bench_warmup, bench_window; ///< bench options (0 = default)
     bool event, spatial, sweep, no_large, lga_only; ///< bench --event, --spatial, --sweep, --no-large, --lga-only
-    bool dem_run, drain_only;       ///< dem --run, --drain-only
+    bool dem_run, drain_only, dem_continue; ///< dem --run, --drain-only, --continue
 } gf_cli;
 
 /// gf_cli_parse's "go on" (any other value is the exit code to return now).

@@ -47,6 +47,90 @@ static void gf_dem_show_progress(void *ctx, const gf_dem_progress *p)
     fflush(stderr);
 }
 
+/// What --continue went on from and dropped (c filled), said once.
+typedef struct gf_dem_cont_show {
+    gf_dem_show show;
+    const char *dir;
+    const gf_dem_cont *c;
+    bool said;
+} gf_dem_cont_show;
+
+static void gf_dem_cont_say(gf_dem_cont_show *s)
+{
+    const gf_dem_cont *c = s->c;
+    if (s->said || !c->restart[0]) return;
+    s->said = true;
+    if (c->unreadable[0]) fprintf(stderr, "granflow dem: warning: %s; went on from the other one\n", c->unreadable);
+    fprintf(stderr, "granflow dem: went on from %s/%s at t = %g tau (of %g); kept %zu snapshots up to it", s->dir,
+            c->restart, (double)c->step * c->dt, (double)c->total * c->dt, c->kept_snaps);
+    if (c->dropped_snaps)
+        fprintf(stderr, ", removed %zu after it (to t = %g tau: the continued drain writes its own)", c->dropped_snaps,
+                c->dropped_until);
+    if (c->kept_reins || c->dropped_reins)
+        fprintf(stderr, "; reinserted.txt: kept %zu reinsertions before it, removed %zu at or after it", c->kept_reins,
+                c->dropped_reins);
+    fputs("\n", stderr);
+}
+
+/// The progress line, after saying (at the first report, LAMMPS running) where the drain went on from.
+static void gf_dem_cont_progress(void *ctx, const gf_dem_progress *p)
+{
+    gf_dem_cont_show *s = ctx;
+    gf_dem_cont_say(s);
+    gf_dem_show_progress(&s->show, p);
+}
+
+/// granflow dem -o DIR --continue: the interrupted drain of DIR goes on
+/// from its newer restart file, with DIR/config.ini (whose run.duration
+/// --set may lengthen; dem.mpi_ranks may change: nothing else).
+static int gf_dem_cmd_continue(const gf_cli *cli)
+{
+    if (cli->config_path || cli->drain_only) {
+        fprintf(stderr, "granflow dem: error: --continue goes on with %s/config.ini%s: %s\n", cli->out,
+                cli->config_path ? ", not another CONFIG" : "",
+                cli->config_path ? "a drain under way keeps its configuration (change run.duration with --set)"
+                                 : "it does not take --drain-only");
+        return GF_EXIT_USAGE;
+    }
+    static const char *const may[] = {"run.duration=", "dem.mpi_ranks="};
+    for (int k = 0; k < cli->nsets; k++) {
+        bool ok = false;
+        for (size_t j = 0; j < sizeof may / sizeof may[0]; j++) ok = ok || !strncmp(cli->sets[k], may[j], strlen(may[j]));
+        if (!ok) {
+            fprintf(stderr,
+                    "granflow dem: error: --set %s: a drain under way keeps the configuration it ran with "
+                    "(%s/config.ini); --continue changes only run.duration (longer) and dem.mpi_ranks\n",
+                    cli->sets[k], cli->out);
+            return GF_EXIT_USAGE;
+        }
+    }
+    char base[4096];
+    snprintf(base, sizeof base, "%s/config.ini", cli->out);
+    if (access(base, R_OK) != 0) {
+        fprintf(stderr, "granflow dem: error: %s: no DEM run to continue (cannot read %s)\n", cli->out, base);
+        return GF_EXIT_USAGE;
+    }
+    gf_config cfg;
+    if (!gf_cli_config(cli, base, &cfg)) return GF_EXIT_USAGE;
+    gf_dem_defs dd;
+    gf_config_dem_defs(&cfg, &dd);
+    volatile sig_atomic_t *stop = gf_cli_catch_stop();
+    gf_dem_cont c = {0};
+    gf_dem_cont_show show = {.show = {.tty = !cli->quiet && isatty(STDERR_FILENO), .last_wall = -1.0},
+                             .dir = cli->out, .c = &c};
+    gf_dem_run_opts o = {.ranks = (int)dd.mpi_ranks, .progress = cli->quiet ? NULL : gf_dem_cont_progress,
+                         .ctx = &show, .stop = stop, .force = cli->force};
+    if (!cli->quiet) fprintf(stderr, "granflow dem: continuing the drain of %s (log: log.continue)\n", cli->out);
+    gf_status st = gf_dem_continue(cli->out, &cfg, &o, &c);
+    if (show.show.tty && show.show.last_phase != GF_DEM_PHASE_NONE) fputs("\n", stderr);
+    if (!cli->quiet) gf_dem_cont_say(&show); // if LAMMPS reported nothing: what the directory now holds
+    if (st == GF_ERR_INTERRUPTED) return gf_cli_interrupted("dem", NULL);
+    if (st == GF_ERR_EXISTS) return gf_cli_fail_hint("dem", st, "(--force if you know it is not)");
+    if (st != GF_OK) return gf_cli_fail("dem", st);
+    if (!cli->quiet) fprintf(stderr, "granflow dem: done: %s/snapshots/ (the whole drainage)\n", cli->out);
+    return GF_EXIT_OK;
+}
+
 int gf_cmd_dem(int argc, char **argv)
 {
     gf_cli cli;
@@ -57,6 +141,7 @@ int gf_cmd_dem(int argc, char **argv)
         fprintf(stderr, "granflow dem: error: -o DIR is required (where the LAMMPS inputs go)\n");
         return GF_EXIT_USAGE;
     }
+    if (cli.dem_continue) return gf_dem_cmd_continue(&cli);
     gf_config cfg;
     if (!gf_cli_config(&cli, NULL, &cfg)) return GF_EXIT_USAGE;
     gf_dem_defs dd;

@@ -110,15 +110,21 @@ static const struct gf_usage {
     GF_HELP_LINE},
     {"dem",
      "usage: granflow dem [CONFIG] [--set KEY=VALUE]... -o DIR [--run | --drain-only] [--force] [-q]\n"
+     "       granflow dem -o DIR --continue [--set run.duration=T] [--set dem.mpi_ranks=N] [--force] [-q]\n"
      "Writes the LAMMPS inputs of a DEM run of the same silo (DIR/in.fill: pour or\n"
      "settle the packing; DIR/in.drain: open the orifice), and with --run runs them\n"
-     "(lmp; dem.mpi_ranks under mpirun) with a progress line.\n"
+     "(lmp; dem.mpi_ranks under mpirun) with a progress line. The drain writes a\n"
+     "restart file every dem.restart_interval tau; --continue goes on from it after\n"
+     "an interruption (snapshots after it are removed and written again).\n"
      "\n"
      "options:\n"
      "  -o, --output DIR       where the inputs and the run go (required)\n" GF_SET_LINE
      "      --run              run LAMMPS: fill, settle, then drain\n"
      "      --drain-only       run the drainage again from DIR/settled.restart\n"
-     "  -f, --force            replace a DEM run in DIR\n"
+     "      --continue         continue an interrupted drainage from the newer of\n"
+     "                         DIR/drain.a.restart and drain.b.restart\n"
+     "  -f, --force            replace a DEM run in DIR; --continue: even if the drain\n"
+     "                         wrote files in the last 2 minutes (its LAMMPS gone)\n"
      "  -q, --quiet            no progress lines\n" GF_HELP_LINE},
     {"calibrate",
      "usage: granflow calibrate DEM_DIR -o PARAMS.ini [--timestep DT] [--config INI]\n"

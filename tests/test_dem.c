@@ -460,6 +460,28 @@ static void lammps_output_lines(void **state)
     assert_string_equal(gf_dem_phase_name((gf_dem_phase)99), "?");
 }
 
+// What granflow dem --continue reads: a restart file's probe line, and the
+// continued drain's marker, after which the thermo times are the drain's
+// own (step * dt from its start), not from the continuation's start.
+static void lammps_output_continue(void **state)
+{
+    (void)state;
+    gf_dem_progress last = {0};
+    gf_dem_run_opts o = {.ranks = 1, .progress = lammps_output_progress, .ctx = &last};
+    gf_dem_reader r = {.o = &o, .t_phase = NAN, .restart_step = -1};
+    char l1[] = "granflow-restart 150000 0.0001\n", l2[] = "granflow-phase continue 590 40\n",
+         l3[] = "150000 15 590 0.02";
+    gf_dem_line(&r, l1);
+    assert_int_equal(r.restart_step, 150000);
+    gf_assert_near(r.restart_dt, 1e-4, 1e-18);
+    gf_dem_line(&r, l2);
+    assert_int_equal(last.phase, GF_DEM_PHASE_DRAIN);
+    assert_int_equal(last.target, 590);
+    gf_assert_near(last.until, 40.0, 1e-12);
+    gf_dem_line(&r, l3);
+    gf_assert_near(last.time, 15.0, 1e-12);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(lammps_run_gives_readable_dumps),
     cmocka_unit_test(lammps_hopper_walls_hold),
@@ -469,6 +491,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(series_scaled_steps_types),
     cmocka_unit_test(truncated_dump_is_an_error),
     cmocka_unit_test(lammps_output_lines),
+    cmocka_unit_test(lammps_output_continue),
     cmocka_unit_test(dem_far_new_particle_layer),
 };
 

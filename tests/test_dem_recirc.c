@@ -195,8 +195,49 @@ static void exits_from_reinsertions(void **state)
     assert_non_null(strstr(gf_last_error(), "exit plane"));
 }
 
+// dem.restart_interval: the drain's `restart N drain.a.restart
+// drain.b.restart` (what granflow dem --continue goes on from), before its
+// first run; recirculating, N a whole number of reinsertion chunks (the
+// restart then holds the state before a chunk's reinsertions, which a
+// continuation redoes); 0: no restart files.
+static void drain_writes_restart_files(void **state)
+{
+    (void)state;
+    char dir[900];
+    gf_config c = box_config();
+    c.dem_restart_interval = 0.25;
+    snprintf(dir, sizeof dir, "%s/restart_plain", gf_test_tmpdir());
+    gf_dem_plan plan;
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
+    assert_int_equal(plan.restart_steps, 2500);
+    char *text = drain_text(dir);
+    const char *line = strstr(text, "\nrestart 2500 drain.a.restart drain.b.restart\n");
+    assert_non_null(line);
+    assert_true(line < strstr(text, "\nrun 20500\n"));
+    free(text);
+
+    c.run_recirculate = 1;
+    snprintf(dir, sizeof dir, "%s/restart_rc", gf_test_tmpdir());
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
+    assert_int_equal(plan.restart_steps, 3000); // 2500 up to whole chunks of 1000
+    text = drain_text(dir);
+    line = strstr(text, "\nrestart 3000 drain.a.restart drain.b.restart\n");
+    assert_non_null(line);
+    assert_true(line < strstr(text, "\nvariable rc_k loop "));
+    free(text);
+
+    c.dem_restart_interval = 0;
+    snprintf(dir, sizeof dir, "%s/restart_none", gf_test_tmpdir());
+    assert_int_equal(gf_dem_write_inputs(&c, dir, NULL, &plan), GF_OK);
+    assert_int_equal(plan.restart_steps, 0);
+    text = drain_text(dir);
+    assert_null(strstr(text, "\nrestart "));
+    free(text);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(drain_input_puts_particles_back),
+    cmocka_unit_test(drain_writes_restart_files),
     cmocka_unit_test(what_dem_cannot_do_is_refused),
     cmocka_unit_test(fall_time_back_to_the_exit_plane),
     cmocka_unit_test(exits_from_reinsertions),

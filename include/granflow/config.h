@@ -244,6 +244,7 @@ typedef struct gf_config {
     double dem_settle_time;            ///< longest settling after the fill, tau; default 20
     double dem_settle_ke;              ///< settling ends when the kinetic energy per particle falls below this, m g d; default 1e-6
     int64_t dem_mpi_ranks;             ///< MPI ranks for --run (mpirun -np N); 0 (default): one per core
+    double dem_restart_interval;       ///< tau between the drain's restart files (drain.a/b.restart); 0: none; default 2
 
     uint32_t cookie_; ///< private: marks a config made by gf_config_default()
     // private: where each key got its value (read with gf_config_where)

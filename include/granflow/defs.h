@@ -107,6 +107,7 @@ typedef struct gf_dem_defs {
     gf_dem_fill fill;
     double settle_time, settle_ke;
     int64_t mpi_ranks;
+    double restart_interval;            ///< tau between the drain's restart files (0: none)
     double duration, snapshot_interval;
     int64_t particles;
     double fill_height;

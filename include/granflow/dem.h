@@ -39,6 +39,7 @@ typedef struct gf_dem_plan {
     int64_t drain_steps;    ///< steps of the drainage (run.duration / dem.timestep)
     double pour_time;       ///< fill_method pour: longest pour, tau (0 for generate)
     int64_t reinsert_steps; ///< run.recirculate = on: steps between the reinsertions (0: particles leave)
+    int64_t restart_steps;  ///< steps between the drain's restart files (dem.restart_interval; 0: none)
 } gf_dem_plan;
 
 /// Writes the LAMMPS inputs of a DEM run of the container of `cfg` into `dir`
@@ -48,7 +49,9 @@ typedef struct gf_dem_plan {
 /// run.duration, dump `snapshots/snap_NNNNNNNNN.dump` every
 /// output.snapshot_interval with ITEM: TIME; with run.recirculate = on the
 /// particles that fell through the orifice are put back on top instead of
-/// deleted, each recorded in `reinserted.txt`: docs/dem.md), and `config.ini` (the effective
+/// deleted, each recorded in `reinserted.txt`: docs/dem.md; a LAMMPS restart file
+/// every dem.restart_interval, to `drain.a.restart` and `drain.b.restart` in
+/// turn: gf_dem_continue), and `config.ini` (the effective
 /// configuration, which `calibrate`, `compare` and `analyze` read back).
 /// Contacts: pair_style gran/hertz/history with the [dem] keys, the same
 /// law on the flat side walls and the base. `plan` may be NULL. The packing
@@ -94,7 +97,17 @@ typedef struct gf_dem_run_opts {
     /// reaped, and gf_dem_run returns GF_ERR_INTERRUPTED having marked the
     /// directory (GF_DEM_INTERRUPTED).
     volatile sig_atomic_t *stop;
+    /// gf_dem_continue only: go on even though the drain's files were written
+    /// in the last GF_DEM_BUSY_SECONDS (a LAMMPS that may still run there).
+    bool force;
 } gf_dem_run_opts;
+
+/// gf_dem_continue refuses a directory whose drain has not ended (its log has
+/// no `done` marker) and wrote its log, a restart file or a snapshot less
+/// than this many seconds ago (with no newer interrupted.txt): its LAMMPS
+/// may still be running, and the continuation would remove and write over
+/// what it writes.
+#define GF_DEM_BUSY_SECONDS 120
 
 /// The file gf_dem_run writes into a run directory whose LAMMPS run was
 /// stopped (and removes when a run completes): the phase, and what it removed
@@ -112,6 +125,36 @@ GF_API gf_dem_run_opts gf_dem_run_opts_default(void);
 /// with LAMMPS' own ERROR line when it fails, GF_ERR_INTERRUPTED when
 /// opts->stop stopped it or a signal killed LAMMPS (the directory marked).
 GF_API gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *opts);
+
+/// What gf_dem_continue went on from and what it dropped.
+typedef struct gf_dem_cont {
+    char restart[32];       ///< the restart file: drain.a.restart or drain.b.restart
+    int64_t step, total;    ///< its step, and the drain's last (run.duration / dem.timestep)
+    double dt;              ///< dem.timestep, tau
+    size_t kept_snaps;      ///< snapshots up to the restart's step, kept
+    size_t dropped_snaps;   ///< snapshots after it, removed (the continuation writes its own)
+    double dropped_until;   ///< the newest removed snapshot's time, tau (0: none)
+    size_t kept_reins, dropped_reins; ///< recirculating: reinsertions before the restart kept, at or after it removed
+    char unreadable[640];   ///< the other restart file when LAMMPS could not read it, and why ("": none)
+} gf_dem_cont;
+
+/// Continues the interrupted drain of `dir` (granflow dem --continue) with
+/// the configuration `cfg` (DIR/config.ini; run.duration may be longer, and
+/// is then saved there): LAMMPS reads the newer readable one of
+/// DIR/drain.a.restart and drain.b.restart (written every
+/// dem.restart_interval) and runs DIR/in.continue, made from DIR/in.drain,
+/// up to run.duration (log: log.continue). The record stays one trajectory:
+/// snapshots after the restart's step are removed first (a continuation is
+/// not bit-identical to the run it replaces), as are a recirculating drain's
+/// reinsertions from its time on; LAMMPS appends the rest, and exits.csv is
+/// written from the whole reinserted.txt. GF_ERR_PARAM when the drain already
+/// ran to run.duration, no restart file exists, or in.drain, the restart and
+/// the configuration disagree; GF_ERR_FORMAT when LAMMPS can read neither
+/// restart file (its error, naming the file); GF_ERR_EXISTS when the drain
+/// may still be running (GF_DEM_BUSY_SECONDS; o->force goes on); otherwise
+/// as gf_dem_run (the directory marked interrupted.txt when stopped). `out`
+/// may be NULL.
+GF_API gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_run_opts *o, gf_dem_cont *out);
 
 // ---------------------------------------------------------------------------
 // A DEM run as a series.

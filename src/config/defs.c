@@ -156,6 +156,7 @@ void gf_config_dem_defs(const gf_config *cfg, gf_dem_defs *d)
     d->settle_time = cfg->dem_settle_time;
     d->settle_ke = cfg->dem_settle_ke;
     d->mpi_ranks = cfg->dem_mpi_ranks;
+    d->restart_interval = cfg->dem_restart_interval;
     d->duration = cfg->run_duration;
     d->snapshot_interval = cfg->output_snapshot_interval;
     d->particles = cfg->packing_particles;

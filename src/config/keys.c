@@ -285,6 +285,9 @@ const gf_key gf_keys[] = {
      .doc = "settling stops early once the kinetic energy per particle is below this (0: never)"},
     {"dem", "mpi_ranks", GF_KEY_INT64, GF_OFF(dem_mpi_ranks), .min = 0, .max = 4096, .def = "0", .unit = "",
      .doc = "MPI ranks of granflow dem --run (1: lmp without mpirun; 0: one per core)"},
+    {"dem", "restart_interval", GF_KEY_DOUBLE, GF_OFF(dem_restart_interval), GF_NONNEG, .def = "2", .unit = "tau",
+     .doc = "the drain writes a LAMMPS restart file this often (drain.a.restart and drain.b.restart in turn), "
+            "from which granflow dem --continue goes on after an interruption (0: none)"},
 };
 
 const size_t gf_keys_count = sizeof gf_keys / sizeof gf_keys[0];

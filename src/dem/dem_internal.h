@@ -8,6 +8,33 @@
 #include "granflow/core.h"
 #include "granflow/dem.h"
 
+/// in.drain's `restart N drain.a.restart drain.b.restart` (nothing when
+/// plan->restart_steps is 0), before the drain's first run.
+void gf_dem_restart_line(FILE *f, const gf_dem_plan *plan, double timestep);
+
+// ---- granflow dem --continue (lammps_continue.c) ---------------------------------
+
+/// Whether the newer of DIR/log.drain and log.continue says its drain ran
+/// to its end (the `done` marker after the last `drain` or `continue`
+/// marker), and to which time (*until, tau; the marker's 6 digits).
+bool gf_dem_cont_done(const char *dir, double *until);
+/// GF_ERR_EXISTS when the drain of DIR wrote its log, a restart file or a
+/// snapshot in the last GF_DEM_BUSY_SECONDS and no newer interrupted.txt
+/// says granflow stopped it: its LAMMPS may still be running (the caller
+/// asks only of a drain whose log has not ended: gf_dem_cont_done).
+gf_status gf_dem_cont_check_idle(const char *dir);
+/// Puts each snapshot's ITEM: TIME right (step * dt) where LAMMPS wrote the
+/// time of a run after read_restart (from 0); counts those rewritten.
+gf_status gf_dem_cont_fix_times(const char *dir, double dt, size_t *fixed);
+/// gf_dem_cont_fix_times of the one snapshot of step `step`, if it exists
+/// (as the continuation goes: LAMMPS has closed it once its thermo line of
+/// that step is out).
+gf_status gf_dem_cont_fix_step(const char *dir, int64_t step, double dt);
+/// Checks DIR/in.drain against cfg, removes the tail after `step` (snapshots;
+/// reinsertions) and writes DIR/in.continue reading `restart` (fills c).
+gf_status gf_dem_cont_prepare(const char *dir, const gf_config *cfg, const char *restart, int64_t step,
+                              gf_dem_cont *c);
+
 // ---- recirculation (lammps_recirculate.c, reinserted.c; issue 27 item 4) --------
 
 /// The reinsertion file LAMMPS appends to, in the run directory.

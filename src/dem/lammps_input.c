@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -140,6 +141,16 @@ static size_t gf_dem_beads(FILE *f, const gf_config *c)
     return n;
 }
 
+void gf_dem_restart_line(FILE *f, const gf_dem_plan *plan, double timestep)
+{
+    if (plan->restart_steps <= 0) return;
+    fprintf(f,
+            "# a restart file every %g tau, to drain.a.restart and drain.b.restart in turn (one is whole\n"
+            "# while the other is written): granflow dem --continue goes on from the newer (docs/dem.md)\n"
+            "restart %lld drain.a.restart drain.b.restart\n",
+            (double)plan->restart_steps * timestep, (long long)plan->restart_steps);
+}
+
 static gf_status gf_dem_open(const char *dir, const char *name, char *path, size_t pn, char *tmp, size_t tn,
                              FILE **f)
 {
@@ -211,6 +222,12 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
     plan.drain_steps = gf_dem_steps(&dd, dd.duration);
     plan.rim_beads = gf_dem_beads(NULL, c);
     plan.reinsert_steps = ed.recirculate ? gf_dem_steps(&dd, GF_DEM_REINSERT_EVERY) : 0;
+    if (dd.restart_interval > 0) {
+        plan.restart_steps = gf_dem_steps(&dd, dd.restart_interval);
+        // Recirculating, at the end of a chunk (before its reinsertions, which a continued drain redoes).
+        if (plan.reinsert_steps > 0)
+            plan.restart_steps = (plan.restart_steps + plan.reinsert_steps - 1) / plan.reinsert_steps * plan.reinsert_steps;
+    }
 
     // Pour: batches of GF_DEM_POUR_FRACTION filling a region of height hp
     // above the fill; each batch falls hp before the next (fix pour's rule).
@@ -323,15 +340,28 @@ gf_status gf_dem_write_inputs(const gf_config *cfg_in, const char *dir, const gf
                 "fix gone flow evaporate %lld %lld gone %ld\n"
                 "# snapshots every %g tau, in the format granflow reads (ITEM: TIME in tau)\n"
                 "dump snap flow custom %lld snapshots/snap_*.dump id x y z radius\n"
-                "dump_modify snap pad 9 sort id time yes\n"
+                "dump_modify snap pad 9 sort id time yes\n",
+                GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(&dd, 0.01),
+                (long long)(plan.particles + 1), gf_dem_seed(&dd, 2), dd.snapshot_interval,
+                (long long)plan.snapshot_steps);
+        gf_dem_restart_line(f, &plan, dd.timestep);
+        fprintf(f,
                 "print \"granflow-phase drain ${nflow} %.6g\"\n"
                 "run %lld\n"
                 "print \"granflow-phase done ${nflow} 0\"\n",
-                GF_DEM_DELETE_DEPTH, plan.delete_z, (long long)gf_dem_steps(&dd, 0.01),
-                (long long)(plan.particles + 1), gf_dem_seed(&dd, 2), dd.snapshot_interval,
-                (long long)plan.snapshot_steps, dd.duration, (long long)plan.drain_steps);
+                dd.duration, (long long)plan.drain_steps);
     }
     if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) goto done;
+    // An earlier drain's restart files and continuation do not fit this in.drain: gone, so that
+    // granflow dem --continue cannot go on from them.
+    static const char *const stale[] = {"drain.a.restart", "drain.b.restart", "in.continue", "log.continue"};
+    for (size_t k = 0; k < sizeof stale / sizeof stale[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, stale[k]);
+        if (unlink(path) != 0 && errno != ENOENT) {
+            st = gf_error_set(GF_ERR_IO, "%s: cannot remove the earlier drain's: %s", path, strerror(errno));
+            goto done;
+        }
+    }
 
     // config.ini: the container and keys, for calibrate/compare/analyze.
     snprintf(path, sizeof path, "%s/config.ini", dir);

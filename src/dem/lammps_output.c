@@ -35,6 +35,12 @@ void gf_dem_line(gf_dem_reader *r, char *line)
     }
     char name[32];
     double a, b;
+    long long step;
+    if (sscanf(line, "granflow-restart %lld %lf", &step, &a) == 2) { // the probe of a restart file (--continue)
+        r->restart_step = step;
+        r->restart_dt = a;
+        return;
+    }
     if (sscanf(line, "granflow-phase %31s %lf %lf", name, &a, &b) == 3) {
         // "settled" marks the end of the settle phase (its line says how many settled).
         static const struct {
@@ -44,15 +50,17 @@ void gf_dem_line(gf_dem_reader *r, char *line)
                      {"settle", GF_DEM_PHASE_SETTLE},
                      {"settled", GF_DEM_PHASE_SETTLE},
                      {"drain", GF_DEM_PHASE_DRAIN},
+                     {"continue", GF_DEM_PHASE_DRAIN},
                      {"done", GF_DEM_PHASE_DONE}};
         for (size_t k = 0; k < sizeof marks / sizeof marks[0]; k++)
             if (!strcmp(name, marks[k].name)) r->p.phase = marks[k].phase;
-        if (!strcmp(name, "fill") || !strcmp(name, "drain")) r->p.target = gf_dem_count(a);
+        const bool cont = !strcmp(name, "continue");
+        if (!strcmp(name, "fill") || !strcmp(name, "drain") || cont) r->p.target = gf_dem_count(a);
         if (strcmp(name, "settled") && strcmp(name, "done")) r->p.until = b;
-        r->t_phase = NAN;
+        // A continued drain (in.continue) prints the drain's own time (step * dt) from its restart on.
+        r->t_phase = cont ? 0.0 : NAN;
         if (!strcmp(name, "done")) r->p.time = r->p.until;
     } else {
-        long long step;
         double t, n, ke;
         char extra;
         if (sscanf(line, " %lld %lf %lf %lf %c", &step, &t, &n, &ke, &extra) != 4 || r->p.phase == GF_DEM_PHASE_NONE) return;

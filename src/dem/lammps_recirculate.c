@@ -122,7 +122,10 @@ void gf_dem_recirc_drain(FILE *f, const gf_config *c, const gf_dem_plan *plan, d
             "print \"# id time x y z vz x_new y_new z_new\" append reinserted.txt screen no\n"
             "# snapshots every %g tau, in the format granflow reads (ITEM: TIME in tau)\n"
             "dump snap flow custom %lld snapshots/snap_*.dump id x y z radius\n"
-            "dump_modify snap pad 9 sort id time yes\n"
+            "dump_modify snap pad 9 sort id time yes\n",
+            park, s, seed, gf_config_exit_plane(c), dd.snapshot_interval, (long long)plan->snapshot_steps);
+    gf_dem_restart_line(f, plan, dd.timestep);
+    fprintf(f,
             "print \"granflow-phase drain ${nflow} %.6g\"\n"
             "variable rc_k loop %lld\n"
             "label rc_loop\n"
@@ -139,7 +142,6 @@ void gf_dem_recirc_drain(FILE *f, const gf_config *c, const gf_dem_plan *plan, d
             "${rc_lo}) to put particles back: the LAMMPS box ends at %.10g'\" \"quit 1\"\n"
             "region rc_slab block INF INF INF INF ${rc_lo} $((v_rc_lo+%g<%.10g)*(v_rc_lo+%g)+(v_rc_lo+%g>=%.10g)*%.10g) "
             "units box\n",
-            park, s, seed, gf_config_exit_plane(c), dd.snapshot_interval, (long long)plan->snapshot_steps,
             dd.duration, (long long)full, (long long)chunk, dense, top, plan->box_zhi, GF_DEM_REINSERT_SLAB, top,
             GF_DEM_REINSERT_SLAB, GF_DEM_REINSERT_SLAB, top, top);
     gf_dem_recirc_zone(f, &ed, false);

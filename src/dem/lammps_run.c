@@ -25,6 +25,7 @@
 #include "dem/dem_internal.h"
 #include "dem/lammps_guard.h"
 #include "dem/lammps_output.h"
+#include "granflow/defs.h"
 #include "granflow/dem.h"
 
 /// Finds `name` on PATH (or takes it as a path when it holds a '/').
@@ -240,7 +241,7 @@ static gf_status gf_dem_check_outputs(const char *dir, bool fill, time_t since)
 /// saying so. The error message of the stop is kept.
 static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_reader *r, time_t since)
 {
-    char msg[1024], path[GF_PATH_MAX + 64], removed[GF_PATH_MAX + 64] = "";
+    char msg[1024], path[GF_PATH_MAX + 320], removed[GF_PATH_MAX + 64] = "";
     snprintf(msg, sizeof msg, "%s", gf_last_error());
     if (fill) {
         const char *names[2] = {"settled.restart", "packing.dump"};
@@ -266,17 +267,42 @@ static void gf_dem_mark_interrupted(const char *dir, bool fill, const gf_dem_rea
     snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
     char tmp[GF_PATH_MAX + 96];
     FILE *f;
+    bool restarts = false;
+    for (int k = 0; k < 2 && !fill; k++) {
+        snprintf(path, sizeof path, "%s/drain.%c.restart", dir, "ab"[k]);
+        restarts = restarts || access(path, F_OK) == 0;
+    }
+    snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
     if (gf_atomic_open(path, tmp, sizeof tmp, &f) == GF_OK) {
         fprintf(f,
                 "interrupted: LAMMPS was stopped during the %s (t = %.6g tau of the phase, %.0f s after the start)\n"
                 "removed: %s\n"
-                "again: granflow dem ... --run --force (from the fill)%s\n",
+                "again: granflow dem ... --run --force (from the fill)%s%s%s%s\n",
                 r->p.phase != GF_DEM_PHASE_NONE ? gf_dem_phase_name(r->p.phase) : fill ? "fill" : "drain", r->p.time, gf_clock_now() - r->wall0,
                 removed[0] ? removed : (fill ? "nothing (no settled packing was written)" : "nothing (no snapshot yet)"),
-                fill ? "" : " or --drain-only (from settled.restart)");
+                fill ? "" : " or --drain-only (from settled.restart)",
+                fill || !restarts ? "" : "\ncontinue: granflow dem -o ",
+                fill || !restarts ? "" : dir,
+                fill || !restarts ? "" : " --continue (from the newer of drain.a.restart and drain.b.restart)");
         gf_atomic_commit(f, tmp, path);
     }
     gf_error_set(GF_ERR_INTERRUPTED, "%s; %s/%s says what is left", msg, dir, GF_DEM_INTERRUPTED);
+}
+
+/// The LAMMPS binary (and mpirun, when o->ranks asks for more than one rank
+/// and it is found; else *ranks is 1).
+static gf_status gf_dem_find(const gf_dem_run_opts *o, char *lmp, char *mpirun, size_t n, int *ranks)
+{
+    const char *want = o->lmp ? o->lmp : getenv("GF_LMP") ? getenv("GF_LMP") : "lmp";
+    if (!gf_dem_which(want, lmp, n))
+        return gf_error_set(GF_ERR_IO,
+                            "LAMMPS not found (%s): install it with `apt-get install lammps` (Debian's package "
+                            "has the GRANULAR styles), or set GF_LMP to the binary",
+                            want);
+    *ranks = o->ranks < 1 ? gf_cpu_count() : o->ranks;
+    if (*ranks > 1 && !gf_dem_which("mpirun", mpirun, n)) *ranks = 1;
+    if (*ranks == 1) mpirun[0] = '\0';
+    return GF_OK;
 }
 
 gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
@@ -284,15 +310,10 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
     gf_dem_run_opts def = gf_dem_run_opts_default();
     if (!o) o = &def;
     char lmp[4096], mpirun[4096];
-    const char *want = o->lmp ? o->lmp : getenv("GF_LMP") ? getenv("GF_LMP") : "lmp";
-    if (!gf_dem_which(want, lmp, sizeof lmp))
-        return gf_error_set(GF_ERR_IO,
-                            "LAMMPS not found (%s): install it with `apt-get install lammps` (Debian's package "
-                            "has the GRANULAR styles), or set GF_LMP to the binary",
-                            want);
-    int ranks = o->ranks < 1 ? gf_cpu_count() : o->ranks;
-    bool use_mpi = ranks > 1 && gf_dem_which("mpirun", mpirun, sizeof mpirun);
-    if (!use_mpi) ranks = 1;
+    int ranks;
+    gf_status fs = gf_dem_find(o, lmp, mpirun, sizeof lmp, &ranks);
+    if (fs != GF_OK) return fs;
+    const bool use_mpi = mpirun[0] != '\0';
     const char *scripts[2] = {"in.fill", "in.drain"};
     gf_dem_reader r = {.o = o, .wall0 = gf_clock_now(), .t_phase = NAN};
     for (int k = o->drain_only ? 1 : 0; k < 2; k++) {
@@ -301,9 +322,11 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
         if (access(path, R_OK) != 0)
             return gf_error_set(GF_ERR_IO, "%s: %s (no LAMMPS inputs there: write them first)", path, strerror(errno));
         const time_t since = time(NULL);
-        if (k == 1) { // a recirculating drain's records (the drain writes them again; a stale one would mislead)
-            const char *names[2] = {"exits.csv", GF_DEM_REINSERTED};
-            for (int j = 0; j < 2; j++) {
+        if (k == 1) { // a recirculating drain's records, an earlier drain's restart files and continuation (the
+                      // drain writes them again; a stale one would mislead, or be continued)
+            const char *names[6] = {"exits.csv", GF_DEM_REINSERTED, "drain.a.restart", "drain.b.restart",
+                                    "in.continue", "log.continue"};
+            for (int j = 0; j < 6; j++) {
                 snprintf(path, sizeof path, "%s/%s", dir, names[j]);
                 if (unlink(path) != 0 && errno != ENOENT)
                     return gf_error_set(GF_ERR_IO, "%s: cannot remove the previous drain's: %s", path, strerror(errno));
@@ -326,6 +349,156 @@ gf_status gf_dem_run(const char *dir, const gf_dem_run_opts *o)
     char mark[GF_PATH_MAX + 32];
     snprintf(mark, sizeof mark, "%s/%s", dir, GF_DEM_INTERRUPTED);
     unlink(mark); // a complete run: an earlier interruption no longer holds
+    return GF_OK;
+}
+
+/// A continuation's progress: passed on, and each snapshot LAMMPS has
+/// finished gets its ITEM: TIME put right then (gf_dem_cont_fix_step), not
+/// only at the end: a granflow killed meanwhile leaves few wrong ones.
+typedef struct gf_dem_cont_watch {
+    const gf_dem_run_opts *o;
+    const char *dir;
+    double dt;
+    int64_t every, next; ///< steps between snapshots; the next one to put right
+} gf_dem_cont_watch;
+
+static void gf_dem_cont_on_progress(void *ctx, const gf_dem_progress *p)
+{
+    gf_dem_cont_watch *w = ctx;
+    if (w->o->progress) w->o->progress(w->o->ctx, p);
+    if (p->phase != GF_DEM_PHASE_DRAIN || !(p->time >= 0)) return; // thermo times: the drain's (step * dt)
+    const int64_t now = (int64_t)floor(p->time / w->dt + 0.5);
+    for (; w->next <= now; w->next += w->every) (void)gf_dem_cont_fix_step(w->dir, w->next, w->dt); // the end's pass reports
+}
+
+/// The error of a directory without restart files.
+static gf_status gf_dem_cont_none(const char *dir)
+{
+    return gf_error_set(GF_ERR_PARAM,
+                        "%s: no restart file to continue from (drain.a.restart, drain.b.restart): the drain "
+                        "wrote none yet (it writes one every dem.restart_interval), or its in.drain has no "
+                        "restart line; drain again from settled.restart (--drain-only)",
+                        dir);
+}
+
+/// Which of DIR/drain.a.restart and drain.b.restart LAMMPS reads, and at
+/// which step: each present one is read by a one-rank LAMMPS (in.probe) that
+/// prints its step and timestep; the readable one of the higher step wins.
+/// A present one LAMMPS cannot read (a restart cut short when LAMMPS was
+/// killed while writing it) is named in c->unreadable with LAMMPS' error.
+static gf_status gf_dem_cont_probe(const char *dir, const char *lmp, const gf_dem_run_opts *o, gf_dem_cont *c,
+                                   int64_t *step, double *dt)
+{
+    char path[GF_PATH_MAX + 32], tmp[GF_PATH_MAX + 48], why[2][600] = {"", ""};
+    int found = 0, best = -1;
+    int64_t steps[2] = {-1, -1};
+    double dts[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/drain.%c.restart", dir, "ab"[k]);
+        if (access(path, F_OK) != 0) continue;
+        found++;
+        FILE *f;
+        snprintf(path, sizeof path, "%s/in.probe", dir);
+        gf_status st = gf_atomic_open(path, tmp, sizeof tmp, &f);
+        if (st != GF_OK) return st;
+        fprintf(f, "# granflow dem --continue: the step of drain.%c.restart\nread_restart drain.%c.restart\n"
+                   "print \"granflow-restart $(step) $(dt:%%.17g)\"\n", "ab"[k], "ab"[k]);
+        if ((st = gf_atomic_commit(f, tmp, path)) != GF_OK) return st;
+        gf_dem_run_opts po = {.ranks = 1, .stop = o->stop};
+        gf_dem_reader r = {.o = &po, .wall0 = gf_clock_now(), .t_phase = NAN, .restart_step = -1};
+        st = gf_dem_run_one(dir, "in.probe", lmp, NULL, 1, &r);
+        unlink(path);
+        snprintf(path, sizeof path, "%s/log.probe", dir);
+        unlink(path);
+        if (st == GF_ERR_INTERRUPTED) return st;
+        if (st == GF_OK && r.restart_step >= 0) {
+            steps[k] = r.restart_step;
+            dts[k] = r.restart_dt;
+            if (best < 0 || steps[k] > steps[best]) best = k;
+        } else {
+            snprintf(why[k], sizeof why[k], "%s/drain.%c.restart: LAMMPS cannot read it (%s)", dir, "ab"[k],
+                     r.error[0] ? r.error : "no step printed");
+        }
+    }
+    if (!found) return gf_dem_cont_none(dir);
+    if (best < 0)
+        return gf_error_set(GF_ERR_FORMAT, "%s%s%s", why[0], why[0][0] && why[1][0] ? "; " : "", why[1]);
+    snprintf(c->unreadable, sizeof c->unreadable, "%s", why[1 - best]);
+    *step = steps[best];
+    *dt = dts[best];
+    snprintf(c->restart, sizeof c->restart, "drain.%c.restart", "ab"[best]);
+    return GF_OK;
+}
+
+gf_status gf_dem_continue(const char *dir, const gf_config *cfg, const gf_dem_run_opts *o, gf_dem_cont *out)
+{
+    gf_dem_run_opts def = gf_dem_run_opts_default();
+    if (!o) o = &def;
+    gf_dem_cont c = {0};
+    if (out) *out = c;
+    gf_dem_defs dd;
+    gf_config_dem_defs(cfg, &dd);
+    char lmp[4096], mpirun[4096], path[GF_PATH_MAX + 32];
+    int ranks;
+    gf_status st = gf_dem_find(o, lmp, mpirun, sizeof lmp, &ranks);
+    if (st != GF_OK) return st;
+    snprintf(path, sizeof path, "%s/in.drain", dir);
+    if (access(path, R_OK) != 0)
+        return gf_error_set(GF_ERR_IO, "%s: %s (no drain to continue there)", path, strerror(errno));
+    double until = 0.0;
+    const bool done = gf_dem_cont_done(dir, &until);
+    bool any = false;
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/drain.%c.restart", dir, "ab"[k]);
+        any = any || access(path, F_OK) == 0;
+    }
+    if (!any) return gf_dem_cont_none(dir);
+    if (!done && !o->force && (st = gf_dem_cont_check_idle(dir)) != GF_OK) return st;
+    // The marker has 6 digits (%.6g): a drain to 12.3456789 tau printed 12.3457.
+    if (done && dd.duration <= until * (1.0 + 1e-5))
+        return gf_error_set(GF_ERR_PARAM,
+                            "%s: the drain ran to its end (t = %g tau, run.duration = %g): nothing to continue "
+                            "(a longer drain: --set run.duration=T)",
+                            dir, until, dd.duration);
+    int64_t step = -1;
+    double dt = 0.0;
+    if ((st = gf_dem_cont_probe(dir, lmp, o, &c, &step, &dt)) != GF_OK) return st;
+    if (fabs(dt - dd.timestep) > 1e-12 * dd.timestep)
+        return gf_error_set(GF_ERR_PARAM,
+                            "%s/%s has a timestep of %.10g tau, %s/config.ini dem.timestep = %.10g: the configuration "
+                            "is not the one this drain ran with",
+                            dir, c.restart, dt, dir, dd.timestep);
+    gf_dem_cont probe = c; // prepare fills c afresh
+    if ((st = gf_dem_cont_prepare(dir, cfg, probe.restart, step, &c)) != GF_OK) {
+        if (out) *out = (gf_dem_cont){0};
+        return st;
+    }
+    snprintf(c.unreadable, sizeof c.unreadable, "%s", probe.unreadable);
+    if (out) *out = c;
+    snprintf(path, sizeof path, "%s/config.ini", dir); // a longer run.duration is the drain's from now on
+    if ((st = gf_config_save(cfg, path)) != GF_OK) return st;
+
+    const time_t since = time(NULL);
+    const int64_t every = (int64_t)fmax(1.0, floor(dd.snapshot_interval / dd.timestep + 0.5));
+    gf_dem_cont_watch w = {.o = o, .dir = dir, .dt = dd.timestep, .every = every,
+                           .next = (step + every - 1) / every * every};
+    gf_dem_run_opts wo = *o;
+    wo.progress = gf_dem_cont_on_progress;
+    wo.ctx = &w;
+    gf_dem_reader r = {.o = &wo, .wall0 = gf_clock_now(), .t_phase = NAN, .restart_step = -1};
+    st = gf_dem_run_one(dir, "in.continue", lmp, mpirun[0] ? mpirun : NULL, ranks, &r);
+    char msg[1024];
+    snprintf(msg, sizeof msg, "%s", gf_last_error());
+    if (st == GF_ERR_INTERRUPTED) {
+        gf_dem_mark_interrupted(dir, false, &r, since);
+        snprintf(msg, sizeof msg, "%s", gf_last_error());
+    }
+    gf_status sf = gf_dem_cont_fix_times(dir, dd.timestep, NULL); // whatever LAMMPS did, the times it wrote
+    if (sf == GF_OK && (st == GF_OK || st == GF_ERR_INTERRUPTED)) sf = gf_dem_write_exits(dir);
+    if (st != GF_OK) return gf_error_set(st, "%s", msg);
+    if (sf != GF_OK) return sf;
+    snprintf(path, sizeof path, "%s/%s", dir, GF_DEM_INTERRUPTED);
+    unlink(path);
     return GF_OK;
 }
 
