@@ -126,6 +126,10 @@ typedef struct gf_sweep {
     size_t ngroup;
     gf_sweep_group *group; ///< the cell chunks' summaries, GF_SWEEP_GROUP chunks a group
     double *gsecs;        ///< profiling: the last summary's time per group
+    size_t *gat;          ///< the binning of the moves: where each group's start (ngroup + 1)
+    size_t *gcur;         ///< its cursors (ngroup)
+    uint32_t *gmv;        ///< the moves dealt to the groups of their cells, in record order
+    size_t gmv_cap;
     gf_sweep_move *mv;    ///< the window's moves, joined in chunk order
     size_t nmv, mv_cap;
     double (*mirs)[3];    ///< their mirror centres
@@ -217,6 +221,9 @@ void gf_sweep_free(gf_sim *sim)
     }
     GF_DELETE(q->group, q->ngroup);
     GF_DELETE(q->gsecs, q->ngroup);
+    GF_DELETE(q->gat, q->ngroup + 1);
+    GF_DELETE(q->gcur, q->ngroup);
+    GF_DELETE(q->gmv, q->gmv_cap);
     GF_DELETE(q->mv, q->mv_cap);
     gf_free(q->mirs, sizeof(double[3]) * q->mirs_cap);
     gf_celllist_free(&q->bycell);
@@ -272,7 +279,9 @@ static gf_status gf_sweep_make(gf_sim *sim)
         q->ngroup = (q->ncell_chunk + GF_SWEEP_GROUP - 1) / GF_SWEEP_GROUP;
         q->group = GF_NEW(gf_sweep_group, q->ngroup);
         q->gsecs = GF_NEW(double, q->ngroup);
-        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs
+        q->gat = GF_NEW(size_t, q->ngroup + 1);
+        q->gcur = GF_NEW(size_t, q->ngroup);
+        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs && q->gat && q->gcur
                            ? GF_OK
                            : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         if (q->cell)
@@ -333,6 +342,9 @@ static void gf_sweep_walk(gf_sim *sim, gf_sweep *q, size_t c, double t_end)
 {
     gf_sweep_chunk *ch = &q->spot[c];
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    ch->nmv = ch->nmirs = 0;
+    ch->st = (gf_sim_stats){0};
+    ch->status = GF_OK;
     const gf_engine_defs *ed = &sim->d;
     gf_rng rng;
     gf_work w = {.rng = &rng, .coltop = q->coltop, .st = &ch->st};
@@ -883,6 +895,63 @@ static gf_status gf_sweep_status(const gf_sweep_chunk *ch, size_t n)
     return GF_OK;
 }
 
+// Group g's moves (dealt to it in record order) counted and placed by cell:
+// its cells' start[] and their stretch of idx[], as gf_celllist_sort.
+static void gf_sweep_bin_group(gf_sweep *q, size_t g)
+{
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    gf_celllist *cl = &q->bycell;
+    const size_t c0 = g * GF_SWEEP_GROUP_CELLS;
+    const size_t c1 = c0 + GF_SWEEP_GROUP_CELLS < cl->ncell ? c0 + GF_SWEEP_GROUP_CELLS : cl->ncell;
+    size_t *start = cl->start;
+    for (size_t c = c0; c < c1; c++) start[c] = 0;
+    for (size_t k = q->gat[g]; k < q->gat[g + 1]; k++) start[cl->cell[q->gmv[k]]]++;
+    size_t at = q->gat[g], cur[GF_SWEEP_GROUP_CELLS];
+    for (size_t c = c0; c < c1; c++) {
+        size_t m = start[c];
+        start[c] = cur[c - c0] = at;
+        at += m;
+    }
+    for (size_t k = q->gat[g]; k < q->gat[g + 1]; k++) {
+        uint32_t e = q->gmv[k];
+        cl->idx[cur[cl->cell[e] - c0]++] = e;
+    }
+    if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
+}
+
+// The window's moves binned by the cell of their centre (q->bycell, as
+// gf_celllist_sort leaves it: by cell, then record order), the counting over
+// 273,000 cells of the pebble bed side by side: one thread deals the moves to
+// the groups of their cells (a pass over the moves and one over the groups),
+// then each group counts and places its own.
+static gf_status gf_sweep_bin(gf_sweep *q)
+{
+    gf_celllist *cl = &q->bycell;
+    const size_t n = q->nmv, ng = q->ngroup;
+    uint32_t *gmv = gf_sweep_grow(q->gmv, &q->gmv_cap, n, sizeof *gmv);
+    if (!gmv) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", n);
+    q->gmv = gmv;
+    double ts = gf_sweep_tic(q);
+    memset(q->gat, 0, (ng + 1) * sizeof *q->gat);
+    for (size_t e = 0; e < n; e++) q->gat[cl->cell[e] / GF_SWEEP_GROUP_CELLS + 1]++;
+    for (size_t g = 0; g < ng; g++) {
+        q->gat[g + 1] += q->gat[g];
+        q->gcur[g] = q->gat[g];
+    }
+    for (size_t e = 0; e < n; e++) gmv[q->gcur[cl->cell[e] / GF_SWEEP_GROUP_CELLS]++] = (uint32_t)e;
+    cl->start[cl->ncell] = n;
+    cl->nidx = n;
+    gf_sweep_toc(q, ts);
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
+#endif
+    for (size_t g = 0; g < ng; g++) gf_sweep_bin_group(q, g);
+    (void)threads;
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 0);
+    return GF_OK;
+}
+
 // The walk: chunks of spots, then their records joined and binned by cell.
 static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
 {
@@ -905,14 +974,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
         }
     }
     memset(q->dead, 0, sim->ns);
-    q->nspot_chunk = nchunk;
-    for (size_t c = 0; c < nchunk; c++) {
-        q->spot[c].nmv = 0;
-        q->spot[c].nmirs = 0;
-        q->spot[c].st = (gf_sim_stats){0};
-        q->spot[c].status = GF_OK;
-        q->spot[c].seconds = 0.0;
-    }
+    q->nspot_chunk = nchunk; // (each chunk resets its record as it starts)
     const int threads = q->threads;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nchunk > 1)
@@ -958,8 +1020,8 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
         if (ch->nmirs) memcpy(q->mirs + ch->mir_at, ch->mirs, sizeof(double[3]) * ch->nmirs);
         if (q->profiling) ch->seconds = gf_sweep_since(q, t1);
     }
+    if ((st = gf_sweep_bin(q)) != GF_OK) return st;
     ts = gf_sweep_tic(q);
-    gf_celllist_sort(&q->bycell, q->nmv);
     for (int t = 0; t < q->threads; t++) {
         uint32_t *cand = gf_sweep_grow(q->cand[t], &q->cand_cap[t], q->nmv + 1, sizeof(uint32_t));
         if (!cand) return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu moves", q->nmv);
