@@ -126,6 +126,9 @@ typedef struct gf_sweep {
     size_t ngroup;
     gf_sweep_group *group; ///< the cell chunks' summaries, GF_SWEEP_GROUP chunks a group
     double *gsecs;        ///< profiling: the last summary's time per group
+    ptrdiff_t reach_lo, reach_hi; ///< the last summary: how far (in groups) its movers go
+    uint32_t *xgroup;     ///< the last summary: the groups with particles below the exit plane
+    size_t nxgroup;
     size_t *gat;          ///< the binning of the moves: where each group's start (ngroup + 1)
     size_t *gcur;         ///< its cursors (ngroup)
     uint32_t *gmv;        ///< the moves dealt to the groups of their cells, in record order
@@ -164,6 +167,7 @@ typedef struct gf_sweep {
     double *secs;         ///< profiling scratch
     size_t secs_cap;
     bool profiling;
+    int full;             ///< an insertion found a cell full (the run then stops)
     double clock_cost;    ///< profiling: CPU seconds a reading of the clock adds to what it times
     double serial_acc;    ///< profiling: the window's one-thread CPU seconds so far
     gf_par_profile prof;
@@ -222,6 +226,7 @@ void gf_sweep_free(gf_sim *sim)
     GF_DELETE(q->group, q->ngroup);
     GF_DELETE(q->gsecs, q->ngroup);
     GF_DELETE(q->gat, q->ngroup + 1);
+    GF_DELETE(q->xgroup, q->ngroup);
     GF_DELETE(q->gcur, q->ngroup);
     GF_DELETE(q->gmv, q->gmv_cap);
     GF_DELETE(q->mv, q->mv_cap);
@@ -280,8 +285,9 @@ static gf_status gf_sweep_make(gf_sim *sim)
         q->group = GF_NEW(gf_sweep_group, q->ngroup);
         q->gsecs = GF_NEW(double, q->ngroup);
         q->gat = GF_NEW(size_t, q->ngroup + 1);
+        q->xgroup = GF_NEW(uint32_t, q->ngroup);
         q->gcur = GF_NEW(size_t, q->ngroup);
-        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs && q->gat && q->gcur
+        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs && q->gat && q->gcur && q->xgroup
                            ? GF_OK
                            : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         if (q->cell)
@@ -821,6 +827,10 @@ static void gf_sweep_arrive(gf_sim *sim, gf_sweep *q, size_t d, ptrdiff_t lo, pt
             if (sim->grid.count[m.cell] >= GF_CELL_CAP) {
                 gd->status = GF_ERR_STATE;
                 gd->full_cell = m.cell;
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+                q->full = 1;
                 continue;
             }
             (void)gf_grid_insert(&sim->grid, m.i, m.cell);
@@ -840,13 +850,9 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
     gf_grid *g = &sim->grid;
     gf_work *w = &q->w;
     double ts = gf_sweep_tic(q);
-    ptrdiff_t lo = 0, hi = 0;
-    for (size_t gi = 0; gi < q->ngroup; gi++) {
-        const gf_sweep_group *gr = &q->group[gi];
-        if (gr->nmover) {
-            lo = gr->reach_lo < lo ? gr->reach_lo : lo;
-            hi = gr->reach_hi > hi ? gr->reach_hi : hi;
-        }
+    const ptrdiff_t lo = q->reach_lo, hi = q->reach_hi;
+    for (size_t x = 0; x < q->nxgroup; x++) {
+        const gf_sweep_group *gr = &q->group[q->xgroup[x]];
         for (size_t k = 0; k < gr->nexit; k++) {
             uint32_t i = gr->exit[k];
             w->t = q->tlast[i];
@@ -875,16 +881,14 @@ static gf_status gf_sweep_book(gf_sim *sim, gf_sweep *q)
     for (size_t d = 0; d < n; d++) gf_sweep_arrive(sim, q, d, lo, hi);
     (void)threads;
     if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, n, 0.0, 3);
-    ts = gf_sweep_tic(q);
-    for (size_t d = 0; d < n; d++)
-        if (q->group[d].status != GF_OK) {
-            gf_sweep_toc(q, ts);
-            return gf_error_set(GF_ERR_STATE,
-                                "more than %d particle centres in one %.2g d cell (cell %u): the packing "
-                                "overlaps far too much",
-                                GF_CELL_CAP, g->h, q->group[d].full_cell);
-        }
-    gf_sweep_toc(q, ts);
+    if (q->full) { // (rare: the first full group found again on one thread, for its message)
+        for (size_t d = 0; d < n; d++)
+            if (q->group[d].status != GF_OK)
+                return gf_error_set(GF_ERR_STATE,
+                                    "more than %d particle centres in one %.2g d cell (cell %u): the packing "
+                                    "overlaps far too much",
+                                    GF_CELL_CAP, g->h, q->group[d].full_cell);
+    }
     return sim->use_nlist ? gf_sweep_refresh(sim, q) : GF_OK;
 }
 
@@ -1120,11 +1124,18 @@ static gf_status gf_sweep_counters(gf_sim *sim, gf_sweep *q)
     if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, n, 0.0, 3);
     const double ts = gf_sweep_tic(q);
     gf_status st = GF_OK;
+    q->reach_lo = q->reach_hi = 0;
+    q->nxgroup = 0;
     for (size_t g = 0; g < n; g++) {
         const gf_sweep_group *gr = &q->group[g];
         sim->st.spot_dz += gr->spot_dz;
         sim->st.relax_dz += gr->relax_dz;
         if (st == GF_OK && gr->status != GF_OK) st = gf_error_set(gr->status, "out of memory in the sweep engine");
+        if (gr->nexit) q->xgroup[q->nxgroup++] = (uint32_t)g;
+        if (gr->nmover) {
+            q->reach_lo = gr->reach_lo < q->reach_lo ? gr->reach_lo : q->reach_lo;
+            q->reach_hi = gr->reach_hi > q->reach_hi ? gr->reach_hi : q->reach_hi;
+        }
     }
     gf_sweep_toc(q, ts);
     return st;
