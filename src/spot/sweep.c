@@ -155,6 +155,8 @@ typedef struct gf_sweep {
     uint32_t *adds;       ///< the crossers each aff row gains, grouped by row
     size_t aff_cap, aff_at_cap, adds_cap;
     gf_status *find_st;   ///< per crosser: its row's search
+    uint32_t *segn;       ///< per crosser: the pairs its old row, then its new row, gave (2 nc)
+    size_t segn_cap;
     size_t find_cap;
     double *fsecs, *msecs; ///< profiling: the last batch's times per crosser's search and per row's merge
     size_t fsecs_cap, msecs_cap, nf, nm;
@@ -243,6 +245,7 @@ void gf_sweep_free(gf_sim *sim)
     GF_DELETE(q->aff_at, q->aff_at_cap);
     GF_DELETE(q->adds, q->adds_cap);
     GF_DELETE(q->find_st, q->find_cap);
+    GF_DELETE(q->segn, q->segn_cap);
     GF_DELETE(q->fsecs, q->fsecs_cap);
     GF_DELETE(q->msecs, q->msecs_cap);
     GF_DELETE(q->dead, q->dead_cap);
@@ -715,48 +718,65 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     const unsigned shift = sim->nl_shift;
     const size_t slots = (size_t)1 << shift;
     gf_status st = GF_OK;
-    // The rows that named a crosser (before), then those that will.
+    // The rows that named a crosser (before), then those that will: listed
+    // side by side, each crosser into its own stretch of pairs[] (old rows
+    // from 0, new rows from nc * slots), then closed up in crosser order.
     size_t np = 0;
+    const size_t ngr = (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP;
     if (!GF_SWEEP_ROOM(q->pairs, &q->pairs_cap, 2 * nc * slots) || !GF_SWEEP_ROOM(q->find_st, &q->find_cap, nc) ||
-        (q->profiling && !GF_SWEEP_ROOM(q->fsecs, &q->fsecs_cap, nc)))
+        !GF_SWEEP_ROOM(q->segn, &q->segn_cap, 2 * nc) || (q->profiling && !GF_SWEEP_ROOM(q->fsecs, &q->fsecs_cap, 2 * ngr)))
         st = gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
-    for (size_t k = 0; st == GF_OK && k < nc; k++) {
-        const uint32_t *row = sim->nl + ((size_t)q->cross[k] << shift);
-        for (uint32_t e = 1; e <= row[0]; e++)
-            if (!q->crossing[row[e]]) {
-                q->pairs[np][0] = row[e];
-                q->pairs[np++][1] = UINT32_MAX;
-            }
-    }
     if (st == GF_OK) {
-        for (size_t k = 0; k < nc; k++) {
-            uint32_t i = q->cross[k];
-            sim->p0[i].x = (float)sim->p[i].x;
-            sim->p0[i].y = (float)sim->p[i].y;
-            sim->p0[i].z = (float)sim->p[i].z;
-        }
         gf_sweep_toc(q, ts);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 2 * GF_SWEEP_FIND_GROUP)
 #endif
-        for (size_t g = 0; g < (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP; g++) {
+        for (size_t g = 0; g < ngr; g++) {
             double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-            for (size_t k = g * GF_SWEEP_FIND_GROUP; k < nc && k < (g + 1) * GF_SWEEP_FIND_GROUP; k++)
-                q->find_st[k] = gf_nlist_find_row(sim, q->cross[k]);
+            for (size_t k = g * GF_SWEEP_FIND_GROUP; k < nc && k < (g + 1) * GF_SWEEP_FIND_GROUP; k++) {
+                const uint32_t i = q->cross[k], *row = sim->nl + ((size_t)i << shift);
+                uint32_t (*seg)[2] = q->pairs + k * slots, n = 0;
+                for (uint32_t e = 1; e <= row[0]; e++)
+                    if (!q->crossing[row[e]]) {
+                        seg[n][0] = row[e];
+                        seg[n++][1] = UINT32_MAX;
+                    }
+                q->segn[k] = n;
+                sim->p0[i].x = (float)sim->p[i].x;
+                sim->p0[i].y = (float)sim->p[i].y;
+                sim->p0[i].z = (float)sim->p[i].z;
+            }
+            if (q->profiling) q->fsecs[ngr + g] = gf_sweep_since(q, t0);
+        }
+        if (q->profiling) gf_sweep_record(q, NULL, q->fsecs + ngr, ngr, 0.0, 3);
+        // The new rows (every crosser's reference moved first: a row reads the others').
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 2 * GF_SWEEP_FIND_GROUP)
+#endif
+        for (size_t g = 0; g < ngr; g++) {
+            double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+            for (size_t k = g * GF_SWEEP_FIND_GROUP; k < nc && k < (g + 1) * GF_SWEEP_FIND_GROUP; k++) {
+                const uint32_t i = q->cross[k];
+                q->find_st[k] = gf_nlist_find_row(sim, i);
+                const uint32_t *row = sim->nl + ((size_t)i << shift);
+                uint32_t (*seg)[2] = q->pairs + (nc + k) * slots, n = 0;
+                for (uint32_t e = 1; q->find_st[k] == GF_OK && e <= row[0]; e++)
+                    if (!q->crossing[row[e]]) {
+                        seg[n][0] = row[e];
+                        seg[n++][1] = i;
+                    }
+                q->segn[nc + k] = n;
+            }
             if (q->profiling) q->fsecs[g] = gf_sweep_since(q, t0);
         }
         ts = gf_sweep_tic(q);
-        if (q->profiling) q->nf = (nc + GF_SWEEP_FIND_GROUP - 1) / GF_SWEEP_FIND_GROUP;
+        if (q->profiling) q->nf = ngr;
         for (size_t k = 0; k < nc && st == GF_OK; k++)
             if (q->find_st[k] != GF_OK) st = gf_nlist_find_row(sim, q->cross[k]); // (again, for its message)
-    }
-    for (size_t k = 0; st == GF_OK && k < nc; k++) {
-        const uint32_t *row = sim->nl + ((size_t)q->cross[k] << shift);
-        for (uint32_t e = 1; e <= row[0]; e++)
-            if (!q->crossing[row[e]]) {
-                q->pairs[np][0] = row[e];
-                q->pairs[np++][1] = q->cross[k];
-            }
+        for (size_t k = 0; st == GF_OK && k < 2 * nc; k++) { // closed up (moving left: memmove)
+            if (q->segn[k]) memmove(q->pairs + np, q->pairs + k * slots, sizeof *q->pairs * q->segn[k]);
+            np += q->segn[k];
+        }
     }
     // Grouped by row: the rows in the order first seen, each's crossers in pair order.
     size_t naff = 0;
