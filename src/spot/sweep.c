@@ -24,10 +24,13 @@
 //    alpha delta for an active one against a fixed one, alpha (r - gap) from
 //    a wall), each reading the positions of the sweep's start;
 // 5. bookkeeping: the chunks flag, side by side, the particles they moved
-//    below the exit plane, into another cell or past their skin; one thread
-//    then does, in chunk order, their exits (each timed by the last move that
-//    reached the particle) and cell moves; the list refreshes run as a batch
-//    (gf_sweep_refresh), mostly side by side.
+//    below the exit plane, into another cell or past their skin; groups of
+//    chunks sort them side by side into exits, cell movers and crossers;
+//    one thread does the exits (each timed by the last move that reached
+//    the particle; a handful a window); cell moves run as parallel removals
+//    (each group from its own cells) then insertions (each group into its
+//    own cells); the list refreshes run as a batch (gf_sweep_refresh),
+//    mostly side by side.
 //
 // Determinism: every sum runs in an order fixed by the state (cells, slots,
 // rows, chunks of a fixed size), the records of the spot chunks are joined in
