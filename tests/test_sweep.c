@@ -162,6 +162,49 @@ static void resume_under_another_thread_count(void **state)
     gf_test_resume_matches("sweep", tall_silo(3), tall_silo(1), tall_silo(2), 4.1);
 }
 
+// After windows whose cell moves, exits and list refreshes ran side by side
+// (groups of chunks, removals then insertions, pairs listed per crosser):
+// every live particle sits in the grid cell of its position, in the slot the
+// grid says; every row lists exactly the live j within the listing distance
+// of the references (sim_internal.h's rule), sorted; no particle is past its
+// skin.
+static void keeps_its_cells_and_lists(void **state)
+{
+    (void)state;
+    gf_config c = tall_silo(2);
+    gf_sim *sim = gf_test_generated_sim(&c);
+    assert_int_equal(gf_sim_run(sim, 3.0, NULL), GF_OK);
+    const gf_grid *g = &sim->grid;
+    size_t alive = 0, in_cells = 0;
+    for (size_t cell = 0; cell < g->ncell; cell++) in_cells += g->count[cell];
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (!sim->alive[i]) continue;
+        alive++;
+        const gf_pos *p = &sim->p[i];
+        uint32_t cell = g->cell_of[i];
+        assert_int_equal(cell, gf_grid_cell(g, p->x, p->y, p->z));
+        assert_int_equal(g->slot[(size_t)cell * GF_CELL_CAP + g->slot_of[i]], i);
+        const gf_ref *a = &sim->p0[i];
+        double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z;
+        assert_true(sqrt(dx * dx + dy * dy + dz * dz) <= a->h);
+        const uint32_t *row = sim->nl + ((size_t)i << sim->nl_shift);
+        uint32_t e = 1;
+        for (uint32_t j = 0; j < sim->n; j++) {
+            if (j == i || !sim->alive[j]) continue;
+            const gf_ref *b = &sim->p0[j];
+            double ex = (double)a->x - b->x, ey = (double)a->y - b->y, ez = (double)a->z - b->z;
+            double cut = (p->r + sim->p[j].r) + ((double)a->h + b->h);
+            if (!(ex * ex + ey * ey + ez * ez < cut * cut)) continue;
+            assert_true(e <= row[0]);
+            assert_int_equal(row[e++], j); // (sorted, nothing missing, nothing extra before it)
+        }
+        assert_int_equal(e - 1, row[0]);
+    }
+    assert_int_equal(in_cells, alive);
+    assert_true(alive < 4000); // particles left through the orifice
+    gf_sim_destroy(sim);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(thread_count_does_not_change_the_result),
     cmocka_unit_test(drains_and_times_its_exits),
@@ -169,6 +212,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(profile_projects_the_speedup),
     cmocka_unit_test(refuses_other_relax_methods),
     cmocka_unit_test(resume_under_another_thread_count),
+    cmocka_unit_test(keeps_its_cells_and_lists),
 };
 
 GF_TEST_MAIN("sweep", tests)
