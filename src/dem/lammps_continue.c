@@ -112,12 +112,12 @@ static gf_status gf_cont_fix_one(const char *path, double dt, bool *fixed)
     FILE *f = fopen(path, "r");
     if (!f) return gf_error_set(GF_ERR_IO, "%s: %s", path, strerror(errno));
     char l1[128], l2[128], l3[128], l4[128];
-    double t;
-    long long step;
+    double t = 0.0;
+    long long step = 0;
     bool ok = fgets(l1, sizeof l1, f) && fgets(l2, sizeof l2, f) && fgets(l3, sizeof l3, f) &&
               fgets(l4, sizeof l4, f) && !strncmp(l1, "ITEM: TIME", 10) && sscanf(l2, "%lf", &t) == 1 &&
               !strncmp(l3, "ITEM: TIMESTEP", 14) && sscanf(l4, "%lld", &step) == 1;
-    const double want = (double)step * dt;
+    const double want = ok ? (double)step * dt : 0.0;
     if (!ok || fabs(t - want) <= 1e-9 * fmax(1.0, want)) { // not ours to judge, or right already
         fclose(f);
         return GF_OK;
