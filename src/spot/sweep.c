@@ -1064,8 +1064,11 @@ static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
 {
     const size_t n = q->ncell_chunk;
     const int threads = q->threads;
+    // Dispatches of ~1/16 of a thread's share (at least 4 chunks): neighbouring
+    // chunks write neighbouring particles' bytes, so a thread keeps a stretch.
+    const size_t grain = n / (16 * (size_t)threads) > 4 ? n / (16 * (size_t)threads) : 4;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, grain) num_threads(threads) if (threads > 1)
 #endif
     for (size_t c = 0; c < n; c++) {
         const int t = gf_sim_thread();
