@@ -700,12 +700,8 @@ static gf_status gf_sweep_refresh(gf_sim *sim, gf_sweep *q)
     for (size_t gi = 0; gi < q->ngroup; gi++) {
         const gf_sweep_group *gr = &q->group[gi];
         for (size_t k = 0; k < gr->nskin; k++) {
-            uint32_t i = gr->skin[k];
+            uint32_t i = gr->skin[k]; // (past its skin: the summary tested it, and nothing moved since)
             if (!sim->alive[i] || q->crossing[i]) continue;
-            const gf_pos *p = &sim->p[i];
-            const gf_ref *a = &sim->p0[i];
-            double dx = p->x - a->x, dy = p->y - a->y, dz = p->z - a->z, lim = a->h - GF_SKIN_SLACK;
-            if (!(dx * dx + dy * dy + dz * dz > lim * lim)) continue;
             if (!GF_SWEEP_ROOM(q->cross, &q->cross_cap, nc + 1)) {
                 for (size_t k2 = 0; k2 < nc; k2++) q->crossing[q->cross[k2]] = 0;
                 return gf_error_set(GF_ERR_NOMEM, "out of memory for the list refreshes");
