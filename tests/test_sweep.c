@@ -9,6 +9,7 @@
 #include "run_outcome.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -205,6 +206,49 @@ static void keeps_its_cells_and_lists(void **state)
     gf_sim_destroy(sim);
 }
 
+// A run's outcome with every window visiting every cell chunk (dense) or
+// only those its moves reach: gf_sim_run by hand, the dense switch set first.
+static gf_test_outcome sweep_outcome(gf_config c, int dense, size_t *most_chunks)
+{
+    gf_sim *sim = gf_test_generated_sim(&c);
+    gf_sweep_set_dense(sim, dense);
+    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
+    gf_test_outcome o = {.st = gf_sim_get_stats(sim)};
+    assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
+    const gf_exit *e = gf_sim_exits(sim, &o.nex);
+    o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
+    assert_non_null(o.ex);
+    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    *most_chunks = gf_sweep_touched_chunks(sim);
+    gf_sim_destroy(sim);
+    return o;
+}
+
+// Windows of ~1/(64 mu) in a silo 3 times wider: each window's blocks visit
+// only the cell chunks within reach of its moves, a small part of the grid,
+// and the run is the one whose windows visit every chunk, to the last bit
+// (a chunk left out that held a particle within r_e of a move would change
+// its displacement, its activity or a neighbour's relaxation).
+static void windows_visit_only_what_their_moves_reach(void **state)
+{
+    (void)state;
+    gf_config c = tall_silo(2);
+    c.container_width = 36;
+    c.packing_particles = 6000;
+    c.parallel_window = 1.0 / (64 * 28.0);
+    c.run_duration = 2.0;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    size_t touched_sparse = 0, touched_dense = 0;
+    gf_test_outcome a = sweep_outcome(c, 0, &touched_sparse), b = sweep_outcome(c, 1, &touched_dense);
+    print_message("sweep: last window %zu of %zu chunks; %zu exited\n", touched_sparse, touched_dense, a.nex);
+    assert_true(touched_sparse > 0);
+    assert_true(touched_sparse * 2 < touched_dense); // (a window of ~2 moves reaches a fraction of the grid)
+    assert_true(a.st.spot_moves > 1000);
+    gf_test_same_outcome(&a, &b);
+    gf_test_outcome_free(&a);
+    gf_test_outcome_free(&b);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(thread_count_does_not_change_the_result),
     cmocka_unit_test(drains_and_times_its_exits),
@@ -213,6 +257,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(refuses_other_relax_methods),
     cmocka_unit_test(resume_under_another_thread_count),
     cmocka_unit_test(keeps_its_cells_and_lists),
+    cmocka_unit_test(windows_visit_only_what_their_moves_reach),
 };
 
 GF_TEST_MAIN("sweep", tests)

@@ -309,6 +309,11 @@ gf_status gf_sim_domains_cycle(gf_sim *sim);
 gf_status gf_sim_sweep_window(gf_sim *sim);
 /// Frees the sweep engine's state.
 void gf_sweep_free(gf_sim *sim);
+/// Tests: every window of the sweep engine visits every cell chunk, not
+/// only those its moves reach (the result must not change).
+void gf_sweep_set_dense(gf_sim *sim, int on);
+/// Tests: the cell chunks the sweep engine's last window with moves visited.
+size_t gf_sweep_touched_chunks(const gf_sim *sim);
 /// Starts or stops profiling the sweep engine's chunks.
 void gf_sweep_set_profiling(gf_sim *sim, int on);
 /// The sweep engine's profile (gf_sim_par_profile).

@@ -145,7 +145,13 @@ typedef struct gf_sweep {
     size_t *cand_cap;
     size_t cap;           ///< particles the per-particle arrays hold
     double (*disp)[3];    ///< per particle: the sweep's displacement
-    uint8_t *active;      ///< per particle: within r_e of a move of the window
+    uint32_t *active;     ///< per particle: the last window (stamp) with a move within r_e of it
+    uint32_t stamp;       ///< this window's number: its active set and touched chunks carry it
+    uint32_t *cstamp;     ///< per cell chunk: the last window with a move within reach of its cells
+    uint32_t *touched;    ///< the window's touched cell chunks, in chunk order (its blocks visit these)
+    size_t ntouched;
+    size_t *gstart;       ///< per group: where its touched chunks start in touched[] (ngroup + 1)
+    double *tsecs;        ///< profiling: the touched chunks' times in the last cell block
     double *tlast;        ///< per particle: time of the last move that reached it
     uint8_t *crossing;    ///< per particle: 1 while it is among the batch's crossers
     uint32_t *gain;       ///< per particle: 1 + its entry in aff[] while the batch rewrites its row, else 0
@@ -172,6 +178,7 @@ typedef struct gf_sweep {
     double *secs;         ///< profiling scratch
     size_t secs_cap;
     bool profiling;
+    bool dense;           ///< tests: every window visits every cell chunk (gf_sweep_set_dense)
     int full;             ///< an insertion found a cell full (the run then stops)
     double clock_cost;    ///< profiling: CPU seconds a reading of the clock adds to what it times
     double serial_acc;    ///< profiling: the window's one-thread CPU seconds so far
@@ -233,6 +240,10 @@ void gf_sweep_free(gf_sim *sim)
     GF_DELETE(q->gat, q->ngroup + 1);
     GF_DELETE(q->xgroup, q->ngroup);
     GF_DELETE(q->gcur, q->ngroup);
+    GF_DELETE(q->gstart, q->ngroup + 1);
+    GF_DELETE(q->cstamp, q->ncell_chunk);
+    GF_DELETE(q->touched, q->ncell_chunk);
+    GF_DELETE(q->tsecs, q->ncell_chunk);
     GF_DELETE(q->gmv, q->gmv_cap);
     GF_DELETE(q->mv, q->mv_cap);
     gf_free(q->mirs, sizeof(double[3]) * q->mirs_cap);
@@ -293,11 +304,17 @@ static gf_status gf_sweep_make(gf_sim *sim)
         q->gat = GF_NEW(size_t, q->ngroup + 1);
         q->xgroup = GF_NEW(uint32_t, q->ngroup);
         q->gcur = GF_NEW(size_t, q->ngroup);
-        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs && q->gat && q->gcur && q->xgroup
+        q->gstart = GF_NEW(size_t, q->ngroup + 1);
+        q->cstamp = GF_NEW(uint32_t, q->ncell_chunk);
+        q->touched = GF_NEW(uint32_t, q->ncell_chunk);
+        q->tsecs = GF_NEW(double, q->ncell_chunk);
+        gf_status st = q->coltop && q->csecs && q->cell && q->group && q->gsecs && q->gat && q->gcur && q->xgroup &&
+                               q->gstart && q->cstamp && q->touched && q->tsecs
                            ? GF_OK
                            : gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         if (q->cell)
             for (size_t k = 0; k < q->ncell_chunk; k++) q->cell[k] = (gf_sweep_chunk){0};
+        if (q->cstamp) memset(q->cstamp, 0, q->ncell_chunk * sizeof *q->cstamp);
         if (q->group)
             for (size_t k = 0; k < q->ngroup; k++) q->group[k] = (gf_sweep_group){0};
         if (st == GF_OK) st = gf_work_init(sim, &q->w);
@@ -316,7 +333,7 @@ static gf_status gf_sweep_make(gf_sim *sim)
         GF_DELETE(q->gain, q->cap);
         q->cap = sim->cap;
         q->disp = gf_alloc(sizeof(double[3]) * q->cap);
-        q->active = GF_NEW(uint8_t, q->cap);
+        q->active = GF_NEW(uint32_t, q->cap);
         q->tlast = GF_NEW(double, q->cap);
         q->crossing = GF_NEW(uint8_t, q->cap);
         q->gain = GF_NEW(uint32_t, q->cap);
@@ -324,7 +341,7 @@ static gf_status gf_sweep_make(gf_sim *sim)
             gf_sweep_free(sim);
             return gf_error_set(GF_ERR_NOMEM, "out of memory for the sweep engine");
         }
-        memset(q->active, 0, q->cap);
+        memset(q->active, 0, q->cap * sizeof *q->active);
         memset(q->crossing, 0, q->cap);
         memset(q->gain, 0, q->cap * sizeof *q->gain);
     }
@@ -519,7 +536,7 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
                 uy += sx * m->u[1];
                 uz += sx * m->u[2];
             }
-            q->active[i] = act;
+            q->active[i] = act ? q->stamp : 0;
             q->tlast[i] = tl;
             if (ux == 0.0 && uy == 0.0 && uz == 0.0) continue;
             p[i].x += ux;
@@ -542,7 +559,8 @@ static void gf_sweep_relax(gf_sim *sim, gf_sweep *q, size_t c)
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     const gf_grid *g = &sim->grid;
     const gf_pos *restrict p = sim->p;
-    const uint8_t *restrict act = q->active;
+    const uint32_t *restrict act = q->active;
+    const uint32_t stamp = q->stamp;
     ch->status = GF_OK;
     const double alpha = sim->alpha, half = 0.5 * sim->alpha;
     ch->nlist = 0;
@@ -559,7 +577,7 @@ static void gf_sweep_relax(gf_sim *sim, gf_sweep *q, size_t c)
         ch->list = list;
         for (uint32_t k = 0; k < cnt; k++) {
             const uint32_t i = slot[k];
-            if (!act[i]) continue;
+            if (act[i] != stamp) continue;
             const uint32_t *row = sim->nl + ((size_t)i << sim->nl_shift);
             const double xi = p[i].x, yi = p[i].y, zi = p[i].z, ri = p[i].r;
             double ax = 0.0, ay = 0.0, az = 0.0;
@@ -568,7 +586,7 @@ static void gf_sweep_relax(gf_sim *sim, gf_sweep *q, size_t c)
                 double dx = xi - p[j].x, dy = yi - p[j].y, dz = zi - p[j].z;
                 double s = ri + p[j].r, r2 = dx * dx + dy * dy + dz * dz;
                 if (!(r2 < s * s) || !(r2 > 0.0)) continue;
-                double r = sqrt(r2), f = (act[j] ? half : alpha) * (s - r) / r;
+                double r = sqrt(r2), f = (act[j] == stamp ? half : alpha) * (s - r) / r;
                 ax += f * dx;
                 ay += f * dy;
                 az += f * dz;
@@ -1055,10 +1073,108 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     return GF_OK;
 }
 
-// Runs a block over the cell chunks: 0 gather, 1 relax, 2 apply.
+// Group g's cells that hold a move stamp the cell chunks within reach: every
+// chunk with a cell within R = ceil(r_e / h) cells of such a cell on each
+// axis (the cells gf_sweep_near looks in), so a chunk left unstamped has no
+// move within r_e of its particles. The stores race only with stores of
+// the same value (relaxed atomics).
+static void gf_sweep_touch_group(const gf_sim *sim, gf_sweep *q, size_t g)
+{
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const gf_grid *gd = &sim->grid;
+    const size_t *start = q->bycell.start;
+    const int R = (int)ceil(sim->re * gd->inv_h);
+    const uint32_t stamp = q->stamp;
+    const size_t c0 = g * GF_SWEEP_GROUP_CELLS, c1 = c0 + GF_SWEEP_GROUP_CELLS < gd->ncell ? c0 + GF_SWEEP_GROUP_CELLS : gd->ncell;
+    for (size_t cell = c0; cell < c1; cell++) {
+        if (start[cell] == start[cell + 1]) continue;
+        const int cx = (int)(cell % (size_t)gd->nx), cy = (int)(cell / (size_t)gd->nx % (size_t)gd->ny);
+        const int cz = (int)(cell / ((size_t)gd->nx * (size_t)gd->ny));
+        const int x0 = cx - R > 0 ? cx - R : 0, x1 = cx + R < gd->nx - 1 ? cx + R : gd->nx - 1;
+        const int y0 = cy - R > 0 ? cy - R : 0, y1 = cy + R < gd->ny - 1 ? cy + R : gd->ny - 1;
+        const int z0 = cz - R > 0 ? cz - R : 0, z1 = cz + R < gd->nz - 1 ? cz + R : gd->nz - 1;
+        for (int z = z0; z <= z1; z++)
+            for (int y = y0; y <= y1; y++) {
+                const size_t row = ((size_t)z * (size_t)gd->ny + (size_t)y) * (size_t)gd->nx;
+                for (size_t c = (row + (size_t)x0) / GF_SWEEP_CELL_CHUNK; c <= (row + (size_t)x1) / GF_SWEEP_CELL_CHUNK; c++)
+                    __atomic_store_n(&q->cstamp[c], stamp, __ATOMIC_RELAXED);
+            }
+    }
+    if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
+}
+
+// Group g's stamped chunks: counted (what = 0, into gstart[g + 1]) or listed
+// from gstart[g] on (what = 1), in chunk order.
+static void gf_sweep_list_group(gf_sweep *q, size_t g, int what)
+{
+    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
+    const size_t lo = g * GF_SWEEP_GROUP, hi = lo + GF_SWEEP_GROUP < q->ncell_chunk ? lo + GF_SWEEP_GROUP : q->ncell_chunk;
+    const uint32_t stamp = q->stamp;
+    if (what == 0) {
+        size_t n = 0;
+        for (size_t c = lo; c < hi; c++) n += q->cstamp[c] == stamp;
+        q->gstart[g + 1] = n;
+    } else {
+        size_t k = q->gstart[g];
+        for (size_t c = lo; c < hi; c++)
+            if (q->cstamp[c] == stamp) q->touched[k++] = (uint32_t)c;
+    }
+    if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
+}
+
+// The window's touched cell chunks (docs/performance.md "Windows that cost
+// what their moves cost"): stamped from the binned moves, then listed in
+// chunk order, so each block of the window visits the chunks its moves reach
+// and not the whole grid (a window of a few hundred moves in the pebble bed
+// reaches a few percent of its 68,000 chunks).
+static void gf_sweep_touch(gf_sim *sim, gf_sweep *q)
+{
+    if (++q->stamp == 0) { // (after 2^32 windows: every old stamp forgotten)
+        memset(q->cstamp, 0, q->ncell_chunk * sizeof *q->cstamp);
+        memset(q->active, 0, q->cap * sizeof *q->active);
+        q->stamp = 1;
+    }
+    const size_t ng = q->ngroup;
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
+#endif
+    for (size_t g = 0; g < ng; g++) {
+        if (q->dense)
+            for (size_t c = g * GF_SWEEP_GROUP; c < (g + 1) * GF_SWEEP_GROUP && c < q->ncell_chunk; c++) q->cstamp[c] = q->stamp;
+        else
+            gf_sweep_touch_group(sim, q, g);
+    }
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 1);
+    for (int what = 0; what < 2; what++) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
+#endif
+        for (size_t g = 0; g < ng; g++) gf_sweep_list_group(q, g, what);
+        if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 1);
+        if (what == 1) break;
+        const double ts = gf_sweep_tic(q);
+        q->gstart[0] = 0;
+        for (size_t g = 0; g < ng; g++) q->gstart[g + 1] += q->gstart[g];
+        q->ntouched = q->gstart[ng];
+        gf_sweep_toc(q, ts);
+    }
+    (void)threads;
+}
+
+// Profiling a cell block: the times of the touched chunks it ran.
+static void gf_sweep_record_cells(gf_sweep *q, int part)
+{
+    for (size_t k = 0; k < q->ntouched; k++) q->tsecs[k] = q->cell[q->touched[k]].seconds;
+    gf_sweep_record(q, NULL, q->tsecs, q->ntouched, 0.0, part);
+}
+
+// Runs a block over the window's touched cell chunks: 0 gather, 1 relax, 2
+// apply (the others have no move within reach: nothing of theirs moves, and
+// none of their particles is active).
 static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
 {
-    const size_t n = q->ncell_chunk;
+    const size_t n = q->ntouched;
     const int threads = q->threads;
     // Dispatches of ~1/16 of a thread's share (at least 4 chunks): neighbouring
     // chunks write neighbouring particles' bytes, so a thread keeps a stretch.
@@ -1066,8 +1182,9 @@ static void gf_sweep_cells(gf_sim *sim, gf_sweep *q, int what)
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, grain) num_threads(threads) if (threads > 1)
 #endif
-    for (size_t c = 0; c < n; c++) {
+    for (size_t k = 0; k < n; k++) {
         const int t = gf_sim_thread();
+        const size_t c = q->touched[k];
         if (what == 0)
             gf_sweep_displace(sim, q, t, c);
         else if (what == 1)
@@ -1084,14 +1201,14 @@ static void gf_sweep_summarise(gf_sim *sim, gf_sweep *q, size_t g)
 {
     gf_sweep_group *gr = &q->group[g];
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-    const size_t lo = g * GF_SWEEP_GROUP, hi = lo + GF_SWEEP_GROUP < q->ncell_chunk ? lo + GF_SWEEP_GROUP : q->ncell_chunk;
+    const size_t lo = q->gstart[g], hi = q->gstart[g + 1]; // its touched chunks: touched[lo, hi)
     const gf_grid *grid = &sim->grid;
     gr->status = GF_OK;
     gr->nexit = gr->nmover = gr->nskin = 0;
     gr->reach_lo = gr->reach_hi = 0;
     gr->spot_dz = gr->relax_dz = 0.0;
     size_t need = 0;
-    for (size_t c = lo; c < hi; c++) need += q->cell[c].ntodo;
+    for (size_t k = lo; k < hi; k++) need += q->cell[q->touched[k]].ntodo;
     uint32_t *ex = gf_sweep_grow(gr->exit, &gr->exit_cap, need, sizeof *ex);
     if (ex) gr->exit = ex;
     gf_sweep_mover *mv = ex ? gf_sweep_grow(gr->mover, &gr->mover_cap, need, sizeof *mv) : NULL;
@@ -1102,8 +1219,8 @@ static void gf_sweep_summarise(gf_sim *sim, gf_sweep *q, size_t g)
         return;
     }
     gr->skin = sk;
-    for (size_t c = lo; c < hi; c++) {
-        gf_sweep_chunk *ch = &q->cell[c];
+    for (size_t k0 = lo; k0 < hi; k0++) {
+        gf_sweep_chunk *ch = &q->cell[q->touched[k0]];
         if (gr->status == GF_OK) gr->status = ch->status;
         gr->spot_dz += ch->st.spot_dz;
         gr->relax_dz += ch->st.relax_dz;
@@ -1207,8 +1324,9 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
     st = gf_sweep_walk_all(sim, q, t_end);
     if (st == GF_OK && q->nmv > 0) {
         double t1 = sim->timing ? gf_clock_now() : 0.0;
+        gf_sweep_touch(sim, q);
         gf_sweep_cells(sim, q, 0);
-        if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 1);
+        if (q->profiling) gf_sweep_record_cells(q, 1);
         st = gf_sweep_counters(sim, q);
         if (st == GF_OK) st = gf_sweep_book(sim, q);
         if (q->profiling) gf_sweep_record_book(q);
@@ -1217,9 +1335,9 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
         double t2 = gf_clock_now();
         for (int64_t s = 0; s < sweeps && st == GF_OK; s++) {
             gf_sweep_cells(sim, q, 1);
-            if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
+            if (q->profiling) gf_sweep_record_cells(q, 2);
             gf_sweep_cells(sim, q, 2);
-            if (q->profiling) gf_sweep_record(q, q->cell, NULL, q->ncell_chunk, 0.0, 2);
+            if (q->profiling) gf_sweep_record_cells(q, 2);
             st = gf_sweep_counters(sim, q);
             if (st == GF_OK) st = gf_sweep_book(sim, q);
             if (q->profiling) gf_sweep_record_book(q);
@@ -1239,6 +1357,13 @@ gf_status gf_sim_sweep_window(gf_sim *sim)
         q->prof.profiled_tau += window;
     }
     return GF_OK;
+}
+
+size_t gf_sweep_touched_chunks(const gf_sim *sim) { return sim->sweep ? sim->sweep->ntouched : 0; }
+
+void gf_sweep_set_dense(gf_sim *sim, int on)
+{
+    if (gf_sweep_make(sim) == GF_OK) sim->sweep->dense = on != 0;
 }
 
 void gf_sweep_set_profiling(gf_sim *sim, int on)
