@@ -5,6 +5,7 @@
 // 6 tau measured: particles out per tau and the spots' and relaxations'
 // summed z displacements per move.
 // usage: flow ENGINE SEED [WINDOW]   ENGINE: event, fixed, domains, sweepN (N sweeps)
+//        WIDTH=40 NPART=8000: a silo twice as wide (the same orifice), twice the spheres
 //        NORELAX=1 in the environment: relax.method = none
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,8 +21,8 @@ int main(int argc, char **argv)
     }
     const char *engine = argv[1];
     gf_config c = gf_config_default();
-    c.container_width = 20;
-    c.packing_particles = 4000;
+    c.container_width = getenv("WIDTH") ? atof(getenv("WIDTH")) : 20; // (a wider silo: the same orifice, fewer moves per volume)
+    c.packing_particles = getenv("NPART") ? atoll(getenv("NPART")) : 4000;
     c.run_seed = (uint64_t)atoll(argv[2]);
     c.run_threads = 1;
     if (strcmp(engine, "event") == 0) {
