@@ -1014,7 +1014,7 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
             return gf_error_set(GF_ERR_NOMEM, "out of memory for %zu spots", sim->ns);
         }
     }
-    memset(q->dead, 0, sim->ns);
+    if (sim->ns) memset(q->dead, 0, sim->ns); // (no spot yet: dead may still be NULL)
     q->nspot_chunk = nchunk; // (each chunk resets its record as it starts)
     const int threads = q->threads;
 #ifdef _OPENMP
