@@ -17,6 +17,8 @@ typedef struct gf_test_outcome {
     gf_par_profile prof;
 } gf_test_outcome;
 
+/// The outcome of a sim as it is now.
+gf_test_outcome gf_test_outcome_of(const gf_sim *sim);
 /// Packs c's silo (gf_test_generated_sim) and runs it to c.run_duration.
 gf_test_outcome gf_test_run_outcome(gf_config c);
 /// Particles, exits and counters equal bit for bit (the floating-point sums too).

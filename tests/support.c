@@ -206,10 +206,8 @@ gf_series gf_test_series(size_t nframes, double W, double D)
     return s;
 }
 
-gf_test_outcome gf_test_run_outcome(gf_config c)
+gf_test_outcome gf_test_outcome_of(const gf_sim *sim)
 {
-    gf_sim *sim = gf_test_generated_sim(&c);
-    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
     gf_test_outcome o = {.st = gf_sim_get_stats(sim), .shared_phases = gf_par_shared_phases(sim),
                          .prof = gf_sim_par_profile(sim)};
     assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
@@ -217,6 +215,14 @@ gf_test_outcome gf_test_run_outcome(gf_config c)
     o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
     assert_non_null(o.ex);
     if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    return o;
+}
+
+gf_test_outcome gf_test_run_outcome(gf_config c)
+{
+    gf_sim *sim = gf_test_generated_sim(&c);
+    assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
+    gf_test_outcome o = gf_test_outcome_of(sim);
     gf_sim_destroy(sim);
     return o;
 }

@@ -9,7 +9,6 @@
 #include "run_outcome.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -213,12 +212,7 @@ static gf_test_outcome sweep_outcome(gf_config c, int dense, size_t *most_chunks
     gf_sim *sim = gf_test_generated_sim(&c);
     gf_sweep_set_dense(sim, dense);
     assert_int_equal(gf_sim_run(sim, c.run_duration, NULL), GF_OK);
-    gf_test_outcome o = {.st = gf_sim_get_stats(sim)};
-    assert_int_equal(gf_sim_particles(sim, &o.pk), GF_OK);
-    const gf_exit *e = gf_sim_exits(sim, &o.nex);
-    o.ex = malloc(sizeof *o.ex * (o.nex ? o.nex : 1));
-    assert_non_null(o.ex);
-    if (o.nex) memcpy(o.ex, e, sizeof *o.ex * o.nex);
+    gf_test_outcome o = gf_test_outcome_of(sim);
     *most_chunks = gf_sweep_touched_chunks(sim);
     gf_sim_destroy(sim);
     return o;
