@@ -19,14 +19,16 @@ TARGETS=("$@")
 if [ -w /dev/shm ]; then export TMPDIR=/dev/shm/gf-fuzz-$$; else export TMPDIR="$BUILD/fuzz-tmp-$$"; fi
 mkdir -p "$TMPDIR"
 trap 'rm -rf "$TMPDIR"' EXIT
-failed=()
-for t in "${TARGETS[@]}"; do
-    bin="$BUILD/tests/fuzz/fuzz_$t"
-    [ -x "$bin" ] || { echo "fuzz: $bin missing (make build-fuzz)"; exit 1; }
-    corpus="$BUILD/corpus/$t"
-    regress="$ROOT/tests/fuzz/$t/regressions"
+# FUZZ_JOBS harnesses at a time (default: the number of cores; each is one
+# process, and its FUZZ_SECONDS are wall seconds on a core of its own). The
+# files the harnesses write carry their pid (tests/fuzz/fuzz_support.c).
+JOBS=${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 1)}
+# fuzz_one TARGET: runs it, writes its line of the report to $TMPDIR/result-TARGET
+# (and its name to $TMPDIR/failed-TARGET when it failed).
+fuzz_one() {
+    local t=$1 bin="$BUILD/tests/fuzz/fuzz_$1" corpus="$BUILD/corpus/$1" regress="$ROOT/tests/fuzz/$1/regressions"
+    local log="$BUILD/fuzz-$t.log" rc runs
     mkdir -p "$corpus" "$regress"
-    log="$BUILD/fuzz-$t.log"
     # The working corpus (first: new inputs go there), then the committed ones.
     "$bin" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
         -artifact_prefix="$regress/" -print_final_stats=1 \
@@ -34,11 +36,24 @@ for t in "${TARGETS[@]}"; do
     rc=$?
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
     if [ $rc -ne 0 ]; then
-        failed+=("$t")
-        echo "fuzz $t: FAILED (exit $rc) after ${runs:-?} runs; input saved in $regress/, log $log"
-        grep -m 3 -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)" "$log" | sed 's/^/  /'
+        touch "$TMPDIR/failed-$t"
+        { echo "fuzz $t: FAILED (exit $rc) after ${runs:-?} runs; input saved in $regress/, log $log"
+          grep -m 3 -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)" "$log" | sed 's/^/  /'; } > "$TMPDIR/result-$t"
     else
-        echo "fuzz $t: ok, ${runs:-?} runs in ${SECONDS_EACH} s"
+        echo "fuzz $t: ok, ${runs:-?} runs in ${SECONDS_EACH} s" > "$TMPDIR/result-$t"
     fi
+}
+for t in "${TARGETS[@]}"; do
+    [ -x "$BUILD/tests/fuzz/fuzz_$t" ] || { echo "fuzz: $BUILD/tests/fuzz/fuzz_$t missing (make build-fuzz)"; exit 1; }
+done
+for t in "${TARGETS[@]}"; do
+    while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; done
+    fuzz_one "$t" &
+done
+wait
+failed=()
+for t in "${TARGETS[@]}"; do
+    cat "$TMPDIR/result-$t"
+    [ ! -e "$TMPDIR/failed-$t" ] || failed+=("$t")
 done
 [ ${#failed[@]} -eq 0 ] || { echo "fuzz: failed: ${failed[*]}"; exit 1; }

@@ -36,21 +36,28 @@ declare -A allowed=(
   [print:src/core/hooks.c]="the default assert hook prints the failed check before it aborts"
 )
 
-bad=0 files=0
-while IFS= read -r file; do
-  files=$((files + 1))
-  # Line comments and one-line block comments dropped.
-  text=$(sed -e 's://.*$::' -e 's:/\*.*\*/::g' "$file")
-  for r in alloc assert print; do
-    [ -n "${allowed[$r:$file]:-}" ] && continue
-    hits=$(grep -nE "${rule[$r]}" <<< "$text" || true)
-    [ -n "$hits" ] || continue
-    while IFS= read -r h; do
-      echo "$r: $file:${h%%:*}: ${why[$r]}: ${h#*:}"
-    done <<< "$hits"
-    bad=1
-  done
-done < <(find src -name '*.[ch]' -o -name '*.cc' | sort)
-
-[ $bad -eq 0 ] || exit 1
+# One perl for every file (a sed and three greps per file cost ~800
+# processes a run): each line with its // comment and one-line /* */
+# comments dropped (as sed 's://.*$::; s:/\*.*\*/::g' would), matched
+# against each rule, in the order alloc, assert, print.
+files=$(find src -name '*.[ch]' -o -name '*.cc' | sort | wc -l)
+allowed_keys=$(printf '%s\n' "${!allowed[@]}")
+out=$(find src -name '*.[ch]' -o -name '*.cc' | sort |
+  GF_ALLOC=${rule[alloc]} GF_ASSERT=${rule[assert]} GF_PRINT=${rule[print]} GF_ALLOWED=$allowed_keys \
+  GF_WHY_ALLOC=${why[alloc]} GF_WHY_ASSERT=${why[assert]} GF_WHY_PRINT=${why[print]} perl -e '
+    my @rules = map { [$_, qr/$ENV{"GF_" . uc $_}/, $ENV{"GF_WHY_" . uc $_}] } qw(alloc assert print);
+    my %allowed = map { $_ => 1 } split /\n/, $ENV{GF_ALLOWED};
+    while (my $file = <STDIN>) {
+      chomp $file;
+      open(my $h, "<", $file) or die "$file: $!";
+      my @lines = map { s{//.*$}{}; s{/\*.*\*/}{}g; $_ } map { chomp; $_ } <$h>;
+      close $h;
+      for my $r (@rules) {
+        next if $allowed{"$r->[0]:$file"};
+        for my $n (0 .. $#lines) {
+          print "$r->[0]: $file:", $n + 1, ": $r->[2]: $lines[$n]\n" if $lines[$n] =~ $r->[1];
+        }
+      }
+    }')
+[ -z "$out" ] || { echo "$out"; exit 1; }
 echo "hooks hold in $files files of src/: allocation, assertions, no printing (${#allowed[@]} allowed exceptions)"

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/fs.h"
 #include "geom/meshshape.h"
+#include "packing/import.h"
 #include "spot/sim_internal.h"
 
 #define GF_CKPT_MAGIC "GFCKPT\r\n"
@@ -239,7 +240,9 @@ gf_status gf_sim_save(const gf_sim *sim, const char *path)
 // Values the engine relies on (a checkpoint is checksummed, so only a
 // deliberately made file gets here with others): times, particles inside
 // the container (or over the hole, down to the exit plane), radii the
-// engine takes, spots at finite places.
+// engine takes (from GF_IMPORT_RMIN: a radius of 1e-200 made the step's
+// scratch size (0.5 / r)^3 infinite, cast to size_t; found by the
+// checkpoint fuzzer), spots at finite places.
 static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
 {
     const gf_container *b = &sim->box;
@@ -252,7 +255,7 @@ static gf_status gf_ckpt_check_values(const gf_sim *sim, const char *path)
         const gf_pos *q = &sim->p[i];
         const gf_ref *a = &sim->p0[i];
         if (!(fabs(q->x) <= b->xhi + 1.0 && fabs(q->y) <= b->yhi + 1.0 && q->z >= zlo && q->z <= zhi &&
-              q->r > 0 && q->r <= sim->rmax && fabs(a->x) <= b->xhi + 1.0 && fabs(a->y) <= b->yhi + 1.0 &&
+              q->r >= GF_IMPORT_RMIN && q->r <= sim->rmax && fabs(a->x) <= b->xhi + 1.0 && fabs(a->y) <= b->yhi + 1.0 &&
               a->z >= zlo && a->z <= zhi && a->h >= 0 && a->h <= 1.0))
             return gf_error_set(GF_ERR_FORMAT, "%s: particle id %lld is at an impossible place or size", path,
                                 (long long)sim->id[i]);

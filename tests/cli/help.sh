@@ -9,6 +9,9 @@
 # offers the commands, each command's options, --set's configuration keys and
 # analyze's measurements, and `cmake --install` installs both. The README's
 # command list names every command.
+# ctest: nosan (help texts, man page, completion, install: nothing for the
+# sanitizers to see that the other CLI tests' option parsing does not show them;
+# ~300 granflow processes at ~0.15 s each under ASan)
 # usage: bash tests/cli/help.sh GRANFLOW_BINARY TESTS_DATA_DIR
 NAME=help
 source "$(dirname "$0")/lib.bash" "$@"

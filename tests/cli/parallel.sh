@@ -3,6 +3,8 @@
 # directories (snapshots, exits) with 1, 2 and 4 threads, and `granflow bench`
 # reports its figures (one thread and all, efficiency, memory, projected
 # drainage, the 10x silo) as JSON. Nothing here is timed.
+# ctest: nosan (the same bytes for any thread count is checked under the
+# sanitizers by the parallel.* and domains.* suites, bench's figures by bench.*)
 # usage: bash tests/cli/parallel.sh GRANFLOW_BINARY TESTS_DATA_DIR
 NAME=parallel
 source "$(dirname "$0")/lib.bash" "$@"
