@@ -65,6 +65,14 @@ static inline uint32_t gf_grid_cell(const gf_grid *g, double x, double y, double
     return (uint32_t)((cz * g->ny + cy) * g->nx + cx);
 }
 
+/// The coordinates (cx, cy, cz) of a cell index.
+static inline void gf_grid_cell_coords(const gf_grid *g, size_t cell, int c[3])
+{
+    c[0] = (int)(cell % (size_t)g->nx);
+    c[1] = (int)(cell / (size_t)g->nx % (size_t)g->ny);
+    c[2] = (int)(cell / ((size_t)g->nx * (size_t)g->ny));
+}
+
 /// Column index (cx + nx cy) of a point (clamped).
 static inline uint32_t gf_grid_column(const gf_grid *g, double x, double y)
 {

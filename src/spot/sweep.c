@@ -503,9 +503,9 @@ static void gf_sweep_displace(gf_sim *sim, gf_sweep *q, int t, size_t c)
         const uint32_t cnt = g->count[cell];
         if (cnt == 0) continue;
         const uint32_t *slot = g->slot + cell * GF_CELL_CAP;
-        const int cx = (int)(cell % (size_t)g->nx), cy = (int)(cell / (size_t)g->nx % (size_t)g->ny);
-        const int cz = (int)(cell / ((size_t)g->nx * (size_t)g->ny));
-        size_t nc = gf_sweep_near(sim, q, cx, cy, cz, q->cand[t]);
+        int cc[3];
+        gf_grid_cell_coords(g, cell, cc);
+        size_t nc = gf_sweep_near(sim, q, cc[0], cc[1], cc[2], q->cand[t]);
         const uint32_t *cand = q->cand[t];
         uint32_t *todo = gf_sweep_grow(ch->todo, &ch->todo_cap, ch->ntodo + cnt, sizeof *ch->todo);
         if (!todo) {
@@ -1073,47 +1073,44 @@ static gf_status gf_sweep_walk_all(gf_sim *sim, gf_sweep *q, double t_end)
     return GF_OK;
 }
 
-// Group g's cells that hold a move stamp the cell chunks within reach: every
-// chunk with a cell within R = ceil(r_e / h) cells of such a cell on each
-// axis (the cells gf_sweep_near looks in), so a chunk left unstamped has no
-// move within r_e of its particles. The stores race only with stores of
-// the same value (relaxed atomics).
-static void gf_sweep_touch_group(const gf_sim *sim, gf_sweep *q, size_t g)
+// Group g's part of the touch pass (what): 0, its cells that hold a move
+// stamp the cell chunks within reach: every chunk with a cell within R =
+// ceil(r_e / h) cells of such a cell on each axis (the cells gf_sweep_near
+// looks in), so a chunk left unstamped has no move within r_e of its
+// particles (the stores race only with stores of the same value: relaxed
+// atomics; tests: every chunk of the group, gf_sweep_set_dense); 1, its
+// own stamped chunks counted into gstart[g + 1]; 2, listed from gstart[g].
+static void gf_sweep_touch_group(const gf_sim *sim, gf_sweep *q, size_t g, int what)
 {
     double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
-    const gf_grid *gd = &sim->grid;
-    const size_t *start = q->bycell.start;
-    const int R = (int)ceil(sim->re * gd->inv_h);
     const uint32_t stamp = q->stamp;
-    const size_t c0 = g * GF_SWEEP_GROUP_CELLS, c1 = c0 + GF_SWEEP_GROUP_CELLS < gd->ncell ? c0 + GF_SWEEP_GROUP_CELLS : gd->ncell;
-    for (size_t cell = c0; cell < c1; cell++) {
-        if (start[cell] == start[cell + 1]) continue;
-        const int cx = (int)(cell % (size_t)gd->nx), cy = (int)(cell / (size_t)gd->nx % (size_t)gd->ny);
-        const int cz = (int)(cell / ((size_t)gd->nx * (size_t)gd->ny));
-        const int x0 = cx - R > 0 ? cx - R : 0, x1 = cx + R < gd->nx - 1 ? cx + R : gd->nx - 1;
-        const int y0 = cy - R > 0 ? cy - R : 0, y1 = cy + R < gd->ny - 1 ? cy + R : gd->ny - 1;
-        const int z0 = cz - R > 0 ? cz - R : 0, z1 = cz + R < gd->nz - 1 ? cz + R : gd->nz - 1;
-        for (int z = z0; z <= z1; z++)
-            for (int y = y0; y <= y1; y++) {
-                const size_t row = ((size_t)z * (size_t)gd->ny + (size_t)y) * (size_t)gd->nx;
-                for (size_t c = (row + (size_t)x0) / GF_SWEEP_CELL_CHUNK; c <= (row + (size_t)x1) / GF_SWEEP_CELL_CHUNK; c++)
-                    __atomic_store_n(&q->cstamp[c], stamp, __ATOMIC_RELAXED);
-            }
-    }
-    if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
-}
-
-// Group g's stamped chunks: counted (what = 0, into gstart[g + 1]) or listed
-// from gstart[g] on (what = 1), in chunk order.
-static void gf_sweep_list_group(gf_sweep *q, size_t g, int what)
-{
-    double t0 = q->profiling ? gf_clock_thread_cpu() : 0.0;
     const size_t lo = g * GF_SWEEP_GROUP, hi = lo + GF_SWEEP_GROUP < q->ncell_chunk ? lo + GF_SWEEP_GROUP : q->ncell_chunk;
-    const uint32_t stamp = q->stamp;
-    if (what == 0) {
-        size_t n = 0;
-        for (size_t c = lo; c < hi; c++) n += q->cstamp[c] == stamp;
-        q->gstart[g + 1] = n;
+    if (what == 0 && q->dense) {
+        for (size_t c = lo; c < hi; c++) q->cstamp[c] = stamp;
+    } else if (what == 0) {
+        const gf_grid *gd = &sim->grid;
+        const size_t *start = q->bycell.start;
+        const int R = (int)ceil(sim->re * gd->inv_h), n[3] = {gd->nx, gd->ny, gd->nz};
+        const size_t c0 = g * GF_SWEEP_GROUP_CELLS, c1 = c0 + GF_SWEEP_GROUP_CELLS < gd->ncell ? c0 + GF_SWEEP_GROUP_CELLS : gd->ncell;
+        for (size_t cell = c0; cell < c1; cell++) {
+            if (start[cell] == start[cell + 1]) continue;
+            int cc[3], a[3], b[3];
+            gf_grid_cell_coords(gd, cell, cc);
+            for (int k = 0; k < 3; k++) {
+                a[k] = cc[k] - R > 0 ? cc[k] - R : 0;
+                b[k] = cc[k] + R < n[k] - 1 ? cc[k] + R : n[k] - 1;
+            }
+            for (int z = a[2]; z <= b[2]; z++)
+                for (int y = a[1]; y <= b[1]; y++) {
+                    const size_t row = ((size_t)z * (size_t)gd->ny + (size_t)y) * (size_t)gd->nx;
+                    for (size_t c = (row + (size_t)a[0]) / GF_SWEEP_CELL_CHUNK; c <= (row + (size_t)b[0]) / GF_SWEEP_CELL_CHUNK; c++)
+                        __atomic_store_n(&q->cstamp[c], stamp, __ATOMIC_RELAXED);
+                }
+        }
+    } else if (what == 1) {
+        size_t m = 0;
+        for (size_t c = lo; c < hi; c++) m += q->cstamp[c] == stamp;
+        q->gstart[g + 1] = m;
     } else {
         size_t k = q->gstart[g];
         for (size_t c = lo; c < hi; c++)
@@ -1122,11 +1119,25 @@ static void gf_sweep_list_group(gf_sweep *q, size_t g, int what)
     if (q->profiling) q->gsecs[g] = gf_sweep_since(q, t0);
 }
 
+// One step of the touch pass over every group side by side (a block of the
+// gather's part of the profile).
+static void gf_sweep_touch_groups(gf_sim *sim, gf_sweep *q, int what)
+{
+    const size_t ng = q->ngroup;
+    const int threads = q->threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
+#endif
+    for (size_t g = 0; g < ng; g++) gf_sweep_touch_group(sim, q, g, what);
+    (void)threads;
+    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 1);
+}
+
 // The window's touched cell chunks (docs/performance.md "Windows that cost
-// what their moves cost"): stamped from the binned moves, then listed in
-// chunk order, so each block of the window visits the chunks its moves reach
-// and not the whole grid (a window of a few hundred moves in the pebble bed
-// reaches a few percent of its 68,000 chunks).
+// what their moves cost"): stamped from the binned moves, counted, then
+// listed in chunk order, so each block of the window visits the chunks its
+// moves reach and not the whole grid (a window of a few hundred moves in
+// the pebble bed reaches a few percent of its 68,000 chunks).
 static void gf_sweep_touch(gf_sim *sim, gf_sweep *q)
 {
     if (++q->stamp == 0) { // (after 2^32 windows: every old stamp forgotten)
@@ -1134,32 +1145,14 @@ static void gf_sweep_touch(gf_sim *sim, gf_sweep *q)
         memset(q->active, 0, q->cap * sizeof *q->active);
         q->stamp = 1;
     }
-    const size_t ng = q->ngroup;
-    const int threads = q->threads;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
-#endif
-    for (size_t g = 0; g < ng; g++) {
-        if (q->dense)
-            for (size_t c = g * GF_SWEEP_GROUP; c < (g + 1) * GF_SWEEP_GROUP && c < q->ncell_chunk; c++) q->cstamp[c] = q->stamp;
-        else
-            gf_sweep_touch_group(sim, q, g);
-    }
-    if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 1);
-    for (int what = 0; what < 2; what++) {
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1 && ng > 1)
-#endif
-        for (size_t g = 0; g < ng; g++) gf_sweep_list_group(q, g, what);
-        if (q->profiling) gf_sweep_record(q, NULL, q->gsecs, ng, 0.0, 1);
-        if (what == 1) break;
-        const double ts = gf_sweep_tic(q);
-        q->gstart[0] = 0;
-        for (size_t g = 0; g < ng; g++) q->gstart[g + 1] += q->gstart[g];
-        q->ntouched = q->gstart[ng];
-        gf_sweep_toc(q, ts);
-    }
-    (void)threads;
+    gf_sweep_touch_groups(sim, q, 0);
+    gf_sweep_touch_groups(sim, q, 1);
+    const double ts = gf_sweep_tic(q);
+    q->gstart[0] = 0;
+    for (size_t g = 0; g < q->ngroup; g++) q->gstart[g + 1] += q->gstart[g];
+    q->ntouched = q->gstart[q->ngroup];
+    gf_sweep_toc(q, ts);
+    gf_sweep_touch_groups(sim, q, 2);
 }
 
 // Profiling a cell block: the times of the touched chunks it ran.
