@@ -211,7 +211,7 @@ static void shallow_cone_mobilises_less_wall_friction(void **state)
     gf_stress_field f;
     solve(&cfg, 30.0, &f);
     bool radial = f.radial;
-    double mob = f.wall_mobilised;
+    double mob = f.wall_mobilised, f_limit = f.mass_flow_angle;
     gf_stress_point axis;
     bool at = gf_stress_at(&f, 0.0, 0.5 * f.apex_z + 0.5 * 8.0 / tan(PI / 3), &axis);
     gf_radial rf;
@@ -224,6 +224,43 @@ static void shallow_cone_mobilises_less_wall_friction(void **state)
     assert_int_equal(rs, GF_OK);
     assert_int_equal(none, GF_ERR_STATE);
     assert_true(axis.f[1] < 0.0);
+    // stress.csv says so: the cone's 30 degrees exceed the limit.
+    assert_true(f_limit > 29.0 && f_limit < 30.0);
+}
+
+// Arnold and McLean's fit (Powder Technol. 13, 255, 1976) to Jenike's chart
+// for conical hoppers: the mass-flow limit, a half-angle from the vertical in
+// degrees, for an effective internal friction angle d and wall friction w.
+static double jenike_conical_limit(double d, double w)
+{
+    double sd = sin(d * PI / 180.0);
+    return 90.0 - 0.5 * acos((1.0 - sd) / (2.0 * sd)) * 180.0 / PI -
+           0.5 * (w + asin(sin(w * PI / 180.0) / sd) * 180.0 / PI);
+}
+
+// The radial field's existence bound is Jenike's mass-flow limit: within
+// 1.5 degrees of the chart's fit (the fit's own accuracy) over the chart.
+static void mass_flow_limit_is_jenikes_chart(void **state)
+{
+    (void)state;
+    const double phis[] = {30, 40, 50}, phiws[] = {10, 15, 20, 25};
+    double worst = 0.0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++) {
+            double tc = -1.0, ref = jenike_conical_limit(phis[i], phiws[j]);
+            assert_int_equal(gf_radial_mass_flow_angle(phis[i], phiws[j], 1, &tc), GF_OK);
+            print_message("phi %g phi_w %g: limit %.2f deg, chart %.2f\n", phis[i], phiws[j], tc, ref);
+            worst = fmax(worst, fabs(tc - ref));
+        }
+    print_message("worst difference %.2f deg\n", worst);
+    assert_true(worst < 1.5);
+    // Smoother walls allow shallower hoppers, a rougher material too.
+    double a, b, c;
+    assert_int_equal(gf_radial_mass_flow_angle(30, 10, 1, &a), GF_OK);
+    assert_int_equal(gf_radial_mass_flow_angle(30, 20, 1, &b), GF_OK);
+    assert_int_equal(gf_radial_mass_flow_angle(40, 20, 1, &c), GF_OK);
+    assert_true(a > b + 10.0);
+    assert_true(b > c);
 }
 
 static void bad_input_is_refused(void **state)
@@ -257,6 +294,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(radial_field_of_a_wedge),
     cmocka_unit_test(shallow_cone_has_no_radial_field),
     cmocka_unit_test(shallow_cone_mobilises_less_wall_friction),
+    cmocka_unit_test(mass_flow_limit_is_jenikes_chart),
     cmocka_unit_test(bad_input_is_refused),
 };
 

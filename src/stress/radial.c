@@ -139,6 +139,31 @@ gf_status gf_radial_solve(double phi_deg, double phi_w_deg, double theta_w_deg, 
     return GF_OK;
 }
 
+// Jenike (1961), Nedderman ch. 8: the mass-flow limit is where the radial
+// field ceases to exist; existence is monotone in the half-angle, so bisect.
+gf_status gf_radial_mass_flow_angle(double phi_deg, double phi_w_deg, int axisym, double *theta_c_deg)
+{
+    gf_radial rf;
+    double lo = 0.5, hi = 88.5;
+    if (gf_radial_solve(phi_deg, phi_w_deg, lo, axisym, &rf) != GF_OK)
+        return gf_error_set(GF_ERR_STATE, "no radial stress field even at a half-angle of %g degrees (phi = %g, phi_w = %g)",
+                            lo, phi_deg, phi_w_deg);
+    if (gf_radial_solve(phi_deg, phi_w_deg, hi, axisym, &rf) == GF_OK) {
+        *theta_c_deg = hi;
+        return GF_OK;
+    }
+    for (int it = 0; it < 30; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (gf_radial_solve(phi_deg, phi_w_deg, mid, axisym, &rf) == GF_OK)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    gf_error_clear();
+    *theta_c_deg = lo;
+    return GF_OK;
+}
+
 void gf_radial_at(const gf_radial *rf, double r, double theta, double out[4], double *psi)
 {
     double th = fabs(theta), t = th / rf->theta_w * (GF_RADIAL_N - 1);

@@ -25,6 +25,12 @@ typedef struct gf_radial {
 /// GF_ERR_STATE when none exists (a hopper too shallow for mass flow).
 gf_status gf_radial_solve(double phi_deg, double phi_w_deg, double theta_w_deg, int axisym, gf_radial *out);
 
+/// Jenike's mass-flow limit: the largest wall half-angle from the vertical
+/// (degrees) at which a radial field holds with the wall friction phi_w
+/// fully mobilised (a steeper hopper has one, a shallower one none: funnel
+/// flow). GF_ERR_STATE when there is none even for a nearly vertical wall.
+gf_status gf_radial_mass_flow_angle(double phi_deg, double phi_w_deg, int axisym, double *theta_c_deg);
+
 /// The stresses (sigma_uu, sigma_zz, sigma_uz, hoop) in rho_b g d at
 /// distance r from the apex and angle theta from the vertical (negative:
 /// the left side), and the major principal direction psi from the u axis.

@@ -416,6 +416,12 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
     // the passive state: Jenike's radial stress field about the apex where
     // its walls meet (radial.c), when one exists for these angles (mass flow).
     gf_radial rf;
+    out->mass_flow_angle = NAN;
+    if (zcol > 0.0 && m.axisym && gf_radial_mass_flow_angle(def->friction_angle, def->wall_friction_angle, 1,
+                                                             &out->mass_flow_angle) != GF_OK) {
+        out->mass_flow_angle = NAN;
+        gf_error_clear();
+    }
     if (zcol > 0.0) {
         gf_level Lc;
         double zp = 0.5 * fmin(zcol, ztop);

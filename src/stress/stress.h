@@ -45,6 +45,8 @@ typedef struct gf_stress_field {
     double apex_u, apex_z, theta_w; ///< its apex and wall half-angle from the vertical (radians)
     double wall_mobilised; ///< the wall friction angle of the radial field, degrees: phi_w, or less when
                            ///< the hopper is too shallow for a field at phi_w (funnel flow by Jenike's criterion)
+    double mass_flow_angle; ///< a cone's: Jenike's mass-flow limit, the largest wall half-angle from the vertical
+                            ///< (degrees) with a radial field at phi, phi_w; NAN for other containers
 } gf_stress_field;
 
 /// Solves the field of container c filled up to `ztop` (the free surface,
