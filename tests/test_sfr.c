@@ -6,6 +6,7 @@
 #include "support.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/rng.h"
@@ -71,7 +72,7 @@ static void sample_and_compare(const gf_sfr_walk *wk, double psi, const double f
 static void sfr_walk_moments_in_a_uniform_field(void **state)
 {
     (void)state;
-    gf_sfr_walk wk = gf_sfr_walk_make(0.676, 0.1, PI / 4 - PI / 12); // phi = 30 degrees
+    gf_sfr_walk wk = gf_sfr_walk_make(0.676, 0.1, PI / 4 - PI / 12, GF_RISE_SLIP); // phi = 30 degrees
     const double cases[][3] = {
         {PI / 2, 0.0, -1.0},   // a silo's centre: vertical major stress, grains pushed down
         {PI / 2 + 0.3, 0.4, -1.0}, // tilted near a wall
@@ -91,7 +92,7 @@ static void sfr_walk_reduces_to_the_papers_walk(void **state)
 {
     (void)state;
     const double h = 0.676, dz = 0.1, eps = PI / 6;
-    gf_sfr_walk wk = gf_sfr_walk_make(h, dz, eps);
+    gf_sfr_walk wk = gf_sfr_walk_make(h, dz, eps, GF_RISE_SLIP);
     assert_float_equal(wk.L, h / (sqrt(2.0) * sin(eps)), 1e-12);
     double mean[2], m2[3], f[2] = {0.0, -1.0};
     formula(&wk, PI / 2, f, mean, m2);
@@ -138,7 +139,7 @@ static void sfr_box_field_drifts_spots_up(void **state)
 static void sfr_drift_on_a_hand_computed_case(void **state)
 {
     (void)state;
-    gf_sfr_walk wk = gf_sfr_walk_make(0.676, 0.1, PI / 6);
+    gf_sfr_walk wk = gf_sfr_walk_make(0.676, 0.1, PI / 6, GF_RISE_SLIP);
     assert_float_equal(wk.L, 0.9560083681642124, 1e-12);
     assert_float_equal(wk.delta, 0.20920318970016197, 1e-12);
     double f[2] = {-0.5, -sqrt(3.0) / 2.0}, e[4][2], p[4];
@@ -227,6 +228,92 @@ static void sfr_drains_a_silo(void **state)
     gf_sim_destroy(sim);
 }
 
+// spot.sfr_rise = steady: every step rises step_z; across, the slip-line
+// step's own u part (its mean and second moment by the formula), so the
+// walk keeps the slip lines' sideways spreading without their vertical one.
+static void sfr_steady_rise_keeps_the_slip_lines_across(void **state)
+{
+    (void)state;
+    const double h = 0.676, dz = 0.1;
+    gf_sfr_walk wk = gf_sfr_walk_make(h, dz, PI / 6, GF_RISE_STEADY);
+    const double psi = 0.2, f[2] = {-0.3, -0.8}; // a passive field: the slip lines near horizontal
+    double mean[2], m2[3];
+    formula(&wk, psi, f, mean, m2);
+    gf_rng rng;
+    gf_rng_seed(&rng, 5, 7);
+    const long n = 400000;
+    double su = 0.0, su2 = 0.0;
+    long off = 0;
+    for (long i = 0; i < n; i++) {
+        double du, dzz, dv;
+        gf_sfr_draw(&wk, psi, f, &rng, &du, &dzz, &dv);
+        off += dzz != dz;
+        su += du;
+        su2 += du * du;
+    }
+    print_message("steady: mean du %.5f vs %.5f, E[du^2] %.5f vs %.5f\n", su / n, mean[0], su2 / n, m2[0]);
+    assert_int_equal(off, 0);
+    assert_true(fabs(su / n - mean[0]) < 5.0 * wk.L / sqrt((double)n));
+    assert_true(fabs(su2 / n - m2[0]) < 0.01 * wk.L * wk.L);
+    assert_true(m2[0] > 2.0 * h * h / 2.0); // the passive field spreads spots faster than the papers' walk
+}
+
+// Downward speed of the particles in the wall band (r > 3/4 of the funnel's
+// radius) over the axis band (r < 1/4) at mid-funnel, between t0 and t1.
+static double funnel_wall_over_axis(gf_sfr_rise rise, double t0, double t1)
+{
+    gf_config c = gf_config_default();
+    const char *set[] = {"container.shape=cylinder", "container.radius=8", "container.hopper_angle=60",
+                         "container.outlet_diameter=4", "container.outlet_length=1", "packing.fill_height=18",
+                         "spot.flow_rule=sfr", "spot.insertion_rate=94", NULL};
+    for (int i = 0; set[i]; i++) assert_int_equal(gf_config_set(&c, set[i], "--set"), GF_OK);
+    c.spot_sfr_rise = rise;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create_from_config(&c, NULL, &sim), GF_OK);
+    assert_int_equal(gf_sim_run(sim, t0, NULL), GF_OK);
+    size_t n0 = gf_sim_particle_count(sim), n1;
+    int64_t *id0 = malloc(n0 * sizeof *id0), *id1 = malloc(n0 * sizeof *id1);
+    double *p0 = malloc(3 * n0 * sizeof *p0), *p1 = malloc(3 * n0 * sizeof *p1);
+    assert_non_null(id0 && id1 && p0 && p1);
+    assert_int_equal(gf_sim_copy_particles(sim, id0, NULL, p0, NULL, n0, &n0), GF_OK);
+    assert_int_equal(gf_sim_run(sim, t1, NULL), GF_OK);
+    assert_int_equal(gf_sim_copy_particles(sim, id1, NULL, p1, NULL, n0, &n1), GF_OK);
+    const double ta = tan(60.0 * PI / 180.0), zmid = 0.5 * 6.0 * ta; // the funnel from r = 2 to 8
+    double v[2] = {0, 0};
+    long k[2] = {0, 0};
+    for (size_t j = 0, i = 0; j < n1; j++) { // both lists in id order; leavers are missing from the second
+        while (i < n0 && id0[i] < id1[j]) i++;
+        if (i == n0 || id0[i] != id1[j]) continue;
+        double z = p0[3 * i + 2], r = hypot(p0[3 * i], p0[3 * i + 1]);
+        if (fabs(z - zmid) > 1.3) continue;
+        double s = r / (2.0 + z / ta);
+        int b = s < 0.25 ? 0 : s > 0.75 ? 1 : -1;
+        if (b < 0) continue;
+        v[b] += (p0[3 * i + 2] - p1[3 * j + 2]) / (t1 - t0);
+        k[b]++;
+    }
+    gf_sim_destroy(sim);
+    free(id0), free(id1), free(p0), free(p1);
+    assert_true(k[0] > 10 && k[1] > 10);
+    return (v[1] / k[1]) / (v[0] / k[0]);
+}
+
+// The slip-line step's vertical part (+-0.83 d against a mean rise of 0.1 d)
+// keeps the wall band of a 60-degree cone nearly still (a funnel flow,
+// where DEM flows along the walls, docs/stress.md "The rise"); rising by
+// step_z makes it slide along them (the cone of docs/stress.md, 0.04 and
+// 0.53 there over 12 tau; the bounds are far from either).
+static void sfr_steady_rise_flows_along_a_funnels_walls(void **state)
+{
+    (void)state;
+    double slip = funnel_wall_over_axis(GF_RISE_SLIP, 2.0, 8.0);
+    double steady = funnel_wall_over_axis(GF_RISE_STEADY, 2.0, 8.0);
+    print_message("wall band / axis band at mid-funnel: slip %.3f, steady %.3f\n", slip, steady);
+    assert_true(steady > 0.3);
+    assert_true(steady > 2.0 * slip);
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(sfr_walk_moments_in_a_uniform_field),
     cmocka_unit_test(sfr_walk_reduces_to_the_papers_walk),
@@ -234,6 +321,8 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(sfr_drift_on_a_hand_computed_case),
     cmocka_unit_test(sfr_drift_is_gravity_plus_pressure_gradient),
     cmocka_unit_test(sfr_drains_a_silo),
+    cmocka_unit_test(sfr_steady_rise_keeps_the_slip_lines_across),
+    cmocka_unit_test(sfr_steady_rise_flows_along_a_funnels_walls),
 };
 
 GF_TEST_MAIN("sfr", tests)

@@ -62,6 +62,12 @@ typedef enum gf_flow_rule {
     GF_FLOW_SFR = 1,       ///< Kamrin and Bazant's stochastic flow rule: along the slip lines of the stress field
 } gf_flow_rule;
 
+/// How an sfr spot rises (docs/stress.md, "The rise").
+typedef enum gf_sfr_rise {
+    GF_RISE_SLIP = 0,   ///< the whole slip-line step, up or down (the default)
+    GF_RISE_STEADY = 1, ///< up by step_z every step, sideways by the slip-line step's horizontal part
+} gf_sfr_rise;
+
 /// The parameters of the limit-state stress solver (src/stress/; docs/stress.md),
 /// made from the [stress] keys by gf_config_stress_def.
 typedef struct gf_stress_def {
@@ -176,6 +182,7 @@ typedef struct gf_config {
     double spot_weighting_bulk_count;  ///< p_bulk, the bulk population of a ball; default 81.7
     gf_spot_walls spot_walls;          ///< truncate (default) or reflect
     gf_flow_rule spot_flow_rule;       ///< diffusive (default) or sfr (issue 28)
+    gf_sfr_rise spot_sfr_rise;         ///< sfr: slip (default) or steady
 
     // [stress] the limit-state stress field the sfr walk follows (docs/stress.md)
     double stress_friction_angle;      ///< internal friction angle phi, degrees; default 30

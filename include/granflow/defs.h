@@ -49,6 +49,7 @@ typedef struct gf_engine_defs {
     double weighting_min_count, weighting_zmin, weighting_bulk_count;
     gf_spot_walls walls;
     gf_flow_rule flow_rule;           ///< spot.flow_rule: diffusive, or sfr along the stress field's slip lines
+    gf_sfr_rise sfr_rise;             ///< spot.sfr_rise: slip, or steady (up by step_z every step)
     // relax
     double alpha;
     double r_e;                       ///< resolved: auto = r_s + 1

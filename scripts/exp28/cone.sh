@@ -19,5 +19,5 @@ if [ "$what" = dem ]; then
         --set dem.settle_ke=1e-5 --set dem.mpi_ranks=1 -o "$out" --run
 else
     # The 2009 silo's parameters with lambda scaled by the outlet's area.
-    "$gf" run "$@" --set spot.flow_rule="$what" --set spot.insertion_rate=94 -o "$out" -q --force
+    "$gf" run "$@" ${EXTRA:-} --set spot.flow_rule="$what" --set spot.insertion_rate=94 -o "$out" -q --force
 fi

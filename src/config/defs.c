@@ -85,6 +85,7 @@ void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
     d->weighting_bulk_count = cfg->spot_weighting_bulk_count;
     d->walls = cfg->spot_walls;
     d->flow_rule = cfg->spot_flow_rule;
+    d->sfr_rise = cfg->spot_sfr_rise;
     d->alpha = cfg->relax_alpha;
     d->r_e = sp.r_e;
     d->method = cfg->relax_method;

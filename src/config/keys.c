@@ -20,7 +20,7 @@ _Static_assert(sizeof(gf_reinsert) == sizeof(int) && sizeof(gf_output_format) ==
                "enum keys are stored as int");
 _Static_assert(sizeof(gf_run_mode) == sizeof(int) && sizeof(gf_run_order) == sizeof(int) &&
                    sizeof(gf_spot_walls) == sizeof(int) && sizeof(gf_relax_method) == sizeof(int) &&
-                   sizeof(gf_flow_rule) == sizeof(int),
+                   sizeof(gf_flow_rule) == sizeof(int) && sizeof(gf_sfr_rise) == sizeof(int),
                "enum keys are stored as int");
 
 static const char *const gf_keys_orifice_names[] = {"circle", "slit", NULL};
@@ -33,6 +33,7 @@ static const char *const gf_keys_mode_names[] = {"event", "fixed", NULL};
 static const char *const gf_keys_order_names[] = {"random", "newest", "spatial", "domains", "sweep", NULL};
 static const char *const gf_keys_walls_names[] = {"truncate", "reflect", NULL};
 static const char *const gf_keys_flow_rule_names[] = {"diffusive", "sfr", NULL};
+static const char *const gf_keys_sfr_rise_names[] = {"slip", "steady", NULL};
 static const char *const gf_keys_onoff_names[] = {"off", "on", NULL};
 static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
 // output.format: bit i of gf_output_format is names[i] (a third format is one more name and bit).
@@ -145,6 +146,10 @@ const gf_key gf_keys[] = {
      .def = "diffusive", .unit = "",
      .doc = "diffusive (the papers' walk) or sfr (the stochastic flow rule: steps along the slip lines of the "
             "stress field, docs/stress.md)"},
+    {"spot", "sfr_rise", GF_KEY_ENUM, GF_OFF(spot_sfr_rise), .names = gf_keys_sfr_rise_names, .def = "slip",
+     .unit = "",
+     .doc = "sfr: slip (a step goes along its slip line, up or down) or steady (up by step_z every step, across "
+            "by the slip-line step's horizontal part; docs/stress.md)"},
 
     {"stress", "friction_angle", GF_KEY_DOUBLE, GF_OFF(stress_friction_angle), .min = 0, .max = 60,
      .min_open = true, .max_open = true, .def = "30", .unit = "deg",

@@ -4,9 +4,9 @@
 
 #include <math.h>
 
-gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps)
+gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps, gf_sfr_rise rise)
 {
-    gf_sfr_walk wk = {.eps = eps, .hperp = step_xy / sqrt(2.0)};
+    gf_sfr_walk wk = {.eps = eps, .hperp = step_xy / sqrt(2.0), .rise = rise == GF_RISE_STEADY ? step_z : 0.0};
     wk.L = step_xy / (sqrt(2.0) * sin(eps));
     wk.delta = wk.L > 0.0 ? 2.0 * step_z / wk.L : 0.0;
     return wk;
@@ -51,6 +51,6 @@ void gf_sfr_draw(const gf_sfr_walk *wk, double psi, const double f[2], gf_rng *r
         }
     }
     *du = wk->L * e[pick][0];
-    *dz = wk->L * e[pick][1];
+    *dz = wk->rise > 0.0 ? wk->rise : wk->L * e[pick][1];
     *dv = gf_rng_below(rng, 2) ? wk->hperp : -wk->hperp;
 }

@@ -19,9 +19,10 @@ typedef struct gf_sfr_walk {
     double delta;  ///< bias strength (at most 1 / max(|a|, |b|), see gf_sfr_probs)
     double hperp;  ///< out-of-plane step +-h / sqrt 2, d
     double eps;    ///< slip-line angle from the major principal direction, radians
+    double rise;   ///< spot.sfr_rise = steady: every step's dz (step_z); 0: the slip line's own
 } gf_sfr_walk;
 
-gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps);
+gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps, gf_sfr_rise rise);
 
 /// The four in-plane steps (unit vectors in (u, z): +alpha, -alpha, +beta,
 /// -beta) and their probabilities at a point whose major principal
@@ -30,7 +31,8 @@ gf_sfr_walk gf_sfr_walk_make(double step_xy, double step_z, double eps);
 /// P(+-beta) = (1 +- delta b) / 4.
 void gf_sfr_probs(const gf_sfr_walk *wk, double psi, const double f[2], double e[4][2], double prob[4]);
 
-/// One step: in-plane (du, dz) and out-of-plane dv, from two random draws.
+/// One step: in-plane (du, dz) and out-of-plane dv, from two random draws;
+/// with a steady rise dz is step_z and du the slip-line step's own.
 void gf_sfr_draw(const gf_sfr_walk *wk, double psi, const double f[2], gf_rng *rng, double *du, double *dz,
                  double *dv);
 

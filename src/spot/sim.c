@@ -75,7 +75,7 @@ gf_status gf_sim_make_stress(gf_sim *sim)
     gf_stress_def def = gf_config_stress_def(&sim->cfg);
     gf_status st = gf_stress_solve(&def, &sim->box, top, &sim->stress);
     if (st != GF_OK) return st;
-    sim->sfr_walk = gf_sfr_walk_make(sim->d.step_xy, sim->d.step_z, sim->stress.eps);
+    sim->sfr_walk = gf_sfr_walk_make(sim->d.step_xy, sim->d.step_z, sim->stress.eps, sim->d.sfr_rise);
     return GF_OK;
 }
 

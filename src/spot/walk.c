@@ -160,9 +160,11 @@ static void gf_walk_finish(const gf_sim *sim, double n[3])
 
 // The stochastic flow rule's step (sfr.c; docs/stress.md): along a slip line
 // of the stress at s, biased against the out-of-balance force, plus an
-// out-of-plane step (y, or the hoop direction about the axis). Outside the
-// field (below the base, on the way up from its birth) the papers' walk. A
-// step that would end below the floor goes the other way along its line.
+// out-of-plane step (y, or the hoop direction about the axis); with
+// spot.sfr_rise = steady, up by step_z instead of the line's own rise.
+// Outside the field (below the base, on the way up from its birth) the
+// papers' walk. A slip step that would end below the floor goes the other
+// way along its line; a steady one is clamped as the papers' walk's are.
 static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double n[3])
 {
     const gf_stress_field *f = &sim->stress;
@@ -174,6 +176,7 @@ static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double
     }
     double du, dz, dv;
     gf_sfr_draw(&sim->sfr_walk, p.psi, p.f, w->rng, &du, &dz, &dv);
+    const bool steady = sim->sfr_walk.rise > 0.0; // docs/stress.md, "The rise"
     double eu[2] = {1.0, 0.0}, ev[2] = {0.0, 1.0}; // in-plane and out-of-plane horizontal directions
     if (f->axisym) {
         if (u > 1e-9) {
@@ -188,7 +191,8 @@ static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double
         n[0] = s[0] + du * eu[0] + dv * ev[0];
         n[1] = s[1] + du * eu[1] + dv * ev[1];
         n[2] = s[2] + dz;
-        if (t == 1 || gf_container_over_hole(b, n[0], n[1]) || n[2] >= gf_container_floor_z(b, n[0], n[1], 0.0))
+        if (t == 1 || steady || gf_container_over_hole(b, n[0], n[1]) ||
+            n[2] >= gf_container_floor_z(b, n[0], n[1], 0.0))
             break;
         du = -du;
         dz = -dz;
