@@ -17,6 +17,6 @@ for c in hopper-60:dem60 hopper-30:dem30 wedge-60:demw; do
         -o "$out/${c#*:}" --run
 done
 # Item 4: the mass/funnel series.
-for a in 45 55 65 75; do
+for a in 35 45 55 65 75; do
     GRANFLOW=$gf run "cone$a-dem" "$here/scripts/exp28/cone.sh" "$a" dem "$out/cone$a-dem"
 done
