@@ -106,14 +106,30 @@ static void gf_calibrate_progress(void *ctx, int iter, int max_iter, const gf_co
     gf_spot_params sp;
     gf_config_spot_params(c, &sp);
     double worst = 0.0;
+    int unsteady = 0, seen = 0;
     for (size_t z = 0; z < dem->nz && z < spot->nz; z++)
-        if (gf_dem_flowstats_measured(dem->var[z], GF_DEM_VAR_TOL))
-            worst = fmax(worst, fabs(spot->var[z].value / dem->var[z].value - 1.0));
+        if (gf_dem_flowstats_measured(dem->var[z], GF_DEM_VAR_TOL)) {
+            double e = fabs(spot->var[z].value / dem->var[z].value - 1.0);
+            if (!isfinite(e)) {
+                unsteady++;
+                continue;
+            }
+            seen++;
+            worst = fmax(worst, e);
+        }
+    char vs[96];
+    if (seen)
+        snprintf(vs, sizeof vs, "worst measured Var %.1f%% off", 100.0 * worst);
+    else
+        snprintf(vs, sizeof vs, "no Var measured");
+    if (unsteady)
+        snprintf(vs + strlen(vs), sizeof vs - strlen(vs), " (%d height%s not steady)", unsteady,
+                 unsteady == 1 ? "" : "s");
     fprintf(stderr,
             "[refine] run %d/%d: r_s %.3g, step_xy %.3g, w %.4g, lambda %.4g, mu %.4g -> Q %.4g (DEM %.4g, %+.1f%%), "
-            "worst measured Var %.1f%% off%s\n",
+            "%s%s\n",
             iter, max_iter, sp.radius, sp.step_xy, sp.w, sp.insertion_rate, sp.move_rate,
-            spot->flow.value, dem->flow.value, 100.0 * (spot->flow.value / dem->flow.value - 1.0), 100.0 * worst,
+            spot->flow.value, dem->flow.value, 100.0 * (spot->flow.value / dem->flow.value - 1.0), vs,
             match ? ": matched" : "");
 }
 

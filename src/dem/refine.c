@@ -109,15 +109,20 @@ static double gf_ref_score(const gf_dem_flowstats *d, const gf_dem_flowstats *s,
 {
     double score = fabs(s->flow.value - d->flow.value) / (fabs(d->flow.value) * ftol);
     if (!isfinite(score)) return INFINITY;
+    int tested = 0, seen = 0;
     for (size_t z = 0; z < d->nz && z < s->nz; z++) {
         if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
+        tested++;
         double e = fabs(s->var[z].value - d->var[z].value) / (fabs(d->var[z].value) * vtol);
         // A height the spot run never had steady (no Var) counts as
         // unmatched, as twice the tolerance: the runs still compare on the
         // others (as infinite, it made the first guess the best run).
+        seen += isfinite(e);
         score = fmax(score, isfinite(e) ? e : 2.0);
     }
-    return score;
+    // A run with no steady height at all says nothing of the widths: never
+    // the closest (it was, at 2, over runs whose widths were 4x off).
+    return tested && !seen ? INFINITY : score;
 }
 
 /// a / b limited to [1 / GF_REF_MAXSTEP, GF_REF_MAXSTEP]; 1 when either is
