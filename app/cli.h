@@ -89,6 +89,7 @@ typedef struct gf_demargs {
     size_t nsets;
     gf_analysis_opts opts;
     bool quiet, plots, refine; ///< -q; not compare --no-plots; not calibrate --no-refine
+    int runs;                  ///< calibrate --runs N: the refinement's spot runs at most (0: its default, 6)
 } gf_demargs;
 
 /// Parses the options of calibrate and compare with getopt_long (argv[0] the

@@ -30,7 +30,7 @@ int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
     a->plots = true;
     a->refine = true;
     a->opts = gf_analysis_opts_default();
-    enum { OPT_TIMESTEP = 256, OPT_CONFIG, OPT_NO_PLOTS, OPT_NO_REFINE };
+    enum { OPT_TIMESTEP = 256, OPT_CONFIG, OPT_NO_PLOTS, OPT_NO_REFINE, OPT_RUNS };
     bool calibrate = !strcmp(cmd, "calibrate");
     const struct option longs[] = {
         {"output", required_argument, NULL, 'o'},
@@ -40,6 +40,7 @@ int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
         {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},
         {calibrate ? "no-refine" : "no-plots", no_argument, NULL, calibrate ? OPT_NO_REFINE : OPT_NO_PLOTS},
+        {calibrate ? "runs" : NULL, required_argument, NULL, OPT_RUNS}, // compare: the end
         {0},
     };
     optind = 0;
@@ -70,6 +71,17 @@ int gf_demargs_parse(const char *cmd, int argc, char **argv, gf_demargs *a)
         case 'q': a->quiet = true; break;
         case OPT_NO_PLOTS: a->plots = false; break;
         case OPT_NO_REFINE: a->refine = false; break;
+        case OPT_RUNS: {
+            char *end = NULL;
+            long v = strtol(optarg, &end, 10);
+            if (!*optarg || *end || v < 1 || v > 100) {
+                fprintf(stderr, "granflow %s: error: --runs %s: a whole number of spot runs from 1 to 100\n", cmd,
+                        optarg);
+                return GF_EXIT_USAGE;
+            }
+            a->runs = (int)v;
+            break;
+        }
         default: return gf_cli_getopt_error(cmd, c, argv);
         }
     }
@@ -202,7 +214,7 @@ int gf_cmd_calibrate(int argc, char **argv)
                     win.t1, 100.0 * GF_DEM_FLOW_TOL, 100.0 * GF_DEM_VAR_TOL);
         gf_dem_refine_result res;
         gf_dem_refine_opts ro = {.progress = a.quiet ? NULL : gf_calibrate_progress, .stop = a.opts.stop,
-                                 .start = &start};
+                                 .start = &start, .max_iter = a.runs};
         st = gf_dem_refine(&s, &o, &cfg, &ro, &res);
         if (st == GF_OK) {
             printf("DEM vs spot, first guess (thesis relations):\n");

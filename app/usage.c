@@ -128,7 +128,7 @@ static const struct gf_usage {
      "  -q, --quiet            no progress lines\n" GF_HELP_LINE},
     {"calibrate",
      "usage: granflow calibrate DEM_DIR -o PARAMS.ini [--timestep DT] [--config INI]\n"
-     "                          [--set KEY=VALUE]... [--no-refine] [-q]\n"
+     "                          [--set KEY=VALUE]... [--no-refine | --runs N] [-q]\n"
      "Fits the five spot parameters to a DEM run as the thesis does (Sec. 3.3), then\n"
      "refines them with spot runs from the DEM's first snapshot until the flow rate is\n"
      "within 5% and Var(z) within 10% at every height. Writes PARAMS.ini, a\n"
@@ -141,6 +141,8 @@ static const struct gf_usage {
      "      --timestep DT      tau per LAMMPS step, for dumps without ITEM: TIME\n"
      "      --config INI       the DEM run's configuration, not DEM_DIR/config.ini\n"
      "      --no-refine        the thesis relations only, no spot runs\n"
+     "      --runs N           the refinement's spot runs at most, 1-100 (default 6;\n"
+     "                         each step moves a parameter by a factor 1.5 at most)\n"
      "  -q, --quiet            no progress lines\n" GF_HELP_LINE},
     {"compare",
      "usage: granflow compare DEM_DIR SPOT_DIR [--timestep DT] [--config INI] [--set KEY=VALUE]...\n"

@@ -29,7 +29,7 @@ _granflow() {
             return ;;
         --colour|--color) COMPREPLY=($(compgen -W "layer phi phi-raw" -- "$cur")); return ;;
         --format) COMPREPLY=($(compgen -W "png svg pdf" -- "$cur")); return ;;
-        --times|--scale|--panels|--particles|--warmup|--window|--timestep) return ;;
+        --times|--scale|--panels|--particles|--warmup|--window|--timestep|--runs) return ;;
     esac
     if [ "$cmd" = help ]; then
         COMPREPLY=($(compgen -W "$("$gf" help 2>/dev/null | sed -n '/^commands:/,/^$/s/^  \([a-z]\+\) .*/\1/p')" -- "$cur"))

@@ -70,6 +70,18 @@ for k in radius step_xy w insertion_rate move_rate; do
 done
 grep -q 'refine' err && fail "--no-refine still refined"
 ok "calibrate of a tiny silo: notes, fallbacks, five positive numbers ($(grep -c '^note: ' out) notes)"
+# --runs N bounds the refinement's spot runs; a bad N is refused, named.
+gf calibrate tiny --runs 1 -o tiny1.ini
+expect_rc 0 "calibrate tiny --runs 1"
+grep -q 'run 1/1' err || fail "--runs 1: no 'run 1/1' progress line: $(grep refine err | head -3)"
+grep -q 'run 2/' err && fail "--runs 1 made a second run"
+for bad in 0 101 abc ''; do
+    gf calibrate tiny --runs "$bad" -o bad.ini
+    expect_rc 2 "calibrate --runs '$bad'"
+    grep -q -- "--runs" err || fail "calibrate --runs '$bad': the error does not name --runs: $(cat err)"
+done
+[ -e bad.ini ] && fail "a refused --runs wrote bad.ini"
+ok "calibrate --runs: one run with --runs 1; 0, 101, abc and '' refused"
 # The velocity profiles are named for the container (gf_velocity_profile_name):
 # v_z(x) across a box, v_z(r) about a cylinder's axis, in compare's table,
 # summary.md and figure script and in calibrate's notes (the tiny cylinder's
