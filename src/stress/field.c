@@ -84,11 +84,12 @@ gf_status gf_stress_write_csv(const gf_stress_field *f, const char *path)
     if (f->radial && f->wall_mobilised < f->def.wall_friction_angle)
         fprintf(fp, " (with the wall friction partly mobilised, %.4g of phi_w = %g deg: too shallow for mass flow)",
                 f->wall_mobilised, f->def.wall_friction_angle);
-    if (isfinite(f->mass_flow_angle))
+    if (isfinite(f->mass_flow_angle)) {
+        double thd = f->theta_w * 180.0 / 3.14159265358979323846;
         fprintf(fp, "; Jenike's mass-flow limit for a cone at these angles: a half-angle of %.1f deg, this one's %.1f "
                     "deg: %s flow",
-                f->mass_flow_angle, f->theta_w * 180.0 / 3.14159265358979323846,
-                f->theta_w * 180.0 / 3.14159265358979323846 <= f->mass_flow_angle ? "mass" : "funnel");
+                f->mass_flow_angle, thd, thd <= f->mass_flow_angle ? "mass" : "funnel");
+    }
     fputc('\n', fp);
     fprintf(fp, "%s,z,s_%s%s,s_zz,s_%sz,s_%s,p,psi_deg,f_%s,f_z\n", u, u, u, u, f->axisym ? "tt" : "yy", u);
     for (int j = 0; j < f->nz; j++)

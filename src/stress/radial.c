@@ -139,28 +139,35 @@ gf_status gf_radial_solve(double phi_deg, double phi_w_deg, double theta_w_deg, 
     return GF_OK;
 }
 
+double gf_radial_edge(double phi_deg, double phi_w_deg, double theta_w_deg, int axisym, gf_radial_arg arg,
+                      double ok, double bad, int iters)
+{
+    gf_radial rf;
+    for (int it = 0; it < iters; it++) {
+        double mid = 0.5 * (ok + bad);
+        bool has = arg == GF_RADIAL_WALL_FRICTION ? gf_radial_solve(phi_deg, mid, theta_w_deg, axisym, &rf) == GF_OK
+                                                  : gf_radial_solve(phi_deg, phi_w_deg, mid, axisym, &rf) == GF_OK;
+        if (has)
+            ok = mid;
+        else
+            bad = mid;
+    }
+    gf_error_clear();
+    return ok;
+}
+
 // Jenike (1961), Nedderman ch. 8: the mass-flow limit is where the radial
-// field ceases to exist; existence is monotone in the half-angle, so bisect.
+// field ceases to exist.
 gf_status gf_radial_mass_flow_angle(double phi_deg, double phi_w_deg, int axisym, double *theta_c_deg)
 {
     gf_radial rf;
-    double lo = 0.5, hi = 88.5;
+    const double lo = 0.5, hi = 88.5;
     if (gf_radial_solve(phi_deg, phi_w_deg, lo, axisym, &rf) != GF_OK)
         return gf_error_set(GF_ERR_STATE, "no radial stress field even at a half-angle of %g degrees (phi = %g, phi_w = %g)",
                             lo, phi_deg, phi_w_deg);
-    if (gf_radial_solve(phi_deg, phi_w_deg, hi, axisym, &rf) == GF_OK) {
-        *theta_c_deg = hi;
-        return GF_OK;
-    }
-    for (int it = 0; it < 30; it++) {
-        double mid = 0.5 * (lo + hi);
-        if (gf_radial_solve(phi_deg, phi_w_deg, mid, axisym, &rf) == GF_OK)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    gf_error_clear();
-    *theta_c_deg = lo;
+    *theta_c_deg = gf_radial_solve(phi_deg, phi_w_deg, hi, axisym, &rf) == GF_OK
+                       ? hi
+                       : gf_radial_edge(phi_deg, phi_w_deg, 0.0, axisym, GF_RADIAL_HALF_ANGLE, lo, hi, 30);
     return GF_OK;
 }
 

@@ -25,6 +25,15 @@ typedef struct gf_radial {
 /// GF_ERR_STATE when none exists (a hopper too shallow for mass flow).
 gf_status gf_radial_solve(double phi_deg, double phi_w_deg, double theta_w_deg, int axisym, gf_radial *out);
 
+/// Which argument of gf_radial_solve gf_radial_edge varies.
+typedef enum gf_radial_arg { GF_RADIAL_WALL_FRICTION, GF_RADIAL_HALF_ANGLE } gf_radial_arg;
+
+/// Bisects, `iters` times, between `ok` (a radial field exists with argument
+/// `arg` there, the others as given) and `bad` (none does); returns the last
+/// value with one. Existence is monotone in either argument.
+double gf_radial_edge(double phi_deg, double phi_w_deg, double theta_w_deg, int axisym, gf_radial_arg arg,
+                      double ok, double bad, int iters);
+
 /// Jenike's mass-flow limit: the largest wall half-angle from the vertical
 /// (degrees) at which a radial field holds with the wall friction phi_w
 /// fully mobilised (a steeper hopper has one, a shallower one none: funnel

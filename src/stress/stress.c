@@ -416,12 +416,10 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
     // the passive state: Jenike's radial stress field about the apex where
     // its walls meet (radial.c), when one exists for these angles (mass flow).
     gf_radial rf;
-    out->mass_flow_angle = NAN;
-    if (zcol > 0.0 && m.axisym && gf_radial_mass_flow_angle(def->friction_angle, def->wall_friction_angle, 1,
-                                                             &out->mass_flow_angle) != GF_OK) {
-        out->mass_flow_angle = NAN;
+    out->mass_flow_angle = NAN; // unchanged when there is no limit
+    if (zcol > 0.0 && m.axisym &&
+        gf_radial_mass_flow_angle(def->friction_angle, def->wall_friction_angle, 1, &out->mass_flow_angle) != GF_OK)
         gf_error_clear();
-    }
     if (zcol > 0.0) {
         gf_level Lc;
         double zp = 0.5 * fmin(zcol, ztop);
@@ -448,13 +446,7 @@ gf_status gf_stress_solve(const gf_stress_def *def, const gf_container *c, doubl
                         hi = t;
                 }
                 if (lo >= 0.0) {
-                    for (int it = 0; it < 20; it++) {
-                        double mid = 0.5 * (lo + hi);
-                        if (gf_radial_solve(def->friction_angle, mid, thd, m.axisym, &rf) == GF_OK)
-                            lo = mid;
-                        else
-                            hi = mid;
-                    }
+                    lo = gf_radial_edge(def->friction_angle, pw, thd, m.axisym, GF_RADIAL_WALL_FRICTION, lo, hi, 20);
                     out->radial = gf_radial_solve(def->friction_angle, lo, thd, m.axisym, &rf) == GF_OK;
                     out->wall_mobilised = lo;
                 }
