@@ -11,6 +11,7 @@
 
 #include "core/rng.h"
 #include "geom/container.h"
+#include "geom/grid.h"
 #include "granflow/granflow.h"
 #include "spot/sfr.h"
 #include "spot/sim_internal.h"
@@ -258,6 +259,63 @@ static void sfr_steady_rise_keeps_the_slip_lines_across(void **state)
     assert_true(m2[0] > 2.0 * h * h / 2.0); // the passive field spreads spots faster than the papers' walk
 }
 
+// The walk from s, n times with seeds 1..n: the share of steps up (a
+// removal above the column's top counts as one), and the steps that would
+// move no particle or remove the spot.
+static double up_share(gf_sim *sim, const double s[3], long n, long *empty)
+{
+    gf_rng rng;
+    gf_sim_stats st = {0};
+    gf_work w = {.rng = &rng, .st = &st};
+    long up = 0;
+    *empty = 0;
+    for (long i = 0; i < n; i++) {
+        gf_rng_seed(&rng, 11, (uint64_t)i + 1);
+        double e[3];
+        if (!gf_spot_walk(sim, &w, s, e)) {
+            (*empty)++;
+            up++;
+            continue;
+        }
+        double c[3] = {s[0] + sim->ball_frac * (e[0] - s[0]), s[1] + sim->ball_frac * (e[1] - s[1]),
+                       s[2] + sim->ball_frac * (e[2] - s[2])};
+        *empty += gf_ball_count(sim, c, sim->rs) == 0;
+        up += e[2] > s[2];
+    }
+    return (double)up / (double)n;
+}
+
+// spot.flow_rule = sfr with the free-surface bias (spot.bias_exponent > 0,
+// the 2009 paper's Sec. 3): a spot just under the free surface steps up
+// its slip lines, towards fewer particles, less often than the unbiased
+// rule, and never takes a step that would move no particle.
+static void sfr_bias_steers_spots_into_the_packing(void **state)
+{
+    (void)state;
+    gf_config c = gf_config_default();
+    c.packing_particles = 6000;
+    c.spot_flow_rule = GF_FLOW_SFR;
+    c.spot_bias_exponent = 3.0;
+    assert_int_equal(gf_config_validate(&c), GF_OK);
+    gf_sim *sim = NULL;
+    assert_int_equal(gf_sim_create_from_config(&c, NULL, &sim), GF_OK);
+    const double x = 0.5 * (sim->box.xlo + sim->box.xhi), y = 0.5 * (sim->box.ylo + sim->box.yhi);
+    const double top = gf_grid_column_top(&sim->grid, x, y, &sim->p[0].z, 4);
+    const double s[3] = {x, y, top - 0.5};
+    const long n = 20000;
+    long empty_b, empty_p;
+    double biased = up_share(sim, s, n, &empty_b);
+    sim->d.bias_exponent = 0.0;
+    double plain = up_share(sim, s, n, &empty_p);
+    double se = sqrt((biased * (1 - biased) + plain * (1 - plain)) / (double)n);
+    print_message("under the surface: steps up %.4f biased, %.4f not (+- %.4f); into the void or removed %ld, %ld\n",
+                  biased, plain, se, empty_b, empty_p);
+    assert_int_equal(empty_b, 0);  // a step that reaches no particle is never taken
+    assert_true(empty_p > n / 20); // the unbiased rule steps out (and the spot goes)
+    assert_true(plain - biased > 5.0 * se);
+    gf_sim_destroy(sim);
+}
+
 // Downward speed of the particles in the wall band (r > 3/4 of the funnel's
 // radius) over the axis band (r < 1/4) at mid-funnel, between t0 and t1.
 static double funnel_wall_over_axis(gf_sfr_rise rise, double t0, double t1)
@@ -323,6 +381,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(sfr_drains_a_silo),
     cmocka_unit_test(sfr_steady_rise_keeps_the_slip_lines_across),
     cmocka_unit_test(sfr_steady_rise_flows_along_a_funnels_walls),
+    cmocka_unit_test(sfr_bias_steers_spots_into_the_packing),
 };
 
 GF_TEST_MAIN("sfr", tests)

@@ -330,11 +330,6 @@ gf_status gf_config_validate(gf_config *cfg)
         gf_config_msg_make(&m, cfg, "stress.wall_friction_angle", "stress.friction_angle");
         return gf_error_set(GF_ERR_PARAM, "%s%s must be at most %s", m.lead, m.key[0], m.key[1]);
     }
-    if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->spot_bias_exponent > 0.0) {
-        gf_config_msg_make(&m, cfg, "spot.flow_rule", "spot.bias_exponent");
-        return gf_error_set(GF_ERR_PARAM, "%sspot.flow_rule = sfr does not combine with %s > 0 (the flow rule "
-                            "biases the walk itself)", m.lead, m.key[1]);
-    }
     if (cfg->spot_flow_rule == GF_FLOW_SFR && cfg->container_shape == GF_SHAPE_CYLINDER &&
         cfg->inner_radius > 0.0) {
         // The stress solver has no annulus (docs/stress.md).

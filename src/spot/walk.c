@@ -158,34 +158,25 @@ static void gf_walk_finish(const gf_sim *sim, double n[3])
     n[2] = nz;
 }
 
-// The stochastic flow rule's step (sfr.c; docs/stress.md): along a slip line
-// of the stress at s, biased against the out-of-balance force, plus an
-// out-of-plane step (y, or the hoop direction about the axis); with
-// spot.sfr_rise = steady, up by step_z instead of the line's own rise.
-// Outside the field (below the base, on the way up from its birth) the
-// papers' walk. A slip step that would end below the floor goes the other
-// way along its line; a steady one is clamped as the papers' walk's are.
-static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double n[3])
+// The in-plane (u) and out-of-plane (v) horizontal directions of the field at s.
+static void gf_walk_sfr_axes(const gf_stress_field *f, const double s[3], double u, double eu[2], double ev[2])
 {
-    const gf_stress_field *f = &sim->stress;
-    gf_stress_point p;
-    double u = gf_stress_u(f, s[0], s[1]);
-    if (s[2] < f->zstop || !gf_stress_at(f, u, s[2], &p)) {
-        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
-        return;
+    eu[0] = 1.0, eu[1] = 0.0, ev[0] = 0.0, ev[1] = 1.0;
+    if (!f->axisym) return;
+    if (u > 1e-9) {
+        eu[0] = s[0] / u;
+        eu[1] = s[1] / u;
     }
-    double du, dz, dv;
-    gf_sfr_draw(&sim->sfr_walk, p.psi, p.f, w->rng, &du, &dz, &dv);
-    const bool steady = sim->sfr_walk.rise > 0.0; // docs/stress.md, "The rise"
-    double eu[2] = {1.0, 0.0}, ev[2] = {0.0, 1.0}; // in-plane and out-of-plane horizontal directions
-    if (f->axisym) {
-        if (u > 1e-9) {
-            eu[0] = s[0] / u;
-            eu[1] = s[1] / u;
-        }
-        ev[0] = -eu[1];
-        ev[1] = eu[0];
-    }
+    ev[0] = -eu[1];
+    ev[1] = eu[0];
+}
+
+// Where a flow-rule step (du, dz, dv) from s ends: a slip step that would
+// end below the floor (not over the outlet) goes the other way along its
+// line; a steady one is clamped as the papers' walk's are.
+static void gf_walk_sfr_end(const gf_sim *sim, const double s[3], const double eu[2], const double ev[2], double du,
+                            double dz, double dv, bool steady, double n[3])
+{
     const gf_container *b = &sim->box;
     for (int t = 0; t < 2; t++) {
         n[0] = s[0] + du * eu[0] + dv * ev[0];
@@ -198,6 +189,28 @@ static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double
         dz = -dz;
     }
     gf_walk_finish(sim, n);
+}
+
+// The stochastic flow rule's step (sfr.c; docs/stress.md): along a slip line
+// of the stress at s, biased against the out-of-balance force, plus an
+// out-of-plane step (y, or the hoop direction about the axis); with
+// spot.sfr_rise = steady, up by step_z instead of the line's own rise.
+// Outside the field (below the base, on the way up from its birth) the
+// papers' walk. (gf_walk_sfr_end: the floor.)
+static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double n[3])
+{
+    const gf_stress_field *f = &sim->stress;
+    gf_stress_point p;
+    double u = gf_stress_u(f, s[0], s[1]);
+    if (s[2] < f->zstop || !gf_stress_at(f, u, s[2], &p)) {
+        gf_walk_candidate(sim, s, gf_rng_below(w->rng, 4), n);
+        return;
+    }
+    double du, dz, dv;
+    gf_sfr_draw(&sim->sfr_walk, p.psi, p.f, w->rng, &du, &dz, &dv);
+    double eu[2], ev[2];
+    gf_walk_sfr_axes(f, s, u, eu, ev);
+    gf_walk_sfr_end(sim, s, eu, ev, du, dz, dv, sim->sfr_walk.rise > 0.0, n); // docs/stress.md, "The rise"
 }
 
 // Sec. 3 biased walk: candidate i with probability p_i^beta / sum_j p_j^beta,
@@ -238,6 +251,53 @@ static bool gf_walk_biased(gf_sim *sim, gf_work *w, const double s[3], double n[
     return true;
 }
 
+// The flow rule's step with the Sec. 3 free-surface bias (spot.flow_rule =
+// sfr, spot.bias_exponent = beta > 0; docs/stress.md "The free surface"):
+// each of the eight steps (a slip-line direction times an out-of-plane
+// sign) keeps its flow-rule probability times p^beta, p the particles the
+// step would move, as gf_walk_biased weights the papers' four. Below the
+// field, the papers' biased walk. Returns false when every p is 0 above the
+// base (the spot is to be removed).
+static bool gf_walk_sfr_biased(gf_sim *sim, gf_work *w, const double s[3], double n[3])
+{
+    const gf_stress_field *fld = &sim->stress;
+    gf_stress_point p;
+    double u = gf_stress_u(fld, s[0], s[1]);
+    if (s[2] < fld->zstop || !gf_stress_at(fld, u, s[2], &p)) return gf_walk_biased(sim, w, s, n);
+    double e[4][2], prob[4];
+    const gf_sfr_walk *wk = &sim->sfr_walk;
+    gf_sfr_probs(wk, p.psi, p.f, e, prob);
+    double eu[2], ev[2];
+    gf_walk_sfr_axes(fld, s, u, eu, ev);
+    const double f = sim->ball_frac, beta = sim->d.bias_exponent;
+    double cand[8][3], wgt[8], q = 0.0;
+    for (int k = 0; k < 8; k++) {
+        const int line = k >> 1;
+        const double du = wk->L * e[line][0], dv = (k & 1) ? -wk->hperp : wk->hperp;
+        const double dz = wk->rise > 0.0 ? wk->rise : wk->L * e[line][1];
+        gf_walk_sfr_end(sim, s, eu, ev, du, dz, dv, wk->rise > 0.0, cand[k]);
+        double c[3] = {s[0] + f * (cand[k][0] - s[0]), s[1] + f * (cand[k][1] - s[1]), s[2] + f * (cand[k][2] - s[2])};
+        double cnt = (double)gf_ball_count(sim, c, sim->rs);
+        wgt[k] = cnt > 0.0 ? 0.5 * prob[line] * pow(cnt, beta) : 0.0;
+        q += wgt[k];
+    }
+    if (!(q > 0.0)) return cand[0][2] > 0.0 ? false : gf_walk_biased(sim, w, s, n); // as the papers' walk
+    double target = gf_rng_uniform(w->rng) * q, acc = 0.0;
+    int pick = 7;
+    for (int k = 0; k < 8; k++) {
+        acc += wgt[k];
+        if (target < acc && wgt[k] > 0.0) {
+            pick = k;
+            break;
+        }
+    }
+    while (wgt[pick] == 0.0) pick--; // rounding at the top end: the last candidate with weight
+    n[0] = cand[pick][0];
+    n[1] = cand[pick][1];
+    n[2] = cand[pick][2];
+    return true;
+}
+
 // Whether this move relaxes (2009 paper Sec. 5).
 static bool gf_relax_due(gf_sim *sim, gf_work *w, uint32_t *count)
 {
@@ -256,7 +316,8 @@ static bool gf_relax_due(gf_sim *sim, gf_work *w, uint32_t *count)
 
 bool gf_spot_walk(gf_sim *sim, gf_work *w, const double s[3], double n[3])
 {
-    if (sim->d.bias_exponent > 0.0) return gf_walk_biased(sim, w, s, n);
+    if (sim->d.bias_exponent > 0.0)
+        return sim->sfr ? gf_walk_sfr_biased(sim, w, s, n) : gf_walk_biased(sim, w, s, n);
     // The BCC walk, each candidate with probability 1/4; or the flow rule's.
     if (sim->sfr)
         gf_walk_sfr(sim, w, s, n);

@@ -3,8 +3,8 @@
 # field it follows to stress.csv (its header names the surface height), drains,
 # and resumes bit for bit like a run done in one go (the field is solved
 # again from the same surface); `granflow render` draws stress.png; a
-# diffusive run writes neither; combinations the rule refuses exit 2 naming
-# the key.
+# diffusive run writes neither; with the free-surface bias it recirculates;
+# combinations the rule refuses exit 2 naming the key.
 # usage: bash tests/cli/sfr.sh GRANFLOW_BINARY TESTS_DATA_DIR
 NAME=sfr
 source "$(dirname "$0")/lib.bash" "$@"
@@ -41,9 +41,11 @@ expect_rc 0 "diffusive run"
 [ ! -e plain/stress.csv ] || fail "a diffusive run wrote stress.csv"
 ok "a diffusive run writes no stress.csv"
 
-gf run -q "${SMALL[@]}" --set spot.bias_exponent=3 -o bad
-expect_rc 2 "sfr with bias_exponent"
-expect_err "spot.flow_rule" "sfr with bias_exponent"
+gf run -q "${SMALL[@]}" --set spot.bias_exponent=3 --set run.recirculate=on --set run.duration=3 -o biased
+expect_rc 0 "sfr with the free-surface bias, recirculating"
+grep -q '"particles_exited": [1-9]' biased/summary.json || fail "sfr with bias: nothing left through the orifice"
+ok "sfr with the free-surface bias (spot.bias_exponent) recirculates"
+
 gf run -q "${SMALL[@]}" --set stress.wall_friction_angle=40 -o bad
 expect_rc 2 "wall friction above internal friction"
 expect_err "stress.wall_friction_angle" "wall friction above internal friction"
