@@ -51,7 +51,8 @@ int gf_cmd_compare(int argc, char **argv)
     if (st == GF_OK) st = gf_dem_flowstats_measure(&dem, &o, false, &fd);
     if (st == GF_OK) st = gf_dem_flowstats_measure(&spot, &o, false, &fsp);
     if (st == GF_OK) {
-        printf("DEM vs spot over %g..%g tau (uncertainties: standard errors over sub-windows):\n", o.t0, o.t1);
+        printf("DEM vs spot over %g..%g tau (uncertainties: standard errors over %zu sub-windows, window.parts):\n", o.t0,
+               o.t1, fd.parts);
         gf_dem_flowstats_table(&fd, &fsp, GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL, stdout);
         printf("%s\n", gf_dem_flowstats_match(&fd, &fsp, GF_DEM_FLOW_TOL, GF_DEM_VAR_TOL)
                           ? "verdict: the spot run matches the DEM (flow rate within 5%, Var within 10% at every "

@@ -211,6 +211,9 @@ typedef struct gf_analysis_opts {
     double zone_dz;           ///< height bin of the streamlines, d (2)
     // rtd
     double rtd_tmax;          ///< residence times counted up to this, tau; NaN = auto: the whole run
+    /// sub-windows the uncertainties of calibrate and compare are taken over (4): the standard error
+    /// of the mean over them (fewer when the window has under 3 frames per part)
+    size_t window_parts;
     /// Not an option key: polled in the frame loops of every measurement, of
     /// gf_analyze, gf_dem_analyze, gf_dem_calibrate, gf_dem_flowstats_measure
     /// and gf_dem_compare; once non-zero (a signal handler may set it) they

@@ -304,6 +304,7 @@ GF_API gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_stead
 /// exits read off the snapshots).
 typedef struct gf_dem_flowstats {
     double t0, t1;                     ///< the window, tau
+    size_t parts;                      ///< sub-windows behind the uncertainties (window.parts, fewer in a short window)
     gf_dem_value flow;                 ///< flow rate Q, particles per tau
     size_t nz;                         ///< velocity heights
     double z[GF_DEM_FS_MAXZ];          ///< their heights, d

@@ -25,6 +25,10 @@ static const gf_key gf_analysis_key_list[] = {
      .doc = "start of the averaging window (auto: the start of the steady flow, else a quarter of the way through)"},
     {"window", "t1", GF_KEY_AUTO, GF_AOFF(t1), GF_IN(0, 1e12), .def = "auto", .unit = "tau",
      .doc = "end of the averaging window (auto: the end of the steady flow, else the last snapshot)"},
+    {"window", "parts", GF_KEY_SIZE, GF_AOFF(window_parts), GF_IN(2, 64), .def = "4", .unit = "",
+     .doc = "sub-windows of the window that calibrate's and compare's uncertainties come from (the standard error "
+            "of the mean over them; 2 when the window has fewer than 3 frames a part, none under 6 frames); more for "
+            "long references, so that the errors themselves are less noisy"},
     {"dump", "dt", GF_KEY_DOUBLE, GF_AOFF(dump_dt), GF_IN(0, 1e6), .def = "0", .unit = "tau",
      .doc = "time per TIMESTEP, for dumps without ITEM: TIME (0: such dumps are an error); in the dumps' time unit "
             "when dump.diameter and dump.gravity are set (seconds in SI)"},

@@ -21,7 +21,7 @@
 #include "granflow/dem.h"
 
 #define GF_CAL_PI 3.14159265358979323846
-#define GF_CAL_MAXPARTS 4
+#define GF_CAL_MAXPARTS 64 // window.parts at most
 #define GF_CAL_BALLS 400   // spot balls placed per frame for p
 #define GF_CAL_WALLSD 5.0  // a profile is fitted only where its sd is below W / this (tails inside the walls)
 
@@ -322,8 +322,9 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     gf_status st = gf_cal_measure(s, o, t0, t1, 0.0, dw, &full);
     if (st != GF_OK) return st;
     double rs_full = full.beta / GF_DEM_BETA_PER_RS;
-    // Sub-windows of equal length (each with at least 3 frames when possible).
-    size_t K = nf >= 4 * 3 ? 4 : nf >= 2 * 3 ? 2 : 1;
+    // window.parts sub-windows of equal length (each with at least 3 frames when possible).
+    size_t parts = o->window_parts < 2 ? 2 : o->window_parts > GF_CAL_MAXPARTS ? GF_CAL_MAXPARTS : o->window_parts;
+    size_t K = nf >= parts * 3 ? parts : nf >= 2 * 3 ? 2 : 1;
     c->nparts = K;
     double v[7][GF_CAL_MAXPARTS];
     for (size_t j = 0; j < K; j++) {

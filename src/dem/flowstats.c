@@ -17,7 +17,7 @@
 #include "granflow/dem.h"
 
 #define GF_FS_PI 3.14159265358979323846
-#define GF_FS_PARTS 4
+#define GF_FS_PARTS_MAX 64 // window.parts at most
 
 static double gf_fs_value(const gf_measure_out *m, const char *key)
 {
@@ -128,8 +128,9 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     gf_status st = gf_fs_once(s, o, t0, t1, correlation, fs);
     if (st != GF_OK) return st;
     size_t k0, k1, nf = gf_window_frames(s, t0, t1, &k0, &k1);
-    size_t K = nf >= 12 ? GF_FS_PARTS : nf >= 6 ? 2 : 1;
-    double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS];
+    size_t parts = o->window_parts < 2 ? 2 : o->window_parts > GF_FS_PARTS_MAX ? GF_FS_PARTS_MAX : o->window_parts;
+    size_t K = nf >= 3 * parts ? parts : nf >= 6 ? 2 : 1;
+    double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS_MAX];
     // The parts take each height's steadiness from the whole window: a
     // height's Var counts in the parts that start once its flow is steady
     // (var_t0), each averaging all its pairs (a part is too short to judge).
@@ -164,6 +165,7 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     }
     fs->t0 = t0;
     fs->t1 = t1;
+    fs->parts = K;
     fs->profile = gf_velocity_profile_name(&s->cfg);
     return gf_fs_rtd(s, o, fs);
 }

@@ -91,6 +91,17 @@ expect_rc 0 "compare tiny tiny"
 grep -q 'Var of v_z(x) at z = ' out || fail "compare of a box: no 'Var of v_z(x)' row: $(cat out)"
 grep -q 'v_z(r)' out cmp_box/summary.md cmp_box/compare.gp && fail "compare of a box says v_z(r)"
 grep -q 'Gaussian fits of v_z(x)' cmp_box/summary.md || fail "summary.md of a box does not name v_z(x)"
+# window.parts: the sub-windows behind the uncertainties, as many as asked
+# when the window holds 3 frames a part (tiny's 2-5 tau holds 7: 2 of the
+# default 4; 0-5 tau holds 11: 3 of 3); out of [2, 64] refused by name.
+grep -q 'standard errors over 2 sub-windows' out || fail "compare: not 2 sub-windows in 7 frames: $(grep sub-windows out)"
+gf compare tiny tiny --no-plots --set window.t0=0 --set window.parts=3 -o cmp_parts
+expect_rc 0 "compare --set window.parts=3"
+grep -q 'standard errors over 3 sub-windows' out || fail "compare: window.parts=3 not used: $(grep sub-windows out)"
+gf compare tiny tiny --no-plots --set window.parts=1 -o cmp_parts1
+expect_rc 2 "compare --set window.parts=1"
+grep -q 'window.parts' err || fail "window.parts=1: the error does not name the key: $(cat err)"
+ok "compare: window.parts sets the sub-windows of the uncertainties; 1 refused"
 gf run -q --set container.shape=cylinder --set container.radius=5 \
     --set packing.particles=600 --set run.duration=5 --set output.snapshot_interval=0.5 -o cyl
 expect_rc 0 "run cyl"
