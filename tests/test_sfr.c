@@ -107,6 +107,18 @@ static void sfr_walk_reduces_to_the_papers_walk(void **state)
     assert_float_equal(p[0] + p[1] + p[2] + p[3], 1.0, 1e-12);
     assert_float_equal(p[0], p[2], 1e-12); // symmetric between the two slip lines
     assert_true(p[0] > p[1]);              // forwards (up) more often than back
+    // The steady rise (the default): every step up by step_z, across by the
+    // same slip-line steps, so the same moments with no vertical spread.
+    gf_sfr_walk ws = gf_sfr_walk_make(h, dz, eps, GF_RISE_STEADY);
+    gf_sfr_probs(&ws, PI / 2, f, e, p);
+    double mu = 0.0, mu2 = 0.0;
+    for (int k = 0; k < 4; k++) {
+        mu += p[k] * ws.L * e[k][0];
+        mu2 += p[k] * ws.L * e[k][0] * ws.L * e[k][0];
+    }
+    assert_float_equal(ws.rise, dz, 1e-15);
+    assert_float_equal(mu, 0.0, 1e-12);
+    assert_float_equal(mu2, h * h / 2, 1e-12);
 }
 
 // The box's field at its centre line: major stress vertical, the grains'
@@ -295,6 +307,7 @@ static void sfr_bias_steers_spots_into_the_packing(void **state)
     gf_config c = gf_config_default();
     c.packing_particles = 6000;
     c.spot_flow_rule = GF_FLOW_SFR;
+    c.spot_sfr_rise = GF_RISE_SLIP; // steps up and down its slip lines: the bias picks between them
     c.spot_bias_exponent = 3.0;
     assert_int_equal(gf_config_validate(&c), GF_OK);
     gf_sim *sim = NULL;

@@ -64,8 +64,8 @@ typedef enum gf_flow_rule {
 
 /// How an sfr spot rises (docs/stress.md, "The rise").
 typedef enum gf_sfr_rise {
-    GF_RISE_SLIP = 0,   ///< the whole slip-line step, up or down (the default)
-    GF_RISE_STEADY = 1, ///< up by step_z every step, sideways by the slip-line step's horizontal part
+    GF_RISE_SLIP = 0,   ///< the whole slip-line step, up or down
+    GF_RISE_STEADY = 1, ///< up by step_z every step, sideways by the slip-line step's horizontal part (the default)
 } gf_sfr_rise;
 
 /// The parameters of the limit-state stress solver (src/stress/; docs/stress.md),

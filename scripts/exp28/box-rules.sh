@@ -2,7 +2,7 @@
 # Issue 28 item 2: the papers' box with each flow rule, three seeds
 # (docs/stress.md, "The box: sfr against the papers' walk").
 #   scripts/exp28/box-rules.sh OUT [VARIANT...]   (diffusive sfr sfr-steady sfr-smooth sfr-steady-smooth)
-# (-smooth: frictionless walls, stress.wall_friction_angle = 0: Rankine's field)
+# SEEDS="1 2 3" by default. (-smooth: frictionless walls, stress.wall_friction_angle = 0: Rankine's field)
 set -u
 gf=${GRANFLOW:-$(dirname "$0")/../../build/granflow}
 out=$1; shift
@@ -11,12 +11,12 @@ mkdir -p "$out"
 for v in "$@"; do
     case $v in
         diffusive) rule="--set spot.flow_rule=diffusive" ;;
-        sfr) rule="--set spot.flow_rule=sfr" ;;
+        sfr) rule="--set spot.flow_rule=sfr --set spot.sfr_rise=slip" ;;
         sfr-steady) rule="--set spot.flow_rule=sfr --set spot.sfr_rise=steady" ;;
-        sfr-smooth) rule="--set spot.flow_rule=sfr --set stress.wall_friction_angle=0" ;;
+        sfr-smooth) rule="--set spot.flow_rule=sfr --set spot.sfr_rise=slip --set stress.wall_friction_angle=0" ;;
         sfr-steady-smooth) rule="--set spot.flow_rule=sfr --set spot.sfr_rise=steady --set stress.wall_friction_angle=0" ;;
     esac
-    for seed in 1 2 3; do
+    for seed in ${SEEDS:-1 2 3}; do
         d=$out/$v-$seed
         # shellcheck disable=SC2086
         "$gf" run --set packing.particles=25000 --set run.duration=30 --set output.snapshot_interval=1 \

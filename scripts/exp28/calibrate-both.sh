@@ -9,7 +9,7 @@ dem=$1 out=$2; shift 2
 for v in diffusive sfr sfr-steady; do
     case $v in
         diffusive) set_rule="--set spot.flow_rule=diffusive" ;;
-        sfr) set_rule="--set spot.flow_rule=sfr" ;;
+        sfr) set_rule="--set spot.flow_rule=sfr --set spot.sfr_rise=slip" ;;
         sfr-steady) set_rule="--set spot.flow_rule=sfr --set spot.sfr_rise=steady" ;;
     esac
     # shellcheck disable=SC2086

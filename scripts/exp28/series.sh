@@ -16,7 +16,7 @@ for a in 35 45 55 65 75; do
     for v in diffusive sfr sfr-steady; do
         for seed in 1 2 3; do
             rule=${v%-steady}
-            extra=""; [ "$v" = sfr-steady ] && extra="--set spot.sfr_rise=steady"
+            extra=""; [ "$v" = sfr ] && extra="--set spot.sfr_rise=slip"; [ "$v" = sfr-steady ] && extra="--set spot.sfr_rise=steady"
             EXTRA="$extra" "$here/cone.sh" "$a" "$rule" "$out/cone$a-$v-$seed" "$seed" >/dev/null 2>&1 || echo "# $a $v $seed failed"
             python3 "$here/massflow.py" "$out/cone$a-$v-$seed" 2 12 | tail -n +3 | sed "s/^/$a,$v,$seed,/"
         done

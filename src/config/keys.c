@@ -146,10 +146,10 @@ const gf_key gf_keys[] = {
      .def = "diffusive", .unit = "",
      .doc = "diffusive (the papers' walk) or sfr (the stochastic flow rule: steps along the slip lines of the "
             "stress field, docs/stress.md)"},
-    {"spot", "sfr_rise", GF_KEY_ENUM, GF_OFF(spot_sfr_rise), .names = gf_keys_sfr_rise_names, .def = "slip",
+    {"spot", "sfr_rise", GF_KEY_ENUM, GF_OFF(spot_sfr_rise), .names = gf_keys_sfr_rise_names, .def = "steady",
      .unit = "",
-     .doc = "sfr: slip (a step goes along its slip line, up or down) or steady (up by step_z every step, across "
-            "by the slip-line step's horizontal part; docs/stress.md)"},
+     .doc = "sfr: steady (up by step_z every step, across by the slip-line step's horizontal part) or slip (a "
+            "step goes along its slip line, up or down; docs/stress.md)"},
 
     {"stress", "friction_angle", GF_KEY_DOUBLE, GF_OFF(stress_friction_angle), .min = 0, .max = 60,
      .min_open = true, .max_open = true, .def = "30", .unit = "deg",
