@@ -9,6 +9,11 @@
 #                    time order (z = 1000: every move)
 #   ksweep.patch     GF_KSWEEP=k: k sweeps a window, sweep s relaxing only the
 #                    particles reached by more than s moves of the window
+#   permove.patch    GF_PERMOVE=2 GF_NOSWEEP=1: each move's relax() computed
+#                    alone from the window start displaced by that move only,
+#                    its increment over the undisplaced packing summed over
+#                    the moves, plus one pass at the window start (=1: the
+#                    raw sums); GF_NOSWEEP=1 skips the window's sweeps
 #   serialzone.patch GF_ZSUB=z [GF_ZNORELAX=1]: the moves below z made one by
 #                    one after the window, as the event engine makes them
 # usage: bash scripts/exp23/variant.sh PATCH "ENV=VALUE ..." [SEEDS] [OUT_DIR]
