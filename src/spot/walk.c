@@ -213,6 +213,24 @@ static void gf_walk_sfr(const gf_sim *sim, gf_work *w, const double s[3], double
     gf_walk_sfr_end(sim, s, eu, ev, du, dz, dv, sim->sfr_walk.rise > 0.0, n); // docs/stress.md, "The rise"
 }
 
+// The candidate of weights wgt[0..n) (some positive, summing to q) that
+// target = u q in [0, q) falls on; rounding at the top end gives the last
+// candidate with weight.
+static int gf_walk_pick(const double *wgt, int n, double target)
+{
+    double acc = 0.0;
+    int pick = n - 1;
+    for (int k = 0; k < n; k++) {
+        acc += wgt[k];
+        if (target < acc && wgt[k] > 0.0) {
+            pick = k;
+            break;
+        }
+    }
+    while (wgt[pick] == 0.0) pick--;
+    return pick;
+}
+
 // Sec. 3 biased walk: candidate i with probability p_i^beta / sum_j p_j^beta,
 // p_i the particles a step to i would move. Returns false when every p_i is
 // 0 above the base (the spot is to be removed).
@@ -230,15 +248,7 @@ static bool gf_walk_biased(gf_sim *sim, gf_work *w, const double s[3], double n[
     double u = gf_rng_uniform(w->rng);
     uint64_t pick = 3;
     if (q > 0.0) {
-        double acc = 0.0, target = u * q;
-        for (uint64_t d = 0; d < 4; d++) {
-            acc += wgt[d];
-            if (target < acc && wgt[d] > 0.0) {
-                pick = d;
-                break;
-            }
-        }
-        while (wgt[pick] == 0.0) pick--; // rounding at the top end: the last candidate with weight
+        pick = (uint64_t)gf_walk_pick(wgt, 4, u * q);
     } else if (cand[0][2] > 0.0) {
         return false;
     } else {
@@ -282,16 +292,7 @@ static bool gf_walk_sfr_biased(gf_sim *sim, gf_work *w, const double s[3], doubl
         q += wgt[k];
     }
     if (!(q > 0.0)) return cand[0][2] > 0.0 ? false : gf_walk_biased(sim, w, s, n); // as the papers' walk
-    double target = gf_rng_uniform(w->rng) * q, acc = 0.0;
-    int pick = 7;
-    for (int k = 0; k < 8; k++) {
-        acc += wgt[k];
-        if (target < acc && wgt[k] > 0.0) {
-            pick = k;
-            break;
-        }
-    }
-    while (wgt[pick] == 0.0) pick--; // rounding at the top end: the last candidate with weight
+    const int pick = gf_walk_pick(wgt, 8, gf_rng_uniform(w->rng) * q);
     n[0] = cand[pick][0];
     n[1] = cand[pick][1];
     n[2] = cand[pick][2];
