@@ -297,7 +297,7 @@ GF_API gf_status gf_dem_window(const gf_series *s, gf_analysis_opts *o, gf_stead
 #define GF_DEM_FS_MAXZ 16
 #define GF_DEM_FS_MAXL 32
 /// The numbers a spot run must match a DEM run on, over the window of the
-/// options, each with the standard error of its mean over 4 (or 2)
+/// options, each with the standard error of its mean over window.parts
 /// sub-windows (NaN: unknown or not measurable); the residence times (the
 /// whole run, up to the options' rtd.tmax) with the uncertainty of a mean
 /// of gf_measure_rtd (standard error, and the exit-time resolution of
@@ -311,6 +311,9 @@ typedef struct gf_dem_flowstats {
     gf_dem_value var[GF_DEM_FS_MAXZ];  ///< variance of the Gaussian fit of the profile there, d^2
     double var_t0[GF_DEM_FS_MAXZ];     ///< the profile there averaged the frames from this time to t1
                                        ///< (velocity.window = height), tau; NaN: no steady frames there
+    double var_drift[GF_DEM_FS_MAXZ];  ///< Var over the later half of the sub-windows less over the earlier,
+                                       ///< relative to the whole window's (NaN: fewer than 4 sub-windows there)
+    double var_drift_se[GF_DEM_FS_MAXZ]; ///< that difference in standard errors of itself
     const char *profile;               ///< that profile's name, gf_velocity_profile_name: v_z(x) or v_z(r)
     gf_dem_value bp;                   ///< particle diffusion length b_p, d
     gf_dem_value phi;                  ///< packing fraction in the density slice, in flow

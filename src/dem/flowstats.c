@@ -102,6 +102,24 @@ static gf_status gf_fs_rtd(const gf_series *s, const gf_analysis_opts *o, gf_dem
     return st;
 }
 
+/// Mean of the finite values among v[0..n) and its standard error (NaN with fewer than 2).
+static void gf_fs_mean_se(const double *v, size_t n, double *mean, double *se)
+{
+    double s = 0.0, s2 = 0.0;
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(v[k])) {
+            s += v[k];
+            m++;
+        }
+    *mean = m ? s / (double)m : NAN;
+    *se = NAN;
+    if (m < 2) return;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(v[k])) s2 += (v[k] - *mean) * (v[k] - *mean);
+    *se = sqrt(s2 / (double)(m - 1) / (double)m);
+}
+
 /// Standard error of the mean of the finite values among v[0..n).
 static double gf_fs_err(const double *v, size_t n)
 {
@@ -162,6 +180,19 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
         fs->drop.err = gf_fs_err(v[3], K);
         fs->beta.err = gf_fs_err(v[4], K);
         for (size_t z = 0; z < fs->nz; z++) fs->var[z].err = gf_fs_err(v[5 + z], K);
+    }
+    // Whether each height's width drifts over the window: the later half of
+    // the sub-windows against the earlier (a reference still widening, as
+    // docs/dem.md's long references do for about one residence time).
+    for (size_t z = 0; z < GF_DEM_FS_MAXZ; z++) fs->var_drift[z] = fs->var_drift_se[z] = NAN;
+    for (size_t z = 0; z < fs->nz && K >= 4; z++) {
+        double m1, e1, m2, e2;
+        gf_fs_mean_se(v[5 + z], K / 2, &m1, &e1);
+        gf_fs_mean_se(v[5 + z] + K / 2, K - K / 2, &m2, &e2);
+        double e = hypot(e1, e2);
+        if (!isfinite(m1) || !isfinite(m2) || !(fs->var[z].value > 0)) continue;
+        fs->var_drift[z] = (m2 - m1) / fs->var[z].value;
+        fs->var_drift_se[z] = e > 0 ? (m2 - m1) / e : NAN;
     }
     fs->t0 = t0;
     fs->t1 = t1;
@@ -245,6 +276,21 @@ static void gf_fs_windows(FILE *f, const gf_dem_flowstats *dem, const gf_dem_flo
     fputc('\n', f);
 }
 
+/// The heights whose DEM width drifts over the window by more than 3
+/// standard errors (later half of the sub-windows against the earlier).
+static void gf_fs_drift(FILE *f, const gf_dem_flowstats *dem)
+{
+    bool any = false;
+    for (size_t z = 0; z < dem->nz; z++) {
+        if (!(fabs(dem->var_drift_se[z]) > 3.0)) continue;
+        if (!any) fprintf(f, "  %-34s", "DEM widths drifting (later half of the window against the earlier):");
+        fprintf(f, "%s z = %.3g: %+.0f%% (%.1f se)", any ? ";" : "", dem->z[z], 100.0 * dem->var_drift[z],
+                dem->var_drift_se[z]);
+        any = true;
+    }
+    if (any) fprintf(f, "; a later window.t0 measures the steady widths\n");
+}
+
 void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double flow_tol,
                             double var_tol, FILE *f)
 {
@@ -257,6 +303,7 @@ void gf_dem_flowstats_table(const gf_dem_flowstats *dem, const gf_dem_flowstats 
         gf_fs_row(f, name, dem->var[z], spot->var[z], var_tol, true);
     }
     gf_fs_windows(f, dem, spot);
+    gf_fs_drift(f, dem);
     gf_fs_row(f, "diffusion length b_p (d)", dem->bp, spot->bp, 0.0, false);
     gf_fs_row(f, "packing fraction in flow", dem->phi, spot->phi, 0.0, false);
     gf_fs_row(f, "density drop in the slice", dem->drop, spot->drop, 0.0, false);
