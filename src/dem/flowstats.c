@@ -123,18 +123,9 @@ static void gf_fs_mean_se(const double *v, size_t n, double *mean, double *se)
 /// Standard error of the mean of the finite values among v[0..n).
 static double gf_fs_err(const double *v, size_t n)
 {
-    double s = 0.0, s2 = 0.0;
-    size_t m = 0;
-    for (size_t k = 0; k < n; k++)
-        if (isfinite(v[k])) {
-            s += v[k];
-            m++;
-        }
-    if (m < 2) return NAN;
-    double mean = s / (double)m;
-    for (size_t k = 0; k < n; k++)
-        if (isfinite(v[k])) s2 += (v[k] - mean) * (v[k] - mean);
-    return sqrt(s2 / (double)(m - 1) / (double)m);
+    double mean, se;
+    gf_fs_mean_se(v, n, &mean, &se);
+    return se;
 }
 
 gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o, bool correlation,
