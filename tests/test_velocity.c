@@ -140,25 +140,37 @@ static double vz_startup(double x, double z, double t)
     return -amp * exp(-x * x / (2.0 * var));
 }
 
-static void startup_measure(gf_vel_window mode, bool spot_run, gf_measure_out *out)
+// 49 frames, t = 0 .. 24 tau; each pair k has its own particles, present
+// in frames k and k + 1 only, at the bin centres of heights 10, 20, ...,
+// 10 nh, so that pair measures vz(x, z, t_k + 1/4, arg) exactly.
+static gf_series pair_series(int nh, double (*vz)(double x, double z, double t, const void *arg), const void *arg)
 {
-    // 49 frames, t = 0 .. 24 tau; each pair k has its own particles, present
-    // in frames k and k + 1 only, at the bin centres of the six heights, so
-    // that pair measures v_z(x, z, t_k + 1/4) exactly.
     enum { NF = 49 };
     double times[NF];
     for (int k = 0; k < NF; k++) times[k] = 0.5 * k;
     gf_series s = make_series(NF, times);
     int64_t id = 0;
     for (int k = 0; k + 1 < NF; k++)
-        for (int h = 1; h <= 6; h++)
+        for (int h = 1; h <= nh; h++)
             for (int xi = -25; xi < 25; xi++) {
-                double x = xi + 0.5, z = 10.0 * h, v = vz_startup(x, z, times[k] + 0.25);
+                double x = xi + 0.5, z = 10.0 * h, v = vz(x, z, times[k] + 0.25, arg);
                 id++;
                 push(&s.frames[k], id, x, 0.0, z - 0.25 * v);
                 push(&s.frames[k + 1], id, x, 0.0, z + 0.25 * v);
             }
     s.n_initial = s.frames[0].pk.n;
+    return s;
+}
+
+static double vz_startup_arg(double x, double z, double t, const void *arg)
+{
+    (void)arg;
+    return vz_startup(x, z, t);
+}
+
+static void startup_measure(gf_vel_window mode, bool spot_run, gf_measure_out *out)
+{
+    gf_series s = pair_series(6, vz_startup_arg, NULL);
     if (spot_run) { // the spots rise at mu step_z = 40 x 0.1 = RISE_C
         s.spot_run = true;
         assert_int_equal(gf_config_set_key(&s.cfg, "spot.move_rate", "40"), GF_OK);
@@ -179,24 +191,15 @@ static void startup_measure(gf_vel_window mode, bool spot_run, gf_measure_out *o
 // flow statistics flag the drift (later half of the 8 sub-windows against
 // the earlier, > 3 standard errors, the right size and sign); the same
 // series at a constant width is not flagged.
+static double vz_widening(double x, double z, double t, const void *arg)
+{
+    double var = (2.0 * z + 1.0) * (*(const bool *)arg ? 1.0 + 0.5 * t / 24.0 : 1.0);
+    return -VEL_A * sqrt((2.0 * z + 1.0) / var) * exp(-x * x / (2.0 * var));
+}
+
 static void widening_series(bool widen, gf_dem_flowstats *fs)
 {
-    enum { NF = 49 };
-    double times[NF];
-    for (int k = 0; k < NF; k++) times[k] = 0.5 * k;
-    gf_series s = make_series(NF, times);
-    int64_t id = 0;
-    for (int k = 0; k + 1 < NF; k++)
-        for (int h = 1; h <= 4; h++)
-            for (int xi = -25; xi < 25; xi++) {
-                double x = xi + 0.5, z = 10.0 * h, t = times[k] + 0.25;
-                double var = (2.0 * z + 1.0) * (widen ? 1.0 + 0.5 * t / 24.0 : 1.0);
-                double v = -VEL_A * sqrt((2.0 * z + 1.0) / var) * exp(-x * x / (2.0 * var));
-                id++;
-                push(&s.frames[k], id, x, 0.0, z - 0.25 * v);
-                push(&s.frames[k + 1], id, x, 0.0, z + 0.25 * v);
-            }
-    s.n_initial = s.frames[0].pk.n;
+    gf_series s = pair_series(4, vz_widening, &widen);
     gf_analysis_opts o = gf_analysis_opts_default();
     o.t0 = 0.0;
     o.t1 = 24.0;
