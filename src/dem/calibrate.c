@@ -19,6 +19,7 @@
 #include "geom/container.h"
 #include "granflow/defs.h"
 #include "granflow/dem.h"
+#include "dem/dem_internal.h"
 
 #define GF_CAL_PI 3.14159265358979323846
 #define GF_CAL_MAXPARTS 64 // window.parts at most
@@ -323,8 +324,7 @@ gf_status gf_dem_calibrate(const gf_series *s, const gf_analysis_opts *o, const 
     if (st != GF_OK) return st;
     double rs_full = full.beta / GF_DEM_BETA_PER_RS;
     // window.parts sub-windows of equal length (each with at least 3 frames when possible).
-    size_t parts = o->window_parts < 2 ? 2 : o->window_parts > GF_CAL_MAXPARTS ? GF_CAL_MAXPARTS : o->window_parts;
-    size_t K = nf >= parts * 3 ? parts : nf >= 2 * 3 ? 2 : 1;
+    size_t K = gf_dem_window_parts(o, nf, GF_CAL_MAXPARTS);
     c->nparts = K;
     double v[7][GF_CAL_MAXPARTS];
     for (size_t j = 0; j < K; j++) {

@@ -8,6 +8,11 @@
 #include "granflow/core.h"
 #include "granflow/dem.h"
 
+/// Sub-windows behind calibrate's and compare's uncertainties: window.parts
+/// (limited to [2, most]) when the window's nframes give each at least 3
+/// frames, else 2 with at least 6 frames, else 1.
+size_t gf_dem_window_parts(const gf_analysis_opts *o, size_t nframes, size_t most);
+
 /// in.drain's `restart N drain.a.restart drain.b.restart` (nothing when
 /// plan->restart_steps is 0), before the drain's first run.
 void gf_dem_restart_line(FILE *f, const gf_dem_plan *plan, double timestep);

@@ -15,6 +15,7 @@
 #include "core/stop.h"
 #include "geom/container.h"
 #include "granflow/dem.h"
+#include "dem/dem_internal.h"
 
 #define GF_FS_PI 3.14159265358979323846
 #define GF_FS_PARTS_MAX 64 // window.parts at most
@@ -120,6 +121,12 @@ static void gf_fs_mean_se(const double *v, size_t n, double *mean, double *se)
     *se = sqrt(s2 / (double)(m - 1) / (double)m);
 }
 
+size_t gf_dem_window_parts(const gf_analysis_opts *o, size_t nframes, size_t most)
+{
+    size_t parts = o->window_parts < 2 ? 2 : o->window_parts > most ? most : o->window_parts;
+    return nframes >= 3 * parts ? parts : nframes >= 6 ? 2 : 1;
+}
+
 /// Standard error of the mean of the finite values among v[0..n).
 static double gf_fs_err(const double *v, size_t n)
 {
@@ -137,8 +144,7 @@ gf_status gf_dem_flowstats_measure(const gf_series *s, const gf_analysis_opts *o
     gf_status st = gf_fs_once(s, o, t0, t1, correlation, fs);
     if (st != GF_OK) return st;
     size_t k0, k1, nf = gf_window_frames(s, t0, t1, &k0, &k1);
-    size_t parts = o->window_parts < 2 ? 2 : o->window_parts > GF_FS_PARTS_MAX ? GF_FS_PARTS_MAX : o->window_parts;
-    size_t K = nf >= 3 * parts ? parts : nf >= 6 ? 2 : 1;
+    size_t K = gf_dem_window_parts(o, nf, GF_FS_PARTS_MAX);
     double v[5 + GF_DEM_FS_MAXZ][GF_FS_PARTS_MAX];
     // The parts take each height's steadiness from the whole window: a
     // height's Var counts in the parts that start once its flow is steady
