@@ -221,6 +221,44 @@ static void the_loop_finds_three_parameters(void **state)
     assert_true(it <= 6); // the refinement's default number of runs
 }
 
+// The kept run (issue 27's calibrate quirk): DEM Q 100, Var = 2 z - 1 at
+// z = 6, 8, 10 (11, 15, 19, +- 0.5, all measured at 10%). Run a: Q 101,
+// every height seen, Var 22% high at z = 10 (23.18): worst |0.22| / 0.10 =
+// 2.2. Run b: Q 100, z = 6 exact, 8 and 10 never steady (NaN): worst 0 on
+// what it saw, 2 unseen. The old score counted an unseen height as 2.0, so
+// b (2.0) beat a (2.2); a run that measures fewer heights must not win.
+static void a_run_that_sees_fewer_heights_never_wins(void **state)
+{
+    (void)state;
+    gf_dem_flowstats d, a, b;
+    stats(&d, 100.0, 1.0, 2.0, -1.0, 0.5);
+    stats(&a, 101.0, 1.0, 2.0, -1.0, 0.5);
+    a.var[2].value = 1.22 * 19.0;
+    stats(&b, 100.0, 1.0, 2.0, -1.0, 0.5);
+    b.var[1].value = b.var[2].value = NAN;
+    gf_ref_score sa = gf_ref_score_of(&d, &a, 0.05, 0.10), sb = gf_ref_score_of(&d, &b, 0.05, 0.10);
+    gf_assert_near(sa.worst, 2.2, 1e-9);
+    assert_int_equal(sa.unseen, 0);
+    gf_assert_near(sb.worst, 0.0, 1e-12);
+    assert_int_equal(sb.unseen, 2);
+    assert_true(gf_ref_score_better(sa, sb));
+    assert_false(gf_ref_score_better(sb, sa));
+    assert_false(gf_ref_score_matched(sa));
+    assert_false(gf_ref_score_matched(sb));
+    // With the same heights seen, the closer one wins; an exact run matches.
+    gf_ref_score se = gf_ref_score_of(&d, &d, 0.05, 0.10);
+    assert_true(gf_ref_score_matched(se));
+    assert_true(gf_ref_score_better(se, sa));
+    // A height the DEM itself did not measure well enough is not counted.
+    d.var[2].err = 5.0;
+    sb = gf_ref_score_of(&d, &b, 0.05, 0.10);
+    assert_int_equal(sb.unseen, 1);
+    // No flow: never the closest among runs that see as much.
+    b.flow.value = NAN;
+    sb = gf_ref_score_of(&d, &b, 0.05, 0.10);
+    assert_true(isinf(sb.worst));
+}
+
 static const struct CMUnitTest tests[] = {
     cmocka_unit_test(fits_both_lines),
     cmocka_unit_test(targets_by_hand),
@@ -229,6 +267,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(the_step_is_limited_as_a_whole),
     cmocka_unit_test(the_model_learns_from_a_run),
     cmocka_unit_test(the_loop_finds_three_parameters),
+    cmocka_unit_test(a_run_that_sees_fewer_heights_never_wins),
 };
 
 GF_TEST_MAIN("refine_step", tests)

@@ -108,6 +108,20 @@ void gf_ref_model_update(gf_ref_model *m, const double dp[3], const double dy[3]
 /// solved for (0: none, or singular).
 int gf_ref_step(const gf_ref_model *m, const double r[3], const double sig[3], const bool row[3], const bool col[3],
                 double rs_prior, double dp[3], double cov[3][3]);
+/// How far a spot run is from the targets: worst, the largest of |dQ| / (Q
+/// ftol) and |dVar| / (Var vtol) over the heights the DEM measured well
+/// enough and the spot run had steady (INFINITY without a flow); unseen, the
+/// DEM's measured heights the spot run never had steady.
+typedef struct gf_ref_score {
+    double worst;
+    int unseen;
+} gf_ref_score;
+gf_ref_score gf_ref_score_of(const gf_dem_flowstats *dem, const gf_dem_flowstats *spot, double ftol, double vtol);
+/// a closer than b: fewer unseen heights first (a run that measures fewer
+/// heights never wins on the ones it kept), then the smaller worst.
+bool gf_ref_score_better(gf_ref_score a, gf_ref_score b);
+/// Every target met: no unseen height and worst <= 1.
+bool gf_ref_score_matched(gf_ref_score s);
 /// Scales dp so that no log moves by more than ln maxf and r_s by no more
 /// than a factor maxf; returns the factor applied (1: none).
 double gf_ref_limit(double dp[3], double r_s, double maxf);

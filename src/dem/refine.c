@@ -12,6 +12,7 @@
 //   dN = Q h / (mu dz)            -> mu *= dN_spot / dN_dem
 //   beta = 0.72 r_s               -> r_s *= beta_dem / beta_spot (first run only; r_s
 //                                    then stays out of the joint step)
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -101,28 +102,6 @@ static gf_status gf_ref_run(const gf_series *dem, const gf_packing *start, const
     out->cfg = *cfg;
     if (st != GF_OK) gf_series_free(out);
     return st;
-}
-
-/// How far a spot run is from the targets: the largest of |dQ| / (Q tol_Q)
-/// and |dVar| / (Var tol_V) over the heights (below 1: matched).
-static double gf_ref_score(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double ftol, double vtol)
-{
-    double score = fabs(s->flow.value - d->flow.value) / (fabs(d->flow.value) * ftol);
-    if (!isfinite(score)) return INFINITY;
-    int tested = 0, seen = 0;
-    for (size_t z = 0; z < d->nz && z < s->nz; z++) {
-        if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
-        tested++;
-        double e = fabs(s->var[z].value - d->var[z].value) / (fabs(d->var[z].value) * vtol);
-        // A height the spot run never had steady (no Var) counts as
-        // unmatched, as twice the tolerance: the runs still compare on the
-        // others (as infinite, it made the first guess the best run).
-        seen += isfinite(e);
-        score = fmax(score, isfinite(e) ? e : 2.0);
-    }
-    // A run with no steady height at all says nothing of the widths: never
-    // the closest (it was, at 2, over runs whose widths were 4x off).
-    return tested && !seen ? INFINITY : score;
 }
 
 /// a / b limited to [1 / GF_REF_MAXSTEP, GF_REF_MAXSTEP]; 1 when either is
@@ -252,7 +231,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         return gf_error_set(GF_ERR_PARAM, "refine: the DEM run has no outflow in its window %g..%g tau",
                             res->dem.t0, res->dem.t1);
     gf_config cur = *cfg, best = *cfg;
-    double best_score = INFINITY;
+    gf_ref_score best_score = {.worst = INFINITY, .unseen = INT_MAX};
     gf_ref_model model;
     gf_ref_targets prev_t = {0}, best_t = {0};
     double prev_p[3] = {0}, best_cov[3][3] = {{0}}, best_scale = 1.0;
@@ -270,8 +249,8 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         if (st != GF_OK) return st;
         res->runs = it;
         if (it == 1) res->first = fs;
-        double score = gf_ref_score(&res->dem, &fs, ftol, vtol);
-        bool match = score <= 1.0;
+        gf_ref_score score = gf_ref_score_of(&res->dem, &fs, ftol, vtol);
+        bool match = gf_ref_score_matched(score);
         if (ro->progress) ro->progress(ro->ctx, it, max_iter, &cur, &res->dem, &fs, match);
         // The targets and what this run says of the model (issue 27 item 3).
         gf_ref_targets t;
@@ -315,7 +294,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
         }
         gf_ref_step(&model, r, t.sig, row, col, GF_REF_RS_PRIOR * sp.radius, dp, cov);
         double scale = gf_ref_limit(dp, sp.radius, GF_REF_MAXSTEP);
-        if (score < best_score) {
+        if (gf_ref_score_better(score, best_score)) {
             best_score = score;
             best = cur;
             res->last = fs;
@@ -351,7 +330,7 @@ gf_status gf_dem_refine(const gf_series *dem, const gf_analysis_opts *o, gf_conf
     res->step_xy = (gf_dem_value){bp.step_xy, best_col[GF_REF_STEP] ? bp.step_xy * sqrt(best_cov[1][1]) : NAN};
     res->radius = (gf_dem_value){bp.radius, best_col[GF_REF_RADIUS] ? sqrt(best_cov[2][2]) : NAN};
     gf_ref_explain(res, &best_t, best_col, best_scale, bp.radius, ftol, vtol, max_iter);
-    res->matched = best_score <= 1.0;
+    res->matched = gf_ref_score_matched(best_score);
     *cfg = best;
     return GF_OK;
 }

@@ -188,6 +188,29 @@ int gf_ref_step(const gf_ref_model *m, const double r[3], const double sig[3], c
     return n;
 }
 
+gf_ref_score gf_ref_score_of(const gf_dem_flowstats *d, const gf_dem_flowstats *s, double ftol, double vtol)
+{
+    gf_ref_score r = {fabs(s->flow.value - d->flow.value) / (fabs(d->flow.value) * ftol), 0};
+    if (!isfinite(r.worst)) r.worst = INFINITY;
+    for (size_t z = 0; z < d->nz; z++) {
+        if (!gf_dem_flowstats_measured(d->var[z], vtol)) continue;
+        double e = z < s->nz ? fabs(s->var[z].value - d->var[z].value) / (fabs(d->var[z].value) * vtol) : NAN;
+        if (isfinite(e))
+            r.worst = fmax(r.worst, e);
+        else
+            r.unseen++;
+    }
+    return r;
+}
+
+bool gf_ref_score_better(gf_ref_score a, gf_ref_score b)
+{
+    if (a.unseen != b.unseen) return a.unseen < b.unseen;
+    return a.worst < b.worst;
+}
+
+bool gf_ref_score_matched(gf_ref_score s) { return s.unseen == 0 && s.worst <= 1.0; }
+
 double gf_ref_limit(double dp[3], double r_s, double maxf)
 {
     // One factor on the whole step keeps its direction (the parameters trade
