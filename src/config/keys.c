@@ -207,7 +207,7 @@ const gf_key gf_keys[] = {
      .doc = "zone re-insertion: outer radius from the axis (auto: to the wall)"},
 
     {"parallel", "window", GF_KEY_DOUBLE, GF_OFF(parallel_window), .min = 0, .max = 10, .min_open = true,
-     .def = "0.02", .unit = "tau",
+     .def = "0.005", .unit = "tau",
      .doc = "run.order = domains: simulated time each sector runs before the next (halos exchanged between); "
             "run.order = sweep: the window whose moves all read its start; "
             "-> 0 recovers the event engine's statistics"},

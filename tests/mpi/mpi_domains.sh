@@ -16,11 +16,13 @@ source "$HERE/lib.bash" "${3:-}"
 
 # A wide slit (44 of 50 d) starts spots over most of the width at once, and
 # 4 sectors per axis (~5.5 d) cut the silo into 9 x 18 sectors: every phase
-# has several busy sectors and every rank runs some of them.
+# has several busy sectors and every rank runs some of them. The window is
+# the default before 2026-11-27 (0.02, not 0.005): a quarter of the phases,
+# each exchanged between the ranks, for the same checks.
 SILO=(--set container.width=50 --set container.depth=4 --set container.orifice_shape=slit
       --set container.orifice_diameter=44 --set packing.particles=6000
       --set spot.step_z=0.2 --set run.mode=fixed --set run.order=domains --set parallel.sectors=4
-      --set output.snapshot_interval=0.5)
+      --set parallel.window=0.02 --set output.snapshot_interval=0.5)
 export GF_MPI_STATS=1
 same() {
     local a=$1 b=$2 f
