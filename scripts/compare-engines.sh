@@ -24,7 +24,9 @@
 # In a recirculating run (passes_max > 1) two more rows: the mean transit
 # time of every exit (surface to outlet, or start to outlet on the first
 # pass) and of the passes after the first (re-inserted pebbles only), the
-# residence time of the steady recirculating core.
+# residence time of the steady recirculating core. The last row, exits per
+# spot move over the whole run, is the sharpest test of the flow (free of
+# the insertions' Poisson noise).
 set -euo pipefail
 gf=$1 out=$2 seeds=$3 tau=$4
 shift 4
@@ -75,8 +77,17 @@ def later_passes(engine, s):
                 tot += float(row["mean_tau"]) * int(row["count"])
                 num += int(row["count"])
     return tot / num if num else None
+def per_move(engine, s):
+    # Particles out per spot move over the whole run (x 1e4), from the run's
+    # own summary.json: the drainage per move, free of the insertions' noise.
+    r = json.load(open(f"{out}/{engine}-{s}/summary.json"))
+    return 1e4 * r["particles_exited"] / r["spot_moves"] if r.get("spot_moves") else None
+def value(engine, key, s):
+    if key == "later_passes": return later_passes(engine, s)
+    if key == "per_move": return per_move(engine, s)
+    return summary(engine, s).get(key)
 def values(engine, key):
-    v = [later_passes(engine, s) if key == "later_passes" else summary(engine, s).get(key) for s in range(1, n + 1)]
+    v = [value(engine, key, s) for s in range(1, n + 1)]
     return [x for x in v if isinstance(x, (int, float)) and math.isfinite(x)]
 def stats(v):
     if not v: return float("nan"), float("nan"), 0
@@ -86,6 +97,7 @@ def stats(v):
 if any((summary(e, s).get("passes_max") or 0) > 1 for e in ("event", "domains") for s in range(1, n + 1)):
     keys += [("transit_mean", "mean transit time, every exit (tau)"),
              ("later_passes", "mean transit time, passes after the first (tau)")]
+keys += [("per_move", "exits per spot move, whole run (1e-4)")]
 print(f"| quantity | event engine ({n} seeds) | domain engine ({n} seeds) | difference / sd | difference / se |")
 print("|---|---|---|---|---|")
 for k, name in keys:
