@@ -2,8 +2,8 @@
 // The domain engine (run.order = domains, src/spot/domains.c): its result
 // depends on the seed and the parallel keys, never on the number of threads
 // (bit for bit, resume included); sectors of one index really run side by
-// side; the decomposition follows parallel.domain_size and parallel.sectors
-// and refuses domains too small to keep sectors independent.
+// side; the decomposition follows parallel.domain_size, parallel.sectors and
+// parallel.cut and refuses domains too small to keep sectors independent.
 // ctest: nosan-case thread_count_does_not_change_the_result
 // ctest: nosan-case resume_under_another_thread_count
 #include "support.h"
@@ -123,6 +123,39 @@ static void keys_set_the_decomposition(void **state)
     gf_sim_destroy(sim);
 }
 
+// parallel.cut = z: horizontal slabs only, none across x or y, whatever
+// their length; S sector indices; still the same result on 1 and 2 threads,
+// and another result than the cut across x and z (the decomposition is part
+// of the keys). A cut set that names an unknown axis is refused by name.
+static void a_z_cut_makes_slabs(void **state)
+{
+    (void)state;
+    gf_config a = tall_silo(1), b = tall_silo(2), x = tall_silo(2);
+    assert_int_equal(gf_config_set_key(&a, "parallel.cut", "z"), GF_OK);
+    assert_int_equal(gf_config_set_key(&b, "parallel.cut", "z"), GF_OK);
+    assert_int_equal(a.parallel_cut, 1 << 2);
+    a.run_duration = b.run_duration = x.run_duration = 4.0;
+    gf_test_outcome oa = run_config(a), ob = run_config(b), ox = run_config(x);
+    assert_int_equal(oa.prof.blocks_along[0], 1);
+    assert_int_equal(oa.prof.blocks_along[1], 1);
+    assert_true(oa.prof.blocks_along[2] > 4);
+    assert_int_equal(oa.prof.colours, 4);
+    assert_int_equal(ox.prof.colours, 16);
+    assert_true(oa.nex > 20);
+    gf_test_same_outcome(&oa, &ob);
+    assert_true(oa.nex != ox.nex || memcmp(oa.pk.z, ox.pk.z, sizeof(double) * oa.pk.n) != 0);
+    gf_test_outcome_free(&oa);
+    gf_test_outcome_free(&ob);
+    gf_test_outcome_free(&ox);
+
+    gf_config c = tall_silo(1);
+    assert_int_equal(gf_config_set_key(&c, "parallel.cut", "all"), GF_OK);
+    assert_int_equal(c.parallel_cut, 7);
+    assert_int_equal(gf_config_set_key(&c, "parallel.cut", "z,w"), GF_ERR_PARAM);
+    assert_non_null(strstr(gf_last_error(), "parallel.cut"));
+    assert_non_null(strstr(gf_last_error(), "'w'"));
+}
+
 // A run stopped at 4.1 tau with 1 thread and resumed with 2 writes the same
 // snapshots (byte for byte) as one run straight through with 3.
 static void resume_under_another_thread_count(void **state)
@@ -137,6 +170,7 @@ static const struct CMUnitTest tests[] = {
     cmocka_unit_test(recirculation_does_not_depend_on_threads),
     cmocka_unit_test(keys_set_the_decomposition),
     cmocka_unit_test(resume_under_another_thread_count),
+    cmocka_unit_test(a_z_cut_makes_slabs),
 };
 
 GF_TEST_MAIN("domains", tests)

@@ -213,6 +213,7 @@ typedef struct gf_config {
     // [parallel] the domain engine (run.order = domains)
     double parallel_window;            ///< simulated time each sector runs per cycle, tau; default 0.1
     double parallel_domain_size;       ///< domain edge along a cut axis, d; 0 (default): the smallest that keeps sectors independent
+    int parallel_cut;                  ///< bits 1 << axis of the axes cut into domains (x, y, z; default all)
     int64_t parallel_sectors;          ///< sectors per cut axis (2 as in SPPARKS, up to 4); default 2
     int64_t parallel_sweeps;           ///< run.order = sweep: Jacobi relaxation sweeps per window; default 2
 

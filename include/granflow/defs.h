@@ -72,6 +72,7 @@ typedef struct gf_engine_defs {
     // parallel
     double window, domain_size;
     int64_t sectors;
+    int cut; ///< bits 1 << axis: the axes run.order = domains may cut
     int64_t sweeps; ///< run.order = sweep: relaxation sweeps per window
     // output
     double snapshot_interval;

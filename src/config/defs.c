@@ -110,6 +110,7 @@ void gf_config_engine_defs(const gf_config *cfg, gf_engine_defs *d)
     d->window = cfg->parallel_window;
     d->domain_size = cfg->parallel_domain_size;
     d->sectors = cfg->parallel_sectors;
+    d->cut = cfg->parallel_cut;
     d->sweeps = cfg->parallel_sweeps;
     d->snapshot_interval = cfg->output_snapshot_interval;
 }

@@ -40,6 +40,8 @@ static const char *const gf_keys_reinsert_names[] = {"random", "zone", NULL};
 static const char *const gf_keys_format_names[] = {"dump", "vtk", NULL};
 static const char *const gf_keys_format_aliases[] = {"both", "dump,vtk", NULL};
 static const char *const gf_keys_vtk_encoding_names[] = {"binary", "ascii", NULL};
+static const char *const gf_keys_cut_names[] = {"x", "y", "z", NULL};
+static const char *const gf_keys_cut_aliases[] = {"all", "x,y,z", "xyz", "x,y,z", "xy", "x,y", "xz", "x,z", "yz", "y,z", NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
 #define GF_OFF(field) offsetof(gf_config, field)
@@ -214,6 +216,10 @@ const gf_key gf_keys[] = {
     {"parallel", "domain_size", GF_KEY_DOUBLE, GF_OFF(parallel_domain_size), GF_NONNEG, .def = "0", .unit = "d",
      .doc = "run.order = domains: edge of a domain along each cut axis (0: the smallest that keeps same-index "
             "sectors of neighbouring domains independent)"},
+    {"parallel", "cut", GF_KEY_SET, GF_OFF(parallel_cut), .names = gf_keys_cut_names, .aliases = gf_keys_cut_aliases,
+     .def = "x,y,z", .unit = "",
+     .doc = "run.order = domains: the axes cut into domains (those long enough for two sectors); z alone: "
+            "horizontal slabs, fewer phases a window for flows in a central column"},
     {"parallel", "sectors", GF_KEY_INT64, GF_OFF(parallel_sectors), .min = 2, .max = 4, .def = "2", .unit = "",
      .doc = "run.order = domains: sectors per cut axis (2 as in SPPARKS; more: thinner sectors, more phases)"},
     {"parallel", "sweeps", GF_KEY_INT64, GF_OFF(parallel_sweeps), .min = 0, .max = 100, .def = "2", .unit = "",

@@ -136,9 +136,15 @@ void gf_dom_free(gf_sim *sim)
 
 // Sectors along one axis of n cells (cell size h): a sector spans `need`
 // over S - 1 sectors, or `size` / S when parallel.domain_size is set; an
-// axis too short for two sectors is not cut.
-static gf_status gf_dom_axis(int n, double need, double size, int S, double h, int *bs, int *nb, int *nc)
+// axis left out of parallel.cut, or too short for two sectors, is not cut.
+static gf_status gf_dom_axis(int n, bool cut, double need, double size, int S, double h, int *bs, int *nb, int *nc)
 {
+    if (!cut) {
+        *bs = n;
+        *nb = 1;
+        *nc = 1;
+        return GF_OK;
+    }
     int least = (int)ceil(need / ((S - 1) * h));
     *bs = least;
     if (size > 0) {
@@ -207,7 +213,8 @@ gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int
     *lo = 0;
     *hi = g->nz;
     for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], need, sim->d.domain_size, (int)sim->d.sectors, g->h, &bs[a], &nb[a], &nc[a]);
+        gf_status st = gf_dom_axis(n[a], (sim->d.cut >> a) & 1, need, sim->d.domain_size, (int)sim->d.sectors, g->h, &bs[a],
+                                   &nb[a], &nc[a]);
         if (st != GF_OK) return st;
     }
     gf_slabs s;
@@ -232,7 +239,8 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
     int cut = 0;
     q->ndomain = 1;
     for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], need, c->domain_size, q->S, g->h, &q->bs[a], &q->nb[a], &q->nc[a]);
+        gf_status st = gf_dom_axis(n[a], (c->cut >> a) & 1, need, c->domain_size, q->S, g->h, &q->bs[a], &q->nb[a],
+                                   &q->nc[a]);
         if (st != GF_OK) return st;
         cut += q->nc[a] > 1;
         q->ndomain *= (size_t)((q->nb[a] + q->nc[a] - 1) / q->nc[a]);
