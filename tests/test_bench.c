@@ -120,6 +120,16 @@ static void packing_types_give_the_bidisperse_packing(void **state)
     assert_true(r.silo.rank_region_particles[0] > 0 && r.silo.rank_region_particles[0] <= (double)r.silo.particles);
     assert_true(r.silo.rank_slab_particles[0] == r.silo.rank_region_particles[0]);
     assert_true(r.silo.rank_held_particles[0] == (double)r.silo.particles); // one process holds every particle
+    // The work per layer of sectors along z adds up to the whole work, and
+    // nothing lies above the top layer.
+    const gf_par_profile *f = &r.silo.prof;
+    double layers = 0.0;
+    for (int k = 0; k < GF_PAR_LAYERS; k++) {
+        if (k >= f->blocks_along[2]) assert_true(f->layer_seconds[k] == 0.0);
+        layers += f->layer_seconds[k];
+    }
+    assert_true(f->work_seconds > 0.0);
+    assert_true(fabs(layers - f->work_seconds) <= 1e-9 * f->work_seconds);
     // Without packing.types every type is imported.
     c = mixture_config(path, "");
     s = (seen){0};

@@ -145,6 +145,8 @@ GF_API size_t gf_sim_stat_count(void);
 GF_API const char *gf_sim_stat_name(size_t i);
 /// Thread counts the parallel engines' speedup is projected for: 2, 8, 16, 64, 256.
 #define GF_PAR_NPROJ 5
+/// Layers of blocks along z whose work the domain engine's profile keeps.
+#define GF_PAR_LAYERS 64
 
 /// The parallel engines' decomposition and, while profiling, the work of
 /// its blocks: each block's run of each colour phase is timed (thread CPU
@@ -174,6 +176,7 @@ typedef struct gf_par_profile {
     uint64_t exchange_messages; ///< domain engine: modelled halo messages, all blocks, while profiling
     double serial_seconds;  ///< sweep engine: the one-thread bookkeeping's time (in work and every makespan)
     double part_seconds[4]; ///< sweep engine: work of the walk, the gather (spot displacements), the relaxation sweeps, the list refreshes
+    double layer_seconds[GF_PAR_LAYERS]; ///< domain engine: work of the sectors of each layer along z (from the bottom; the last also holds those above)
 } gf_par_profile;
 
 /// Starts (on != 0, counters reset) or stops profiling the spatial step's blocks.

@@ -38,6 +38,11 @@ static void gf_bench_blocks_json(gf_json *j, const char *prefix, const gf_par_pr
                       gf_bench_ratio(f->exchange_bytes, (double)f->blocks_run), 0);
         gf_json_fixed(j, GF_KEY("exchange_messages_per_phase_per_domain"),
                       gf_bench_ratio((double)f->exchange_messages, (double)f->blocks_run), 1);
+        // Where the work lies up the container: each layer of sectors' share.
+        int nl = f->blocks_along[2] < GF_PAR_LAYERS ? f->blocks_along[2] : GF_PAR_LAYERS;
+        gf_json_array_begin(j, GF_KEY("work_fraction_along_z"));
+        for (int k = 0; k < nl; k++) gf_json_fixed(j, NULL, gf_bench_ratio(f->layer_seconds[k], f->work_seconds), 4);
+        gf_json_end(j);
     }
     if (f->serial_seconds > 0) { // the sweep engine: its one-thread bookkeeping, in every makespan
         gf_json_general(j, GF_KEY("parallel_window_tau"), f->window, 6);

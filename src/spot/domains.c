@@ -485,6 +485,8 @@ static void gf_dom_record(gf_dom *q, size_t nrun)
         q->secs[k] = s;
         work += s;
         if (s > longest) longest = s;
+        size_t layer = q->run[r] / ((size_t)q->nb[0] * (size_t)q->nb[1]);
+        f->layer_seconds[layer < GF_PAR_LAYERS ? layer : GF_PAR_LAYERS - 1] += s;
         const gf_sector *sc = &q->sec[q->run[r]];
         double bytes = GF_DOM_RECORD_BYTES * (double)(sc->moved < sc->nparticle ? sc->moved : sc->nparticle);
         f->exchange_bytes += bytes;
