@@ -41,7 +41,8 @@ static const char *const gf_keys_format_names[] = {"dump", "vtk", NULL};
 static const char *const gf_keys_format_aliases[] = {"both", "dump,vtk", NULL};
 static const char *const gf_keys_vtk_encoding_names[] = {"binary", "ascii", NULL};
 static const char *const gf_keys_cut_names[] = {"x", "y", "z", NULL};
-static const char *const gf_keys_cut_aliases[] = {"all", "x,y,z", "xyz", "x,y,z", "xy", "x,y", "xz", "x,z", "yz", "y,z", NULL};
+static const char *const gf_keys_cut_aliases[] = {"all", "x,y,z", "xyz", "x,y,z", "xy", "x,y",
+                                                   "xz",  "x,z",   "yz",  "y,z",   NULL};
 static const char *const gf_keys_relax_names[] = {"full", "none", "random", "counter", "global", NULL};
 
 #define GF_OFF(field) offsetof(gf_config, field)

@@ -213,8 +213,8 @@ gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int
     *lo = 0;
     *hi = g->nz;
     for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], (sim->d.cut >> a) & 1, need, sim->d.domain_size, (int)sim->d.sectors, g->h, &bs[a],
-                                   &nb[a], &nc[a]);
+        gf_status st = gf_dom_axis(n[a], (sim->d.cut >> a) & 1, need, sim->d.domain_size, (int)sim->d.sectors, g->h,
+                                   &bs[a], &nb[a], &nc[a]);
         if (st != GF_OK) return st;
     }
     gf_slabs s;
