@@ -110,6 +110,7 @@ void gf_dom_free(gf_sim *sim)
     gf_dom *q = sim->dom;
     if (!q) return;
     for (int t = 0; t < q->threads; t++) {
+        if (q->work[t].colmax) GF_DELETE(q->work[t].colmax, q->ncol);
         gf_work_free(&q->work[t]);
         if (q->heap) GF_DELETE(q->heap[t], q->heap_cap[t]);
     }
@@ -285,6 +286,7 @@ static gf_status gf_dom_make(gf_sim *sim)
         }
     }
     for (int t = 0; t < q->threads; t++) {
+        if (q->work[t].colmax) GF_DELETE(q->work[t].colmax, q->ncol);
         gf_work_free(&q->work[t]);
         GF_DELETE(q->heap[t], q->heap_cap[t]);
     }
@@ -311,9 +313,40 @@ static gf_status gf_dom_make(gf_sim *sim)
         q->work[t].coltop = q->coltop;
 #ifdef GF_MPI
         q->work[t].slabs = q->owner && !gf_mpi_test_break("entry") ? &q->slabs : NULL;
+        if (gf_mpi_size() > 1) continue; // cells also change by the neighbours' records: tops rescanned whole
 #endif
+        q->work[t].colmax = GF_NEW(int32_t, q->ncol);
+        if (!q->work[t].colmax) {
+            gf_dom_free(sim);
+            return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
+        }
+        for (size_t col = 0; col < q->ncol; col++) q->work[t].colmax[col] = -1;
     }
     return GF_OK;
+}
+
+// After a cycle (run with lazy tops): each column's top non-empty layer.
+// One process: a column's top is at most the larger of its top before the
+// cycle (exact: every change outside a cycle keeps it) and the highest layer
+// a particle entered in it during the cycle, so it is found walking down
+// from there, not from the top of the grid; the marks are reset.
+static void gf_dom_settle_top(gf_sim *sim, gf_dom *q)
+{
+    gf_grid *g = &sim->grid;
+    if (q->threads == 0 || !q->work[0].colmax) {
+        gf_grid_recompute_top(g);
+        return;
+    }
+    const size_t layer = q->ncol;
+    for (size_t col = 0; col < layer; col++) {
+        int32_t z = g->top[col];
+        for (int t = 0; t < q->threads; t++) {
+            if (q->work[t].colmax[col] > z) z = q->work[t].colmax[col];
+            q->work[t].colmax[col] = -1;
+        }
+        while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
+        g->top[col] = z;
+    }
 }
 
 // The stream of one move of spot k: (seed, its birth number, its move time).
@@ -613,7 +646,7 @@ gf_status gf_sim_domains_cycle(gf_sim *sim)
     sim->grid.lazy_top = true; // top[] is shared by whole columns: redone after the cycle
     for (int p = 0; p < q->nsect && st == GF_OK; p++) st = gf_dom_phase(sim, q, order[p], t_end);
     sim->grid.lazy_top = false;
-    gf_grid_recompute_top(&sim->grid);
+    gf_dom_settle_top(sim, q);
     for (size_t b = 0; b < q->nblock; b++) gf_par_add(&sim->st, &q->sec[b].st);
     if (st != GF_OK) return st;
     if (sim->nexit > nexit0) qsort(sim->exits + nexit0, sim->nexit - nexit0, sizeof(gf_exit), gf_exit_cmp_time_id);

@@ -145,6 +145,11 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
             gf_grid_remove(g, i);
             gf_status st = gf_grid_insert(g, i, c);
             if (st != GF_OK) return st;
+            if (w->colmax) { // the highest layer entered in the column (domains.c settles the tops)
+                const uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
+                const int32_t cz = (int32_t)(c / layer);
+                if (cz > w->colmax[c % layer]) w->colmax[c % layer] = cz;
+            }
         }
     }
     for (size_t k = 0; sim->use_nlist && k < nc; k++) {

@@ -73,6 +73,10 @@ typedef struct gf_work {
     gf_rng *rng;          ///< the stream walks and relax.method = random draw on
     gf_sim_stats *st;     ///< where the step's counters go
     const double *coltop; ///< per grid column: its top z when the step began (NULL: ask the grid)
+    /// The domain engine in one process: per grid column, the highest cell
+    /// layer a particle entered during the cycle (-1: none), so that the
+    /// column tops are settled from below that (else NULL).
+    int32_t *colmax;
     bool defer_exits;     ///< exits go to exits[] below, not into the sim
     bool exit_failed;     ///< exits[] could not grow (out of memory)
     gf_exit *exits;
