@@ -105,10 +105,9 @@ typedef struct gf_dom {
     int *owner;             ///< MPI ranks: per sector, the rank that runs it (NULL: one process)
 } gf_dom;
 
-void gf_dom_free(gf_sim *sim)
+// The workers (scratch, column marks, heaps) freed; none left.
+static void gf_dom_workers_free(gf_dom *q)
 {
-    gf_dom *q = sim->dom;
-    if (!q) return;
     for (int t = 0; t < q->threads; t++) {
         if (q->work[t].colmax) GF_DELETE(q->work[t].colmax, q->ncol);
         gf_work_free(&q->work[t]);
@@ -117,6 +116,14 @@ void gf_dom_free(gf_sim *sim)
     GF_DELETE(q->work, q->threads);
     GF_DELETE(q->heap, q->threads);
     GF_DELETE(q->heap_cap, q->threads);
+    q->threads = 0;
+}
+
+void gf_dom_free(gf_sim *sim)
+{
+    gf_dom *q = sim->dom;
+    if (!q) return;
+    gf_dom_workers_free(q);
     GF_DELETE(q->sec, q->nblock);
     GF_DELETE(q->blockof, sim->grid.ncell);
     gf_celllist_free(&q->bycolour);
@@ -166,6 +173,23 @@ static gf_status gf_dom_axis(int n, bool cut, double need, double size, int S, d
     return GF_OK;
 }
 
+// The keys' decomposition of the grid: cells per sector, sectors and sector
+// indices along x, y and z (what the engine runs and what a rank's window
+// of packing.file is cut from).
+static gf_status gf_dom_cuts(const gf_sim *sim, int bs[3], int nb[3], int nc[3])
+{
+    const gf_grid *g = &sim->grid;
+    const gf_engine_defs *c = &sim->d;
+    const int n[3] = {g->nx, g->ny, g->nz};
+    const double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
+    for (int a = 0; a < 3; a++) {
+        gf_status st = gf_dom_axis(n[a], (c->cut >> a) & 1, need, c->domain_size, (int)c->sectors, g->h, &bs[a],
+                                   &nb[a], &nc[a]);
+        if (st != GF_OK) return st;
+    }
+    return GF_OK;
+}
+
 // MPI ranks: the domains cut into one slab a rank along the axis with the
 // most domains (the tallest; z on a tie). The halo: a reach and a cell
 // diagonal, in whole layers. (No MPI here: window.c asks before the grid is made.)
@@ -208,18 +232,13 @@ static gf_status gf_dom_slabs(const gf_sim *sim, gf_dom *q)
 gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int *lo, int *hi)
 {
     const gf_grid *g = &sim->grid;
-    const int n[3] = {g->nx, g->ny, g->nz};
     int bs[3], nb[3], nc[3];
-    double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
     *lo = 0;
     *hi = g->nz;
-    for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], (sim->d.cut >> a) & 1, need, sim->d.domain_size, (int)sim->d.sectors, g->h,
-                                   &bs[a], &nb[a], &nc[a]);
-        if (st != GF_OK) return st;
-    }
+    gf_status st = gf_dom_cuts(sim, bs, nb, nc);
+    if (st != GF_OK) return st;
     gf_slabs s;
-    gf_status st = gf_dom_slabs_of(sim, g, nb, nc, bs, R, &s);
+    st = gf_dom_slabs_of(sim, g, nb, nc, bs, R, &s);
     if (st != GF_OK) return st;
     if (s.axis == 2 && me >= 0 && me < R) {
         *lo = s.rlo[me] - margin > 0 ? s.rlo[me] - margin : 0;
@@ -233,16 +252,12 @@ gf_status gf_dom_window_layers(const gf_sim *sim, int R, int me, int margin, int
 static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
 {
     const gf_grid *g = &sim->grid;
-    const gf_engine_defs *c = &sim->d;
-    double need = 2.0 * gf_par_reach(sim) + sqrt(3.0) * g->h;
-    const int n[3] = {g->nx, g->ny, g->nz};
-    q->S = (int)c->sectors;
+    q->S = (int)sim->d.sectors;
+    gf_status st = gf_dom_cuts(sim, q->bs, q->nb, q->nc);
+    if (st != GF_OK) return st;
     int cut = 0;
     q->ndomain = 1;
     for (int a = 0; a < 3; a++) {
-        gf_status st = gf_dom_axis(n[a], (c->cut >> a) & 1, need, c->domain_size, q->S, g->h, &q->bs[a], &q->nb[a],
-                                   &q->nc[a]);
-        if (st != GF_OK) return st;
         cut += q->nc[a] > 1;
         q->ndomain *= (size_t)((q->nb[a] + q->nc[a] - 1) / q->nc[a]);
     }
@@ -258,7 +273,7 @@ static gf_status gf_dom_blocks(gf_sim *sim, gf_dom *q)
     q->secs = GF_NEW(double, q->nblock);
     if (!q->sec || !q->blockof || !q->run || !q->runload || !q->mine || !q->rankload || !q->secs)
         return gf_error_set(GF_ERR_NOMEM, "out of memory for the domain engine");
-    gf_status st = gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
+    st = gf_par_colour_blocks(g, q->bs, q->nb, q->nc, q->blockof, &q->bycolour);
 #ifdef GF_MPI
     if (st == GF_OK && gf_mpi_size() > 1) st = gf_dom_slabs(sim, q);
 #endif
@@ -285,15 +300,7 @@ static gf_status gf_dom_make(gf_sim *sim)
             return st;
         }
     }
-    for (int t = 0; t < q->threads; t++) {
-        if (q->work[t].colmax) GF_DELETE(q->work[t].colmax, q->ncol);
-        gf_work_free(&q->work[t]);
-        GF_DELETE(q->heap[t], q->heap_cap[t]);
-    }
-    GF_DELETE(q->work, q->threads);
-    GF_DELETE(q->heap, q->threads);
-    GF_DELETE(q->heap_cap, q->threads);
-    q->threads = 0;
+    gf_dom_workers_free(q);
     q->work = GF_NEW(gf_work, threads);
     q->heap = GF_NEW(uint32_t *, threads);
     q->heap_cap = GF_NEW(size_t, threads);
