@@ -503,7 +503,10 @@ gf_status gf_run_dir(const gf_config *cfg_in, const gf_run_opts *opts, gf_sim_st
     // A directory another run holds is refused first: before a checkpoint
     // is read or a packing built (issue 26: a resume of a locked directory
     // said "no run to resume"; a fresh run built its packing, then failed).
-    if ((st = gf_run_dir_check_free(rd.dir)) != GF_OK) return st;
+    // Only the process that writes dir asks: a replica would see the lock
+    // rank 0 may already hold for this very run (a failed CI run: "Q is in
+    // use by another granflow run" on a 4-rank resume).
+    if (!opts->replica && (st = gf_run_dir_check_free(rd.dir)) != GF_OK) return st;
     char ckpt[GF_PATH_MAX + 32];
     gf_path(ckpt, sizeof ckpt, rd.dir, "checkpoint.bin");
     if (!opts->resume && !opts->force && !opts->replica && access(ckpt, F_OK) == 0)

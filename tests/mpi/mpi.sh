@@ -82,6 +82,24 @@ mpi 4 run -q --resume Q --set run.duration=2
 expect_rc 0 "resumed on 4 ranks"
 same S Q
 ok "1 process to t = 1, then 4 ranks to t = 2: the uninterrupted run"
+# Only rank 0 asks whether the directory is free (a replica that asked saw
+# the lock rank 0 had just taken for this very run: CI refused the resume
+# above once, "Q is in use by another granflow run"). A directory another run
+# holds is still refused, with rank 0's words, and no rank is left waiting.
+cp -r Q QL
+# the holder: a POSIX record lock on QL/.lock, as a run takes it, with its pid
+python3 -c 'import fcntl, os, sys, time
+fd = os.open("QL/.lock", os.O_RDWR | os.O_CREAT)
+fcntl.lockf(fd, fcntl.LOCK_EX); os.ftruncate(fd, 0); os.write(fd, b"%d\n" % os.getpid())
+sys.stdout.close(); time.sleep(120)' >"$T/held" &
+HOLDER=$!
+for ((i = 0; i < 100; i++)); do grep -q "^$HOLDER\$" QL/.lock 2>/dev/null && break; sleep 0.1; done
+grep -q "^$HOLDER\$" QL/.lock || fail "the holder of QL/.lock did not take it in 10 s"
+mpi 4 run -q --resume QL --set run.duration=2
+kill "$HOLDER"; wait "$HOLDER" 2>/dev/null
+expect_rc 2 "4 ranks resuming a directory another run holds"
+expect_err "QL is in use by another granflow run (pid $HOLDER, lock QL/.lock)" "4 ranks resuming a held directory"
+ok "4 ranks refuse a directory another run holds, with rank 0's message"
 
 # A stop request (SIGINT to mpirun, or SIGTERM to one rank only) stops every
 # rank at the same step: rank 0 writes the checkpoint, the run resumes on one
