@@ -7,6 +7,7 @@
 // usage: flow ENGINE SEED [WINDOW]   ENGINE: event, fixed, domains, sweepN (N sweeps)
 //        WIDTH=40 NPART=8000: a silo twice as wide (the same orifice), twice the spheres
 //        NORELAX=1 in the environment: relax.method = none
+//        GLOBALK=k: relax.method = global, relax.k = k (the whole packing every k/mu, Sec. 5)
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,10 @@ int main(int argc, char **argv)
         return 2;
     }
     if (getenv("NORELAX")) c.relax_method = GF_RELAX_NONE;
+    if (getenv("GLOBALK")) {
+        c.relax_method = GF_RELAX_GLOBAL;
+        c.relax_k = atof(getenv("GLOBALK"));
+    }
     gf_packing pk = {0};
     gf_sim *sim = NULL;
     if (gf_config_validate(&c) != GF_OK || gf_packing_generate(&c, NULL, &pk) != GF_OK ||
