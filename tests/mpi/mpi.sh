@@ -92,11 +92,11 @@ python3 -c 'import fcntl, os, sys, time
 fd = os.open("QL/.lock", os.O_RDWR | os.O_CREAT)
 fcntl.lockf(fd, fcntl.LOCK_EX); os.ftruncate(fd, 0); os.write(fd, b"%d\n" % os.getpid())
 sys.stdout.close(); time.sleep(120)' >"$T/held" &
-HOLDER=$!
+HOLDER=$! BGPID=$! # (cleanup kills it if a check below fails)
 for ((i = 0; i < 100; i++)); do grep -q "^$HOLDER\$" QL/.lock 2>/dev/null && break; sleep 0.1; done
 grep -q "^$HOLDER\$" QL/.lock || fail "the holder of QL/.lock did not take it in 10 s"
 mpi 4 run -q --resume QL --set run.duration=2
-kill "$HOLDER"; wait "$HOLDER" 2>/dev/null
+kill "$HOLDER"; wait "$HOLDER" 2>/dev/null; BGPID=
 expect_rc 2 "4 ranks resuming a directory another run holds"
 expect_err "QL is in use by another granflow run (pid $HOLDER, lock QL/.lock)" "4 ranks resuming a held directory"
 ok "4 ranks refuse a directory another run holds, with rank 0's message"
