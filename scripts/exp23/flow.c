@@ -8,6 +8,7 @@
 //        WIDTH=40 NPART=8000: a silo twice as wide (the same orifice), twice the spheres
 //        NORELAX=1 in the environment: relax.method = none
 //        GLOBALK=k: relax.method = global, relax.k = k (the whole packing every k/mu, Sec. 5)
+//        ALPHA=a: relax.alpha = a
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,6 +44,7 @@ int main(int argc, char **argv)
         return 2;
     }
     if (getenv("NORELAX")) c.relax_method = GF_RELAX_NONE;
+    if (getenv("ALPHA")) c.relax_alpha = atof(getenv("ALPHA"));
     if (getenv("GLOBALK")) {
         c.relax_method = GF_RELAX_GLOBAL;
         c.relax_k = atof(getenv("GLOBALK"));
