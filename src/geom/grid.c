@@ -103,8 +103,8 @@ gf_status gf_grid_insert(gf_grid *g, uint32_t i, uint32_t c)
     g->cell_of[i] = c;
     g->slot_of[i] = k;
     if (g->lazy_top) return GF_OK;
-    int32_t cz = (int32_t)(c / ((uint32_t)g->nx * (uint32_t)g->ny));
-    uint32_t col = c % ((uint32_t)g->nx * (uint32_t)g->ny);
+    int32_t cz;
+    uint32_t col = gf_grid_cell_column(g, c, &cz);
     if (cz > g->top[col]) g->top[col] = cz;
     return GF_OK;
 }
@@ -122,14 +122,9 @@ void gf_grid_remove(gf_grid *g, uint32_t i)
     g->count[c] = last;
     g->cell_of[i] = GF_NO_CELL;
     if (last == 0 && !g->lazy_top) {
-        uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
-        int32_t cz = (int32_t)(c / layer);
-        uint32_t col = c % layer;
-        if (g->top[col] == cz) {
-            int32_t z = cz - 1;
-            while (z >= 0 && g->count[(uint32_t)z * layer + col] == 0) z--;
-            g->top[col] = z;
-        }
+        int32_t cz;
+        uint32_t col = gf_grid_cell_column(g, c, &cz);
+        if (g->top[col] == cz) g->top[col] = gf_grid_top_from(g, col, cz - 1);
     }
 }
 
@@ -137,12 +132,7 @@ void gf_grid_recompute_top(gf_grid *g) { gf_grid_recompute_top_cols(g, 0, (size_
 
 void gf_grid_recompute_top_cols(gf_grid *g, size_t col0, size_t col1)
 {
-    const size_t layer = (size_t)g->nx * (size_t)g->ny;
-    for (size_t col = col0; col < col1; col++) {
-        int32_t z = g->nz - 1;
-        while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
-        g->top[col] = z;
-    }
+    for (size_t col = col0; col < col1; col++) g->top[col] = gf_grid_top_from(g, (uint32_t)col, g->nz - 1);
 }
 
 void gf_grid_range(const gf_grid *g, const double c[3], double r, int lo[3], int hi[3])

@@ -78,6 +78,20 @@ static inline uint32_t gf_grid_column(const gf_grid *g, double x, double y)
 {
     return (uint32_t)(gf_grid_axis(y, g->oy, g->inv_h, g->ny) * g->nx + gf_grid_axis(x, g->ox, g->inv_h, g->nx));
 }
+/// The column (cx + nx cy) of cell c, and its layer cz in *cz.
+static inline uint32_t gf_grid_cell_column(const gf_grid *g, uint32_t c, int32_t *cz)
+{
+    const uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
+    *cz = (int32_t)(c / layer);
+    return c % layer;
+}
+/// The highest non-empty layer of column col at or below layer z (-1: none).
+static inline int32_t gf_grid_top_from(const gf_grid *g, uint32_t col, int32_t z)
+{
+    const size_t layer = (size_t)g->nx * (size_t)g->ny;
+    while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
+    return z;
+}
 /// The particles of cell (cx, cy, cz): *n of them from the returned slots.
 static inline const uint32_t *gf_grid_slots(const gf_grid *g, int cx, int cy, int cz, uint32_t *n)
 {

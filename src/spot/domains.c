@@ -344,15 +344,13 @@ static void gf_dom_settle_top(gf_sim *sim, gf_dom *q)
         gf_grid_recompute_top(g);
         return;
     }
-    const size_t layer = q->ncol;
-    for (size_t col = 0; col < layer; col++) {
+    for (size_t col = 0; col < q->ncol; col++) {
         int32_t z = g->top[col];
         for (int t = 0; t < q->threads; t++) {
             if (q->work[t].colmax[col] > z) z = q->work[t].colmax[col];
             q->work[t].colmax[col] = -1;
         }
-        while (z >= 0 && g->count[(size_t)z * layer + col] == 0) z--;
-        g->top[col] = z;
+        g->top[col] = gf_grid_top_from(g, (uint32_t)col, z);
     }
 }
 

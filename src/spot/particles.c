@@ -146,9 +146,9 @@ gf_status gf_sim_track_moves(gf_sim *sim, gf_work *w, size_t m, const uint8_t *m
             gf_status st = gf_grid_insert(g, i, c);
             if (st != GF_OK) return st;
             if (w->colmax) { // the highest layer entered in the column (domains.c settles the tops)
-                const uint32_t layer = (uint32_t)g->nx * (uint32_t)g->ny;
-                const int32_t cz = (int32_t)(c / layer);
-                if (cz > w->colmax[c % layer]) w->colmax[c % layer] = cz;
+                int32_t cz;
+                const uint32_t col = gf_grid_cell_column(g, c, &cz);
+                if (cz > w->colmax[col]) w->colmax[col] = cz;
             }
         }
     }
